@@ -1,0 +1,42 @@
+# Two entry points (see README): `make all` runs the workflow, `make test` the tests.
+# Both create the virtual environment from environment.lock when it is missing.
+VENV ?= .venv
+PY := $(VENV)/bin/python
+# rules call the `contactlab` command: put the environment first on PATH
+export PATH := $(abspath $(VENV))/bin:$(PATH)
+STAMP := $(VENV)/.installed
+JOBS ?= 2
+
+.PHONY: all test env lint report lock rulegraph clean
+
+all: $(STAMP)
+	$(VENV)/bin/snakemake -j$(JOBS) all
+
+test: $(STAMP)
+	$(PY) -m pytest -n $(JOBS) tests
+
+env: $(STAMP)
+
+$(STAMP): environment.lock pyproject.toml
+	test -x $(PY) || python3.11 -m venv $(VENV) || python3 -m venv $(VENV)
+	$(PY) -m pip install --quiet --require-hashes --no-deps -r environment.lock
+	$(PY) -m pip install --quiet --no-deps --no-build-isolation -e .
+	touch $(STAMP)
+
+lint: $(STAMP)
+	$(VENV)/bin/ruff check src tests benchmarks workflow
+	$(VENV)/bin/snakemake --lint
+
+report: $(STAMP)
+	$(VENV)/bin/snakemake -j$(JOBS) all
+	$(VENV)/bin/snakemake --report results/report/snakemake-report.zip
+
+lock:
+	uv pip compile --python-version 3.11 --generate-hashes --custom-compile-command "make lock" requirements.in -o environment.lock
+
+rulegraph: $(STAMP)
+	$(VENV)/bin/snakemake --rulegraph dot all | dot -Tsvg > docs/rulegraph.svg
+	$(VENV)/bin/snakemake --rulegraph mermaid-js all > docs/rulegraph.mmd
+
+clean:
+	rm -rf results .snakemake

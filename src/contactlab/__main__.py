@@ -1,0 +1,7 @@
+"""Allow ``python -m contactlab``."""
+
+import sys
+
+from contactlab.cli import main
+
+sys.exit(main())

@@ -1,0 +1,49 @@
+"""The ``contactlab`` command line: one sub-command per branch of the workflow.
+
+Each branch module exposes ``register(subparsers)``; listing it in
+:data:`COMMAND_MODULES` adds its commands. Snakemake rules call these commands,
+so a user can run any step by hand with the same code.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from collections.abc import Sequence
+
+from contactlab import __version__
+
+COMMAND_MODULES: tuple[str, ...] = (
+    "contactlab.surfaces.cli",
+    "contactlab.report.cli",
+)
+
+#: Errors that mean bad input, reported as one line without a traceback.
+USER_ERRORS = (ValueError, KeyError, FileNotFoundError, OSError)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The top-level parser with every branch's sub-commands."""
+    parser = argparse.ArgumentParser(prog="contactlab", description=__doc__.splitlines()[0])
+    parser.add_argument("--version", action="version", version=f"contactlab {__version__}")
+    subparsers = parser.add_subparsers(dest="command", required=True)
+    for name in COMMAND_MODULES:
+        importlib.import_module(name).register(subparsers)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point; returns the process exit status."""
+    args = build_parser().parse_args(argv)
+    try:
+        args.func(args)
+    except USER_ERRORS as exc:
+        message = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
+        print(f"contactlab: error: {message}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

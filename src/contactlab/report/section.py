@@ -1,0 +1,101 @@
+"""One report section: an HTML fragment plus its tables (CSV, Markdown) and figures (PNG, PDF).
+
+Each branch of the workflow writes its section to ``results/report/sections/``;
+:mod:`contactlab.report.index` stitches the fragments into ``index.html``.
+Paths inside a fragment are relative to ``results/report/``.
+"""
+
+from __future__ import annotations
+
+import html
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import pandas as pd
+
+from contactlab.io import atomic_path, write_text
+
+#: Metadata in saved figures is fixed so the same data give the same files.
+_PNG_METADATA = {"Software": None}
+_PDF_METADATA = {"Creator": None, "Producer": None, "CreationDate": None}
+
+
+def write_table(table: pd.DataFrame, csv_path: str | os.PathLike[str], digits: int = 3) -> None:
+    """Write ``table`` as CSV at ``csv_path`` and as Markdown beside it (``.md``)."""
+    csv_path = Path(csv_path)
+    with atomic_path(csv_path) as tmp:
+        table.to_csv(tmp, index=False, float_format=f"%.{digits + 3}g", lineterminator="\n")
+    markdown = table.to_markdown(index=False, floatfmt=f".{digits}f")
+    write_text(markdown + "\n", csv_path.with_suffix(".md"))
+
+
+def save_figure(fig: plt.Figure, png_path: str | os.PathLike[str]) -> None:
+    """Save ``fig`` as PNG at ``png_path`` and as PDF beside it, then close it."""
+    png_path = Path(png_path)
+    with atomic_path(png_path) as tmp:
+        fig.savefig(tmp, dpi=150, bbox_inches="tight", metadata=_PNG_METADATA, format="png")
+    with atomic_path(png_path.with_suffix(".pdf")) as tmp:
+        fig.savefig(tmp, bbox_inches="tight", metadata=_PDF_METADATA, format="pdf")
+    plt.close(fig)
+
+
+@dataclass
+class Section:
+    """An HTML fragment built block by block; ``report_dir`` anchors relative links."""
+
+    title: str
+    anchor: str
+    report_dir: Path
+    blocks: list[str] = field(default_factory=list)
+
+    def _relative(self, path: str | os.PathLike[str]) -> str:
+        return Path(os.path.relpath(Path(path), self.report_dir)).as_posix()
+
+    def paragraph(self, text: str) -> None:
+        """Add a paragraph of plain text (escaped)."""
+        self.blocks.append(f"<p>{html.escape(text)}</p>")
+
+    def note(self, text: str) -> None:
+        """Add a highlighted note, e.g. that data are reconstructed or a case did not converge."""
+        self.blocks.append(f'<p class="note">{html.escape(text)}</p>')
+
+    def table(
+        self, table: pd.DataFrame, caption: str, csv_path: str | os.PathLike[str], digits: int = 3
+    ) -> None:
+        """Write ``table`` to CSV/Markdown and show it with a caption and a download link."""
+        write_table(table, csv_path, digits)
+        body = table.to_html(
+            index=False, float_format=lambda v: f"{v:.{digits}f}", na_rep="–", border=0
+        )
+        link = self._relative(csv_path)
+        self.blocks.append(
+            f"<figure class='table'>{body}<figcaption>{html.escape(caption)} "
+            f"(<a href='{link}'>CSV</a>)</figcaption></figure>"
+        )
+
+    def figure(self, fig: plt.Figure, caption: str, png_path: str | os.PathLike[str]) -> None:
+        """Save ``fig`` as PNG and PDF and show it with a caption."""
+        save_figure(fig, png_path)
+        png = self._relative(png_path)
+        pdf = self._relative(Path(png_path).with_suffix(".pdf"))
+        self.blocks.append(
+            f"<figure><img src='{png}' alt='{html.escape(caption)}'>"
+            f"<figcaption>{html.escape(caption)} (<a href='{pdf}'>PDF</a>)</figcaption></figure>"
+        )
+
+    def render(self) -> str:
+        """The fragment: a ``<section>`` with a heading and the blocks in order."""
+        inner = "\n".join(self.blocks)
+        return (
+            f"<section id='{self.anchor}'>\n<h2>{html.escape(self.title)}</h2>\n{inner}\n"
+            "</section>\n"
+        )
+
+    def write(self, path: str | os.PathLike[str]) -> None:
+        """Write the fragment to ``path`` (atomically)."""
+        write_text(self.render(), path)

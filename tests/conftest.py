@@ -1,0 +1,34 @@
+"""Shared fixtures: the repository root and a scratch copy of the workflow."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(scope="session")
+def repo() -> Path:
+    """The repository root."""
+    return REPO
+
+
+def copy_workflow(dest: Path) -> Path:
+    """Copy what a workflow run needs (not results/) into ``dest``; return it."""
+    for name in ("Snakefile", "workflow", "config", "resources"):
+        src = REPO / name
+        if src.is_dir():
+            shutil.copytree(src, dest / name)
+        else:
+            shutil.copy2(src, dest / name)
+    shutil.copy2(REPO / "tests" / "e2e_config.yaml", dest / "config" / "e2e.yaml")
+    return dest
+
+
+@pytest.fixture
+def workflow_copy(tmp_path: Path) -> Path:
+    """A fresh copy of the workflow in a temporary directory."""
+    return copy_workflow(tmp_path)

@@ -1,0 +1,95 @@
+"""End-to-end: the workflow on a small config in a temporary directory."""
+
+from __future__ import annotations
+
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import xarray as xr
+
+CONFIG = "config/e2e.yaml"
+
+
+def snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]:
+    """Run Snakemake in ``workdir`` with this interpreter's environment on PATH."""
+    env = dict(os.environ)
+    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
+    return subprocess.run(
+        [sys.executable, "-m", "snakemake", "--configfile", CONFIG, *args],
+        cwd=workdir, env=env, capture_output=True, text=True, check=False,
+    )
+
+
+def planned_rules(result: subprocess.CompletedProcess[str]) -> set[str]:
+    """Rule names of the jobs a dry run would execute (its ``rule x:`` lines)."""
+    return {
+        match.group(1)
+        for match in re.finditer(r"^(?:local)?rule (\w+):$", result.stdout, re.M)
+    }
+
+
+@pytest.mark.slow
+def test_workflow_end_to_end(workflow_copy: Path) -> None:
+    run = snakemake(workflow_copy, "-j2", "all")
+    assert run.returncode == 0, run.stderr[-3000:]
+    results = workflow_copy / "results"
+    with xr.open_dataset(results / "surfaces" / "seq.nc") as seq:
+        assert seq["Seq"].attrs["units"] == "um"
+        assert float(seq["Seq"].sel(test="RU1")) == pytest.approx(2.038, abs=5e-4)
+    page = (results / "report" / "index.html").read_text()
+    assert "Seq" in page and "figures/seq.png" in page
+
+    again = snakemake(workflow_copy, "-n", "all")
+    assert again.returncode == 0, again.stderr
+    assert "Nothing to be done" in again.stdout + again.stderr
+
+    # Snakemake 9 compares checksums of small inputs, so the edit must change content.
+    edited = workflow_copy / "resources" / "published" / "table_2.3.csv"
+    edited.write_text(edited.read_text() + "\n")
+    touched = snakemake(workflow_copy, "-n", "all")
+    assert planned_rules(touched) == {"report_surfaces", "report_index", "all"}
+
+    report = snakemake(workflow_copy, "--report", "results/report/snakemake-report.zip")
+    assert report.returncode == 0, report.stderr[-3000:]
+    assert (results / "report" / "snakemake-report.zip").stat().st_size > 0
+
+
+def test_single_target_builds_only_its_ancestors(workflow_copy: Path) -> None:
+    run = snakemake(workflow_copy, "-n", "results/surfaces/seq.nc")
+    assert run.returncode == 0, run.stderr
+    assert planned_rules(run) == {"seq"}
+
+
+@pytest.mark.parametrize(
+    ("edit", "expected"),
+    [
+        (("config/e2e.yaml", "report:", "reprot: {}\nreport:"), ["config/e2e.yaml", "reprot"]),
+        (("config/e2e.yaml", "tests: config/tests.csv", "tests: 42"),
+         ["config/e2e.yaml", "42", "string"]),
+        (("config/tests.csv", "RU1,ground,rough_specimen,B,RU1_pad,B,4,20,,,",
+          "RU1,ground,rough_specimen,B,RU1_pad,B,4,20,data/RU1/log.csv,,"),
+         ["config/tests.csv", "RU1", "load_log", "data/RU1/log.csv"]),
+        (("config/tests.csv", "RU2,ground,rough_specimen,B,RU2_pad,B,8,20",
+          "RU2,ground,rough_specimen,B,RU2_pad,B,-8,20"),
+         ["config/tests.csv", "max_normal_load_kN", "-8"]),
+        (("config/tests.csv", "id,group", "id,grup"), ["config/tests.csv", "grup"]),
+    ],
+    ids=["unknown-key", "wrong-type", "missing-file", "negative-load", "unknown-column"],
+)
+def test_malformed_config_fails_fast_and_writes_nothing(
+    workflow_copy: Path, edit: tuple[str, str, str], expected: list[str]
+) -> None:
+    path, old, new = edit
+    target = workflow_copy / path
+    text = target.read_text()
+    assert old in text
+    target.write_text(text.replace(old, new, 1))
+    run = snakemake(workflow_copy, "-j2", "all")
+    assert run.returncode != 0
+    for word in expected:
+        assert word in run.stderr, (word, run.stderr[-2000:])
+    assert not (workflow_copy / "results").exists()
