@@ -7,7 +7,7 @@ export PATH := $(abspath $(VENV))/bin:$(PATH)
 STAMP := $(VENV)/.installed
 JOBS ?= 2
 
-.PHONY: all test env lint report lock rulegraph clean
+.PHONY: all test env ccx lint report lock rulegraph clean
 
 all: $(STAMP)
 	$(VENV)/bin/snakemake -j$(JOBS) all
@@ -18,10 +18,17 @@ test: $(STAMP)
 env: $(STAMP)
 
 $(STAMP): environment.lock pyproject.toml
+	command -v ccx >/dev/null || $(MAKE) ccx
 	test -x $(PY) || python3.11 -m venv $(VENV) || python3 -m venv $(VENV)
 	$(PY) -m pip install --quiet --require-hashes --no-deps -r environment.lock
 	$(PY) -m pip install --quiet --no-deps --no-build-isolation -e .
 	touch $(STAMP)
+
+# CalculiX, the finite element solver of the FE cross-checks (Debian package calculix-ccx).
+ccx:
+	@if [ "$$(id -u)" = 0 ]; then SUDO=; else SUDO=sudo; fi; \
+	$$SUDO apt-get update -qq && $$SUDO apt-get install -y -qq calculix-ccx >/dev/null \
+	|| { echo "error: could not install CalculiX (apt package calculix-ccx); install it and rerun" >&2; exit 1; }
 
 lint: $(STAMP)
 	$(VENV)/bin/ruff check src tests benchmarks workflow
