@@ -20,7 +20,8 @@ def _run(repo: Path, *args: str) -> subprocess.CompletedProcess[str]:
 
 
 def test_ruff_is_clean(repo: Path) -> None:
-    run = _run(repo, sys.executable, "-m", "ruff", "check", "src", "tests", "benchmarks")
+    folders = [name for name in ("src", "tests", "benchmarks") if (repo / name).is_dir()]
+    run = _run(repo, sys.executable, "-m", "ruff", "check", *folders)
     assert run.returncode == 0, run.stdout[-3000:]
 
 
