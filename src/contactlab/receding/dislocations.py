@@ -1,0 +1,235 @@
+"""Bounded-bounded dislocation densities on intervals of the contact plane y = 0.
+
+A :class:`DensityInterval` carries a glide (B_x) or climb (B_y) density on [lo, hi], in
+the normalised form ``B_bar(xi) = phi(s) sqrt(1 - s^2)`` with ``xi = T(s)`` for s in [-1, 1]
+(lengths in c, ``B_bar = 2 mu B / ((kappa+1) p)``; see the package docstring). Maps T:
+
+``linear``         xi = mid + half s (eqs 5.8-5.12, 5.22-5.28).
+``log``            xi = lo (hi/lo)^((1+s)/2), lo > 0: geometric grading towards lo, for a
+                   zone whose inner end is far smaller than its length (the central stick
+                   zone a1 of §5.2.1 shrinks to 1e-6 c and below before separation starts;
+                   with a linear map the nodes next to a1 are ~1e-3 c apart).
+``semi-infinite``  xi = lo + lam log(2 / (1 - s)) on [lo, inf) (sec. 6.4, the transform of
+                   Chaise et al.), ``hi`` = inf and ``lam`` the scale. T' = lam/(1 - s) is
+                   singular at s = 1, so sums over it converge only algebraically (about
+                   3e-3 at N = 40, 6e-4 at N = 160 for a smooth phi; tests); a
+                   Gauss-Jacobi rule absorbing sqrt((1+s)/(1-s)) would restore spectral
+                   accuracy for the semi-infinite problems of chs 6-7.
+
+Optionally the density has a mirror image with ``B(-xi) = parity * B(xi)``: glide
+densities of a problem symmetric in x are even (parity +1, the two slip zones of eqs
+5.3-5.4), climb densities odd (parity -1).
+
+``influence(x)`` gives the matrices that map the nodal values phi_i to the shear and
+normal tractions (in p) at any points x, eq. (4.1) integrated over the interval:
+
+    traction(x) = (1/pi) int H(x - xi) B_bar(xi) dxi
+      = cauchy * (1/pi) int sqrt(1-s^2) psi(s) / (t - s) ds + (1/pi) sum_i w_i T'_i H_reg phi_i
+
+with t = T^-1(x) and psi(s) = phi(s) T'(s) (t - s) / (x - T(s)), a smooth function of s
+whose polynomial interpolant is transformed exactly (``quadrature.cauchy_matrix``), inside,
+near or outside the interval. For a linear map psi = phi. At the collocation points
+x_k = T(t_k) this is the classical Gauss-Chebyshev sum w_i T'_i phi_i / (pi (x_k - xi_i)),
+valid for any smooth map (sec. 6.4). Points with no preimage (x <= 0 for ``log``, x < lo
+for ``semi-infinite`` far from the interval) use plain sums. The regular parts of the
+Green's functions are smooth on the scale c and use plain Gauss-Chebyshev sums.
+
+The relative displacement of the layer over the half-plane (tangential slip for glide,
+separation for climb) is ``-int_{-inf}^{x} B_bar dxi`` in units of (kappa+1) p c / (2 mu).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from contactlab.receding.kernels import SPLIT, Kind
+from contactlab.receding.quadrature import (
+    bounded_rule,
+    cauchy_matrix,
+    cumulative_matrix,
+    interpolation_matrix,
+)
+
+MAPPINGS = ("linear", "log", "semi-infinite")
+#: parity of each Green's function in d = x - xi (odd: -1, even: +1), App. B.1
+_KERNEL_PARITY = {("glide", "shear"): -1, ("glide", "normal"): 1,
+                  ("climb", "shear"): 1, ("climb", "normal"): -1}
+
+
+@dataclass(frozen=True)
+class DensityInterval:
+    """A glide or climb density on [lo, hi] with N Gauss-Chebyshev nodes (and a mirror image)."""
+
+    kind: Kind
+    lo: float
+    hi: float
+    n: int
+    parity: int = 0
+    mapping: str = "linear"
+    lam: float = np.nan
+
+    def __post_init__(self) -> None:
+        if self.kind not in ("glide", "climb"):
+            raise ValueError(f"kind must be 'glide' or 'climb', got {self.kind!r}")
+        if not self.hi > self.lo:
+            raise ValueError(f"interval needs hi > lo, got [{self.lo}, {self.hi}]")
+        if self.parity not in (-1, 0, 1):
+            raise ValueError("parity must be -1, 0 or +1")
+        if self.mapping not in MAPPINGS:
+            raise ValueError(f"mapping must be one of {MAPPINGS}, got {self.mapping!r}")
+        if self.mapping == "log" and not (self.lo > 0 and np.isfinite(self.hi)):
+            raise ValueError(f"a log map needs 0 < lo < hi < inf, got [{self.lo}, {self.hi}]")
+        if self.mapping == "semi-infinite" and not (np.isinf(self.hi) and self.lam > 0):
+            raise ValueError("a semi-infinite map needs hi = inf and a scale lam > 0")
+        if self.mapping != "semi-infinite" and not np.isfinite(self.hi):
+            raise ValueError("an infinite interval needs mapping='semi-infinite'")
+
+    # ---- the map T: [-1, 1] -> [lo, hi]
+    @property
+    def mid(self) -> float:
+        return 0.5 * (self.lo + self.hi)
+
+    @property
+    def half(self) -> float:
+        return 0.5 * (self.hi - self.lo)
+
+    def transform(self, s: np.ndarray) -> np.ndarray:
+        """xi = T(s)."""
+        s = np.asarray(s, dtype=float)
+        if self.mapping == "linear":
+            return self.mid + self.half * s
+        if self.mapping == "log":
+            return self.lo * np.exp(0.5 * (1.0 + s) * np.log(self.hi / self.lo))
+        return self.lo + self.lam * np.log(2.0 / (1.0 - s))
+
+    def derivative(self, s: np.ndarray) -> np.ndarray:
+        """dxi/ds = T'(s)."""
+        s = np.asarray(s, dtype=float)
+        if self.mapping == "linear":
+            return np.full_like(s, self.half)
+        if self.mapping == "log":
+            return 0.5 * np.log(self.hi / self.lo) * self.transform(s)
+        return self.lam / (1.0 - s)
+
+    def preimage(self, x: np.ndarray) -> np.ndarray:
+        """t = T^-1(x) (real-analytic continuation; NaN where there is none)."""
+        x = np.asarray(x, dtype=float)
+        if self.mapping == "linear":
+            return (x - self.mid) / self.half
+        if self.mapping == "log":
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t = 2.0 * np.log(x / self.lo) / np.log(self.hi / self.lo) - 1.0
+            return np.where(x > 0, t, np.nan)
+        return 1.0 - 2.0 * np.exp(-(x - self.lo) / self.lam)
+
+    @property
+    def nodes(self) -> np.ndarray:
+        """Integration points xi_i (units of c)."""
+        return self.transform(bounded_rule(self.n).s)
+
+    @property
+    def collocation(self) -> np.ndarray:
+        """The N + 1 collocation points x_k = T(t_k) (units of c), eq. (5.9) mapped."""
+        return self.transform(bounded_rule(self.n).t)
+
+    @property
+    def weights(self) -> np.ndarray:
+        """w_i T'(s_i): int B_bar dxi = sum_i weights_i phi_i."""
+        rule = bounded_rule(self.n)
+        return rule.w * self.derivative(rule.s)
+
+    # ---- tractions
+    def _own(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Influence of the density itself (no image) at the points x."""
+        rule = bounded_rule(self.n)
+        xi = self.nodes
+        weights = self.weights
+        d = x[:, None] - xi[None, :]
+        cauchy_part = None
+        out = []
+        for component in ("shear", "normal"):
+            cauchy, regular = SPLIT[(self.kind, component)]
+            mat = regular(d) * (weights[None, :] / np.pi)
+            if cauchy:
+                if cauchy_part is None:
+                    cauchy_part = self._cauchy(x, d, rule)
+                mat = mat + cauchy * cauchy_part
+            out.append(mat)
+        return out[0], out[1]
+
+    def _cauchy(self, x: np.ndarray, d: np.ndarray, rule) -> np.ndarray:
+        """(1/pi) int B_bar/(x - xi) dxi as a matrix on phi (see the module docstring)."""
+        t = self.preimage(x)
+        if self.mapping == "linear":
+            return cauchy_matrix(t, self.n)
+        out = np.empty_like(d)
+        mapped = np.isfinite(t)
+        if self.mapping == "semi-infinite":
+            # below the interval by more than ~200/N^2 in t the plain sum agrees with the
+            # transform of the interpolant to round-off (the Chebyshev ellipse through t has
+            # rho^-2N < 1e-17); skip the O(N) transform there (images, far points)
+            mapped &= t > -1.0 - 200.0 / self.n**2
+        if mapped.any():
+            tm = t[mapped][:, None]
+            dm = d[mapped]
+            gap = tm - rule.s[None, :]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                ratio = np.where(np.abs(gap) < 1e-14, 1.0,
+                                 self.derivative(rule.s)[None, :] * gap / dm)
+            ratio = np.where(np.abs(gap) < 1e-14, 1.0, ratio)
+            out[mapped] = cauchy_matrix(t[mapped], self.n) * ratio
+        if (~mapped).any():
+            out[~mapped] = self.weights[None, :] / (np.pi * d[~mapped])
+        return out
+
+    def influence(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(S, N): (len(x), N) matrices mapping phi_i to shear and normal traction / p at x."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        shear, normal = self._own(x)
+        if self.parity:
+            # image at -xi with parity * phi: H(x + xi) = kernel parity * H(-x - xi)
+            ms, mn = self._own(-x)
+            shear = shear + self.parity * _KERNEL_PARITY[(self.kind, "shear")] * ms
+            normal = normal + self.parity * _KERNEL_PARITY[(self.kind, "normal")] * mn
+        return shear, normal
+
+    # ---- densities and displacements
+    def density(self, phi: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """B_bar at the points x (zero outside the interval and its image)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        phi = np.asarray(phi, dtype=float)
+
+        def own(points: np.ndarray) -> np.ndarray:
+            t = np.nan_to_num(self.preimage(points), nan=-2.0)
+            root = np.sqrt(np.clip(1.0 - t * t, 0.0, None))
+            return root * (interpolation_matrix(t, self.n) @ phi)
+
+        out = own(x)
+        if self.parity:  # the image density at x is parity * B(-x)
+            out = out + self.parity * own(-x)
+        return out
+
+    def integral(self, phi: np.ndarray) -> float:
+        """int B_bar dxi over [lo, hi] (the image not included), e.g. the closure (5.7)."""
+        return float(self.weights @ np.asarray(phi, dtype=float))
+
+    def _cumulative(self, phi: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """int_lo^x B_bar dxi (0 below lo, the total above hi)."""
+        t = np.nan_to_num(self.preimage(x), nan=-2.0)
+        values = np.asarray(phi, dtype=float) * self.derivative(bounded_rule(self.n).s)
+        return cumulative_matrix(t, self.n) @ values
+
+    def displacement(self, phi: np.ndarray, x: np.ndarray) -> np.ndarray:
+        """Relative displacement -int_{-inf}^{x} B_bar dxi (slip or separation) at x.
+
+        In units of (kappa+1) p c / (2 mu); includes the image.
+        """
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        out = -self._cumulative(phi, x)
+        if self.parity:
+            # image density at x is parity * B(-x); its integral from -inf to x equals
+            # parity * (total - int_{-inf}^{-x} B)
+            out = out - self.parity * (self.integral(phi) - self._cumulative(phi, -x))
+        return out

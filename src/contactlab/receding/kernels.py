@@ -1,0 +1,86 @@
+"""Green's functions of an edge dislocation in the half-plane y <= c, App. B.1 and eq. (4.1).
+
+A dislocation with Burgers vector (b_x, b_y) at (xi, 0), a distance c below the free
+surface y = c, gives on the line y = 0 the stresses
+
+    sigma_xy = 2 mu / (pi (kappa + 1)) * (H_xxy b_x + H_yxy b_y) / c
+    sigma_yy = 2 mu / (pi (kappa + 1)) * (H_xyy b_x + H_yyy b_y) / c
+
+with every H a function of d = x_hat - xi_hat only. The expressions of App. B.1 were
+checked numerically (tests/receding/test_kernels.py): the infinite-plane dislocation field
+plus the Flamant/Cerruti field of the surface tractions it leaves at y = c reproduce them
+to 1e-12. Sign convention (Hills et al.): H_xxy and H_yyy start with +1/d, so the relative
+displacement of the layer (y > 0) over the half-plane is ``-int_{-inf}^{x} B dxi``
+(an opening under tension is positive; see ``dislocations``).
+
+Parity: H_xxy and H_yyy are odd in d, H_xyy and H_yxy even, and H_xyy = -H_yxy.
+"""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+
+Kind = Literal["glide", "climb"]
+Component = Literal["shear", "normal"]
+
+
+def _powers(d: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """1/q, 1/q^2, 1/q^3 with q = 4 + d^2 (the image distance squared, in c^2)."""
+    iq = 1.0 / (4.0 + d * d)
+    iq2 = iq * iq
+    return iq, iq2, iq2 * iq
+
+
+def h_yxy(d: np.ndarray) -> np.ndarray:
+    """Shear at y = 0 from a climb dislocation, App. B.1 (regular)."""
+    _, iq2, iq3 = _powers(np.asarray(d, dtype=float))
+    return 8.0 * (3.0 * iq2 - 16.0 * iq3)
+
+
+def h_xyy(d: np.ndarray) -> np.ndarray:
+    """Normal stress at y = 0 from a glide dislocation, App. B.1 (regular, = -H_yxy)."""
+    return -h_yxy(d)
+
+
+def h_xxy_regular(d: np.ndarray) -> np.ndarray:
+    """H_xxy minus its Cauchy part 1/d: the free-surface correction, App. B.1."""
+    d = np.asarray(d, dtype=float)
+    iq, iq2, iq3 = _powers(d)
+    return d * (-iq + 12.0 * iq2 - 64.0 * iq3)
+
+
+def h_yyy_regular(d: np.ndarray) -> np.ndarray:
+    """H_yyy minus its Cauchy part 1/d: the free-surface correction, App. B.1."""
+    d = np.asarray(d, dtype=float)
+    iq, iq2, iq3 = _powers(d)
+    return d * (-iq - 4.0 * iq2 - 64.0 * iq3)
+
+
+def h_xxy(d: np.ndarray) -> np.ndarray:
+    """Shear at y = 0 from a glide dislocation, App. B.1 (Cauchy singular)."""
+    d = np.asarray(d, dtype=float)
+    return 1.0 / d + h_xxy_regular(d)
+
+
+def h_yyy(d: np.ndarray) -> np.ndarray:
+    """Normal stress at y = 0 from a climb dislocation, App. B.1 (Cauchy singular)."""
+    d = np.asarray(d, dtype=float)
+    return 1.0 / d + h_yyy_regular(d)
+
+
+#: (kind, component) -> (coefficient of the Cauchy part 1/d, regular part).
+SPLIT = {
+    ("glide", "shear"): (1.0, h_xxy_regular),
+    ("glide", "normal"): (0.0, h_xyy),
+    ("climb", "shear"): (0.0, h_yxy),
+    ("climb", "normal"): (1.0, h_yyy_regular),
+}
+
+
+def kernel(kind: Kind, component: Component, d: np.ndarray) -> np.ndarray:
+    """The full Green's function H for ``kind`` of dislocation and traction ``component``."""
+    cauchy, regular = SPLIT[(kind, component)]
+    d = np.asarray(d, dtype=float)
+    return (cauchy / d if cauchy else 0.0) + regular(d)

@@ -1,0 +1,416 @@
+"""Receding contact with separation at all remote points: the method of secs 6.2-6.4, 7.4.
+
+A layer pressed on a half-plane by a symmetric load (``loading``) sticks on |x| < a,
+slips on a < |x| < b and lifts off for |x| > b, its ends rising with slope k_l. Unknowns
+(units of c, densities times 2 mu / ((kappa + 1) T), tractions in T):
+
+* an even glide density B_x on [a, inf) (and its image), bounded at both ends, with the
+  map xi = a + lam_a log(2 / (1 - s)) (sec. 6.4);
+* an odd corrective climb density B_yc on [b, inf), bounded at both ends, map with lam_b;
+* the normalised remote slope K = K_T = k_l 2 mu / ((kappa + 1) T), through the
+  preformed density A_y (``preformed``), linear in K;
+* the transition points a and b.
+
+Equations (eqs 6.18-6.22, 7.28-7.31; x >= 0 by symmetry):
+
+    N(x) = 0                                   at the N + 1 collocation points of [b, inf)
+    S(x) + H(b - x) f N(x) = 0                 at the N + 1 collocation points of [a, inf)
+    B_yc(e) = 0                                (eq. 6.22)
+
+with N, S the sums of the bilateral tractions, those of A_y and those of the densities.
+For fixed (a, b) these are linear in (phi_x, phi_y, K): one collocation row of each set
+(the one nearest t = 0) is left out, the square system of 2N + 1 rows solved, and a and b
+are the roots of the two rows left out (``solve.find_transitions``).
+
+Corrections to the printed equations (checked numerically, tests/receding/test_line*.py):
+
+* (6.18) as printed has the bilateral and preformed tractions on the right-hand side with
+  a plus sign; N = 0 requires minus: M (...) = -(sigma_yy^b + sigma_yy^A)/(P/c), as the
+  discretised form (6.20) has it.
+* (6.19): the kernels must be L_x = F_xxy + H(b - x) f F_xyy and L_y = F_yxy +
+  H(b - x) f F_yyy (the printed L_x repeats F_xxy in the friction term, i.e. uses the
+  shear kernel where the normal one belongs), matching the right-hand side
+  -(sigma_xy + H(b - x) f sigma_yy).
+* (6.14): the second integral lacks its d xi (typographical only).
+* (6.22) picks the node nearest e; here B_yc is interpolated at e exactly (a node jumps
+  as b moves, which would make the leftover equations discontinuous in b).
+
+The Chaise et al. model (``preformed=False``) is the same system without A_y, K and
+eq. (6.22): bounded-bounded densities only, so the separation tends to a constant.
+"""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import linalg
+
+from contactlab.receding._blas import single_thread
+from contactlab.receding.dislocations import DensityInterval
+from contactlab.receding.loading import Load
+from contactlab.receding.preformed import Preformed
+from contactlab.receding.quadrature import interpolation_matrix, legendre
+from contactlab.receding.solve import LinearSystem, find_transitions
+
+#: tolerance (units of T) of the contact checks between the nodes
+CHECK_TOL = 5e-3
+REGIMES = ("slip_separation", "no_stick", "frictionless")
+#: N of the first, coarse solve of the N-continuation
+COARSE_N = 64
+
+
+@dataclass
+class LiftoffSolution:
+    """A solution of a lifting-off receding contact (line load, patch, or Chaise model)."""
+
+    problem: str
+    load: Load
+    f: float
+    n: int
+    lam_a: float
+    lam_b: float
+    e: float
+    preformed_used: bool = True
+    regime: str = "slip_separation"
+    a: float = np.nan
+    b: float = np.nan
+    K_T: float = np.nan
+    glide: DensityInterval | None = None
+    climb: DensityInterval | None = None
+    phi_x: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    phi_y: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    residual: float = np.inf
+    leftover: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    converged: bool = False
+    nfev: int = 0
+    message: str = ""
+    checks: dict[str, float] = field(default_factory=dict)
+    seconds: float = np.nan
+
+    # ---- convenience for the FE branch and the CLI
+    @property
+    def w(self) -> float:
+        return self.load.w
+
+    @property
+    def w_hat(self) -> float:
+        return self.load.w
+
+    @property
+    def preformed(self) -> Preformed | None:
+        if not self.preformed_used or not np.isfinite(self.b):
+            return None
+        return Preformed(self.load, self.b, self.e)
+
+    @property
+    def _k(self) -> float:
+        return self.K_T if np.isfinite(self.K_T) else 0.0
+
+    # ---- fields (any x, units of c; tractions in T)
+    def tractions(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(S(x), N(x)) / T: shear and normal traction on the half-plane at (x, 0)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        s, n = self.load.bilateral(x)
+        pre = self.preformed
+        if pre is not None:
+            ps, pn = pre.stresses(x)
+            coef = np.array([1.0, self._k])
+            s, n = s + ps @ coef, n + pn @ coef
+        for interval, phi in ((self.glide, self.phi_x), (self.climb, self.phi_y)):
+            if interval is not None and phi.size:
+                ms, mn = interval.influence(x)
+                s, n = s + ms @ phi, n + mn @ phi
+        return s, n
+
+    def glide_density(self, x: np.ndarray) -> np.ndarray:
+        """B_x (even), times 2 mu / ((kappa + 1) T)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        if self.glide is None or not self.phi_x.size:
+            return np.zeros_like(x)
+        return self.glide.density(self.phi_x, x)
+
+    def corrective_climb_density(self, x: np.ndarray) -> np.ndarray:
+        """B_yc (odd), the bounded-bounded correction."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        if self.climb is None or not self.phi_y.size:
+            return np.zeros_like(x)
+        return self.climb.density(self.phi_y, x)
+
+    def preformed_density(self, x: np.ndarray) -> np.ndarray:
+        """A_y (odd)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        pre = self.preformed
+        return np.zeros_like(x) if pre is None else pre.density(x, self._k)
+
+    def climb_density(self, x: np.ndarray) -> np.ndarray:
+        """Total B_y = A_y + B_yc (odd)."""
+        return self.preformed_density(x) + self.corrective_climb_density(x)
+
+    def slip(self, x: np.ndarray) -> np.ndarray:
+        """Relative slip u2 - u1 = -int_0^x B_x (odd, zero at the centre), in
+        (kappa + 1) T c / (2 mu)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        if self.glide is None or not self.phi_x.size:
+            return np.zeros_like(x)
+        return -np.sign(x) * self.glide._cumulative(self.phi_x, np.abs(x))
+
+    def separation(self, x: np.ndarray) -> np.ndarray:
+        """Separation v2 - v1 = -int_0^|x| B_y (even, zero in contact), same unit."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        out = np.zeros_like(x)
+        if self.climb is not None and self.phi_y.size:
+            out -= self.climb._cumulative(self.phi_y, np.abs(x))
+        pre = self.preformed
+        if pre is not None:
+            out -= pre.cumulative(x) @ np.array([1.0, self._k])
+        return out
+
+    # ---- remote slip relation (eq. 6.32 / 7.32)
+    def shear_moment(self, points: int = 200) -> float:
+        """int_0^b x S(x) dx / (T c^2) (eqs 6.30, 7.10), Gauss-Legendre split at a."""
+        if not np.isfinite(self.b):
+            return np.nan
+        parts = [(0.0, self.a), (self.a, self.b)] if 0 < self.a < self.b else [(0.0, self.b)]
+        total = 0.0
+        for lo, hi in parts:
+            xs, ws = legendre(points, lo, hi)
+            total += float(ws @ (xs * self.tractions(xs)[0]))
+        return total
+
+    def remote_slip(self) -> dict[str, float]:
+        """The remote slip relation: lhs = int_0^inf B_x, rhs = -1/8 - K/2 + (1/4) int x S.
+
+        Corrected eq. (6.32)/(7.32) (sign of the K term; see ``remote``)."""
+        from contactlab.receding.remote import slip_relation_rhs
+
+        lhs = self.glide.integral(self.phi_x) if self.glide is not None else np.nan
+        rhs = slip_relation_rhs(self._k, self.shear_moment())
+        return {"lhs": float(lhs), "rhs": float(rhs), "error": float(lhs - rhs)}
+
+    @property
+    def remote_slip_error(self) -> float:
+        if not (self.converged and self.preformed_used):
+            return np.nan
+        return self.remote_slip()["error"]
+
+    # ---- contact checks between the nodes
+    @property
+    def admissible(self) -> bool:
+        return bool(self.checks) and all(
+            v <= CHECK_TOL for k, v in self.checks.items() if k.startswith("max_"))
+
+    def evaluate_checks(self, points: int = 600) -> dict[str, float]:
+        """Contact conditions on 0 <= x <= b + 8 (symmetry), in units of T.
+
+        ``max_tension``: largest N in contact (x < b); ``max_stick_excess``: largest
+        |S| - f|N| in the stick zone; ``max_slip_mismatch``: friction-law mismatch and
+        slip against the shear in the slip zone; ``max_separated_traction``: |N|, |S| in the
+        separation zone; ``max_overlap``: largest negative separation for x > b.
+        """
+        if not (self.converged and np.isfinite(self.b)):
+            self.checks = {}
+            return self.checks
+        a = max(self.a, 0.0) if np.isfinite(self.a) else 0.0
+        b = self.b
+        x = np.linspace(0.0, b + 8.0, points)[1:]
+        eps = 1e-6
+        s, n = self.tractions(x)
+        stick = x < a - eps
+        slipping = (x > a + eps) & (x < b - eps)
+        separated = x > b + eps
+        contact = x < b - eps
+        excess = np.abs(s) - self.f * np.abs(n)
+        checks = {
+            "max_tension": float(np.max(n[contact], initial=-np.inf)),
+            "max_stick_excess": float(np.max(excess[stick], initial=-np.inf)),
+            "max_slip_mismatch": 0.0,
+            "max_separated_traction": float(np.max(np.maximum(np.abs(n[separated]),
+                                                              np.abs(s[separated])),
+                                                   initial=0.0)),
+            "max_overlap": float(max(0.0, -np.min(self.separation(x[separated]), initial=0.0))),
+        }
+        if slipping.any():
+            u = self.slip(x[slipping])
+            wrong = np.where(s[slipping] * u < 0, np.abs(s[slipping]), 0.0)
+            checks["max_slip_mismatch"] = float(max(np.abs(excess[slipping]).max(), wrong.max()))
+        self.checks = checks
+        return checks
+
+
+# --------------------------------------------------------------------------- assembly
+
+
+def _intervals(a: float, b: float, n: int, lam_a: float, lam_b: float):
+    glide = DensityInterval("glide", a, np.inf, n, parity=+1, mapping="semi-infinite", lam=lam_a)
+    climb = DensityInterval("climb", b, np.inf, n, parity=-1, mapping="semi-infinite", lam=lam_b)
+    return glide, climb
+
+
+def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam_b: float,
+             e: float, preformed: bool = True):
+    """The full discretised system for fixed (a, b): (LinearSystem, glide, climb).
+
+    Columns: phi_x (N), phi_y (N) and, with the preformed density, K. Rows: N + 1 normal
+    rows on [b, inf), N + 1 shear rows on [a, inf) and, with the preformed density, the
+    condition B_yc(e) = 0. Leftover: the row nearest t = 0 of each collocation set.
+    """
+    glide, climb = _intervals(a, b, n, lam_a, lam_b)
+    xb = climb.collocation
+    xa = glide.collocation
+    m = n + 1
+    points = np.concatenate([xb, xa])
+    # separate calls per point set: at its own collocation points an interval uses the
+    # classical Gauss-Chebyshev sum (exact there), elsewhere the exact transform
+    gs_b, gn_b = glide.influence(xb)
+    gs_a, gn_a = glide.influence(xa)
+    cs_b, cn_b = climb.influence(xb)
+    cs_a, cn_a = climb.influence(xa)
+    gs, gn = np.vstack([gs_b, gs_a]), np.vstack([gn_b, gn_a])
+    cs, cn = np.vstack([cs_b, cs_a]), np.vstack([cn_b, cn_a])
+    sb, nb = load.bilateral(points)
+    h = np.where(xa < b, f, 0.0)  # H(b - x) f on the shear rows
+    cols_n = [gn[:m], cn[:m]]
+    cols_s = [gs[m:] + h[:, None] * gn[m:], cs[m:] + h[:, None] * cn[m:]]
+    rhs_n = -nb[:m]
+    rhs_s = -(sb[m:] + h * nb[m:])
+    if preformed:
+        ps, pn = Preformed(load, b, e).stresses(points)
+        cols_n.append(pn[:m, 1:2])
+        cols_s.append(ps[m:, 1:2] + h[:, None] * pn[m:, 1:2])
+        rhs_n = rhs_n - pn[:m, 0]
+        rhs_s = rhs_s - (ps[m:, 0] + h * pn[m:, 0])
+    matrix = np.vstack([np.hstack(cols_n), np.hstack(cols_s)])
+    rhs = np.concatenate([rhs_n, rhs_s])
+    if preformed:
+        t_e = climb.preimage(np.array([e]))
+        row = np.concatenate([np.zeros(n), interpolation_matrix(t_e, n)[0], [0.0]])
+        matrix = np.vstack([matrix, row])
+        rhs = np.concatenate([rhs, [0.0]])
+    centre = n // 2
+    return LinearSystem(matrix, rhs, leftover=[centre, m + centre]), glide, climb
+
+
+def _params(p: np.ndarray) -> tuple[float, float]:
+    a = float(np.exp(min(max(p[0], -60.0), 4.0)))
+    return a, a + float(np.exp(min(p[1], 4.0)))
+
+
+def check_inputs(f: float, n: int, lam_a: float, lam_b: float, e: float, load: Load) -> None:
+    if not (np.isfinite(f) and f >= 0):
+        raise ValueError(f"friction coefficient f must be >= 0, got {f}")
+    if int(n) != n or n < 8 or n % 2:
+        raise ValueError(f"N must be an even integer >= 8, got {n}")
+    for name, lam in (("lambda_a", lam_a), ("lambda_b", lam_b)):
+        if not (np.isfinite(lam) and lam > 0):
+            raise ValueError(f"{name} must be positive, got {lam}")
+    if not (np.isfinite(e) and e > load.w + 0.5):
+        raise ValueError(f"e must exceed w + 0.5 (e = {e}, w = {load.w})")
+
+
+def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
+                  preformed: bool = True, guess: tuple[float, float] | None = None,
+                  problem: str = "") -> LiftoffSolution:
+    """Solve for (a, b, K_T) and the densities at friction f > 0 (see module docstring)."""
+    import time
+
+    check_inputs(f, n, lam_a, lam_b, e, load)
+    if f == 0:
+        raise ValueError("f = 0 has no stick zone; use solve_frictionless")
+    start = time.perf_counter()
+
+    def system(p: np.ndarray) -> LinearSystem:
+        a, b = _params(p)
+        if preformed and b >= e - 0.25:
+            raise ValueError("b too close to e")
+        return assemble(load, f, n, a, b, lam_a, lam_b, e, preformed)[0]
+
+    w = load.w
+    fine_only = False
+    if n > COARSE_N:
+        # N-continuation: the transition points converge slowly but smoothly in N, so a
+        # cheap solve at COARSE_N is a close first guess for the fine root finder; if even
+        # the coarse problem has no root, the fine one is not tried (flagged instead)
+        coarse = solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed, guess, problem)
+        if coarse.converged:
+            guess = (coarse.a, coarse.b)
+            fine_only = True
+    guesses = []
+    if guess is not None and np.all(np.isfinite(guess)) and guess[1] > guess[0] > 0:
+        guesses.append(np.array([np.log(guess[0]), np.log(guess[1] - guess[0])]))
+    if not fine_only:
+        for a0, b0 in ((0.25 + 0.15 * w, 1.8 + 0.5 * w), (0.08 + 0.15 * w, 1.57 + 0.5 * w),
+                       (0.6 + 0.15 * w, 2.2 + 0.5 * w), (0.02 + 0.5 * w, 1.5 + w)):
+            guesses.append(np.array([np.log(a0), np.log(b0 - a0)]))
+
+    def valid(p: np.ndarray) -> bool:
+        a, b = _params(p)
+        return bool(a > 1e-8 and b > a)
+
+    if n > COARSE_N and not fine_only:
+        guesses = []  # the coarse problem failed: report that, do not search at full N
+    if guesses:
+        root = find_transitions(system, guesses, valid=valid, tol=1e-11, accept=1e-8,
+                                maxfev=60 if fine_only else 200)
+    else:
+        root = coarse_failure(coarse)
+    a, b = _params(root.params)
+    sol = LiftoffSolution(problem=problem or load.law, load=load, f=f, n=n, lam_a=lam_a,
+                          lam_b=lam_b, e=e, preformed_used=preformed, a=a, b=b,
+                          nfev=root.nfev, message="; ".join(root.history))
+    with single_thread():
+        sysm, glide, climb = assemble(load, f, n, a, b, lam_a, lam_b, e, preformed)
+    sol.glide, sol.climb = glide, climb
+    phi = root.phi
+    if phi.size == sysm.matrix.shape[1]:
+        sol.phi_x, sol.phi_y = phi[:n], phi[n:2 * n]
+        sol.K_T = float(phi[2 * n]) if preformed else np.nan
+        sol.residual = float(np.max(np.abs(sysm.matrix @ phi - sysm.rhs)))
+    sol.leftover = root.residual
+    sol.converged = root.converged
+    if not root.converged:
+        sol.regime = "failed"
+    sol.evaluate_checks()
+    sol.seconds = time.perf_counter() - start
+    return sol
+
+
+def solve_quietly(*args, **kwargs) -> LiftoffSolution:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", linalg.LinAlgWarning)
+        return solve_liftoff(*args, **kwargs)
+
+
+def coarse_failure(coarse: LiftoffSolution):
+    from contactlab.receding.solve import RootResult
+
+    params = np.array([np.log(max(coarse.a, 1e-26)),
+                       np.log(max(coarse.b - coarse.a, 1e-26))])
+    return RootResult(params, np.array([]), np.full(2, np.inf), False, coarse.nfev,
+                      "coarse solve failed", [f"coarse N = {COARSE_N}: {coarse.message}"])
+
+
+def critical_friction(load: Load, n: int, lam_a: float, lam_b: float, e: float,
+                      guess: tuple[float, float] = (0.07, 1.38)) -> dict[str, float]:
+    """The friction below which the central stick zone vanishes: the same equations with
+    a = 0 fixed and f as the unknown in its place (roots of the two leftover rows in
+    (f, b)). Below this f a root of the discrete equations has a < 0, which is no solution
+    (the glide density would have to be bounded at a point inside the slip zone)."""
+    check_inputs(max(guess[0], 0.0), n, lam_a, lam_b, e, load)
+
+    def system(p: np.ndarray) -> LinearSystem:
+        f = float(p[0])
+        b = float(np.exp(min(p[1], 4.0)))
+        if f < 0 or b >= e - 0.25:
+            raise ValueError("outside the domain")
+        return assemble(load, f, n, 0.0, b, lam_a, lam_b, e, True)[0]
+
+    guesses = [np.array([guess[0], np.log(guess[1])]),
+               np.array([0.5 * guess[0], np.log(guess[1])]),
+               np.array([1.5 * guess[0] + 0.02, np.log(guess[1] + 0.1)])]
+    root = find_transitions(system, guesses, tol=1e-11, accept=1e-8)
+    f, b = float(root.params[0]), float(np.exp(root.params[1]))
+    k = float(root.phi[2 * n]) if root.phi.size == 2 * n + 1 else np.nan
+    return {"f_critical": f, "b": b, "K_T": k, "converged": bool(root.converged),
+            "residual": root.residual_norm, "nfev": root.nfev}

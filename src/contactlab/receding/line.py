@@ -1,0 +1,77 @@
+"""The line load of ch. 6: a layer pressed on a half-plane by a line load P (Fig. 6.1).
+
+``solve_line(f, n, lam, e)`` returns a :class:`~contactlab.receding.liftoff.LiftoffSolution`
+with a, b in units of c, K_T = k_l 2 mu c / ((kappa + 1) P) (the thesis's K), tractions
+in P/c and densities/displacements normalised as in ``liftoff``. Thesis defaults: N = 500,
+lambda = 3.5, e = 5c (sec. 6.4).
+
+Stick-zone limit: the central stick zone shrinks very fast as f falls (a = 0.25 c at
+f = 0.5, 0.018 c at 0.2, 2.5e-4 c at 0.1, 6e-6 c at 0.08 with N = 100). Solving the same
+equations with a = 0 fixed and f unknown (``liftoff.critical_friction``) gives the
+friction below which the discrete equations have no root with a > 0:
+f_c = 0.086, 0.079, 0.070, 0.063 for N = 64, 100, 200, 400 -- it keeps falling with N, so
+it is a resolution limit of the bounded glide representation (the first node sits
+~8.6 lam / N^2 beyond a) rather than a property of the continuum problem, in which
+log a falls roughly linearly in 1/f. Below f_c(N) the solution is reported with regime
+``no_stick`` and not converged (a root with a < 0 is not a solution); f = 0 is solved as
+its own limit by ``solve_frictionless`` when available.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from contactlab.receding.liftoff import LiftoffSolution, critical_friction, solve_liftoff
+from contactlab.receding.loading import make_load
+
+#: (f, a, b) of converged line-load solutions (N = 100), only to seed the root finder
+GUESS_TABLE = np.array([[0.08, 6.4e-6, 1.379], [0.1, 2.53e-4, 1.394], [0.2, 0.0182, 1.476],
+                        [0.3, 0.0762, 1.571], [0.5, 0.2507, 1.799], [0.8, 0.5357, 2.190],
+                        [1.0, 0.7230, 2.478]])
+
+
+def line_guess(f: float) -> tuple[float, float]:
+    """(a, b) interpolated from GUESS_TABLE (log a), extrapolated linearly beyond."""
+    fs, a_s, b_s = GUESS_TABLE.T
+    if f > fs[-1]:
+        slope_a = (a_s[-1] - a_s[-2]) / (fs[-1] - fs[-2])
+        slope_b = (b_s[-1] - b_s[-2]) / (fs[-1] - fs[-2])
+        return a_s[-1] + slope_a * (f - fs[-1]), b_s[-1] + slope_b * (f - fs[-1])
+    return float(np.exp(np.interp(f, fs, np.log(a_s)))), float(np.interp(f, fs, b_s))
+
+
+def solve_line(f: float = 0.5, n: int = 500, lam: float = 3.5, e: float = 5.0,
+               guess: tuple[float, float] | None = None, preformed: bool = True,
+               ) -> LiftoffSolution:
+    """Line load at friction f (see module docstring); ``preformed=False`` is the
+    bounded-bounded-only model of Chaise et al. (``chaise``)."""
+    if not (np.isfinite(f) and f >= 0):
+        raise ValueError(f"friction coefficient f must be >= 0, got {f}")
+    load = make_load("line")
+    problem = "line" if preformed else "line_chaise"
+    if f == 0:
+        from contactlab.receding.frictionless import solve_frictionless
+
+        return solve_frictionless(load, n, lam, lam, e, problem=problem, preformed=preformed)
+    seeds = [guess] if guess is not None else []
+    seeds.append(line_guess(f))
+    sol = None
+    for seed in seeds:
+        sol = solve_liftoff(load, f, n, lam, lam, e, preformed, seed, problem)
+        if sol.converged:
+            return sol
+    assert sol is not None
+    return flag_no_stick(sol, lam, lam)
+
+
+def flag_no_stick(sol: LiftoffSolution, lam_a: float, lam_b: float) -> LiftoffSolution:
+    """Mark an unconverged solution below the critical friction as regime ``no_stick``."""
+    if sol.f < 0.2 and sol.preformed_used:
+        crit = critical_friction(sol.load, sol.n, lam_a, lam_b, sol.e)
+        if crit["converged"] and sol.f < crit["f_critical"]:
+            sol.regime = "no_stick"
+            sol.a = sol.b = sol.K_T = np.nan
+            sol.message += (f"; f below the critical friction f_c = {crit['f_critical']:.4f} "
+                            f"(N = {sol.n}): the central stick zone vanishes and the bounded "
+                            "glide representation does not hold")
+    return sol

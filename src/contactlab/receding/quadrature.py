@@ -1,0 +1,206 @@
+"""Quadrature for bounded dislocation densities and for loads on (semi-)infinite intervals.
+
+Bounded-bounded densities (Erdogan et al.; thesis eqs 5.8-5.10): on s in [-1, 1] a density
+is written ``B(s) = phi(s) sqrt(1 - s^2)`` and known at the N nodes ``s_i`` (zeros of the
+Chebyshev polynomial U_N); integral equations are collocated at the N + 1 points ``t_k``
+(zeros of T_{N+1}).
+
+The Cauchy transform ``(1/pi) int sqrt(1-s^2) phi(s) / (t - s) ds`` is evaluated exactly for
+a polynomial phi of degree < N at *any* t, inside or outside [-1, 1], through the expansion
+of phi in U_n and the closed forms
+
+    (1/pi) int sqrt(1-s^2) U_n(s) / (t - s) ds = T_{n+1}(t)                      |t| <= 1
+                                               = (t - sign(t) sqrt(t^2 - 1))^(n+1)  |t| > 1.
+
+At the collocation points t_k this reduces to the familiar weights w_i / (pi (t_k - s_i)).
+Off the interval it removes the loss of accuracy of plain Gauss-Chebyshev sums when t is
+close to an end point (a neighbouring interval, a mirror image, the near-singular terms of
+eq. 5.19 when |x| is just above b).
+
+Semi-infinite intervals: ``legendre_semi_infinite`` maps Gauss-Legendre nodes by
+``x = start + direction * scale * (1 + u) / (1 - u)``; integrands decaying like 1/x^2 (a
+Flamant field, a regular Green's function) become smooth on u in [-1, 1].
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+
+
+@dataclass(frozen=True)
+class BoundedRule:
+    """Gauss-Chebyshev rule for densities bounded at both ends, eqs (5.8)-(5.10)."""
+
+    n: int
+    s: np.ndarray  #: integration points s_i, eq. (5.8)
+    t: np.ndarray  #: collocation points t_k, eq. (5.9)
+    w: np.ndarray  #: weights w_i = pi (1 - s_i^2) / (N + 1), eq. (5.10)
+    theta: np.ndarray  #: s_i = cos(theta_i)
+
+
+@lru_cache(maxsize=64)
+def bounded_rule(n: int) -> BoundedRule:
+    """The N-point rule, cached (arrays are read-only)."""
+    if n < 2:
+        raise ValueError(f"need at least 2 integration points, got N = {n}")
+    i = np.arange(1, n + 1)
+    k = np.arange(1, n + 2)
+    theta = np.pi * i / (n + 1)
+    s = np.cos(theta)
+    t = np.cos(np.pi * (2 * k - 1) / (2 * (n + 1)))
+    w = np.pi * (1.0 - s**2) / (n + 1)
+    for a in (theta, s, t, w):
+        a.setflags(write=False)
+    return BoundedRule(n, s, t, w, theta)
+
+
+def _u_values(rule: BoundedRule) -> np.ndarray:
+    """U_m(s_i) for m = 0..N-1 as an (N, N) array [m, i]."""
+    m = np.arange(rule.n)[:, None]
+    return np.sin((m + 1) * rule.theta[None, :]) / np.sin(rule.theta[None, :])
+
+
+@lru_cache(maxsize=64)
+def _coefficient_matrix(n: int) -> np.ndarray:
+    """C[m, i]: the U_m coefficient of phi from nodal values, c_m = sum_i C[m, i] phi_i.
+
+    Discrete orthogonality of U_m at the zeros of U_N with weights w_i (exact for
+    degree < 2N): c_m = (2/pi) sum_i w_i U_m(s_i) phi_i.
+    """
+    rule = bounded_rule(n)
+    c = (2.0 / np.pi) * _u_values(rule) * rule.w[None, :]
+    c.setflags(write=False)
+    return c
+
+
+def _chebyshev_outer(t: np.ndarray, n: int) -> np.ndarray:
+    """G[k, m] = (1/pi) int sqrt(1-s^2) U_m(s)/(t_k - s) ds for m = 0..N-1, any real t.
+
+    Closed forms: cos((m+1) arccos t) for |t| <= 1 and z^(m+1) with
+    z = t - sign(t) sqrt(t^2 - 1) (|z| < 1) for |t| > 1.
+    """
+    t = np.asarray(t, dtype=float).ravel()
+    m = np.arange(1, n + 1, dtype=float)
+    inside = np.abs(t) <= 1.0
+    out = np.empty((t.size, n))
+    if inside.all():
+        return np.cos(np.arccos(t)[:, None] * m[None, :])
+    out[inside] = np.cos(np.arccos(t[inside])[:, None] * m[None, :])
+    to = t[~inside]
+    z = 1.0 / (np.abs(to) + np.sqrt(to * to - 1.0))  # = |t| - sqrt(t^2 - 1), no cancellation
+    power = np.exp(np.log(z)[:, None] * m[None, :])
+    power[to < 0] *= (-1.0) ** m
+    out[~inside] = power
+    return out
+
+
+def _sine_sum(alpha: np.ndarray, n: int) -> np.ndarray:
+    """sum_{j=1}^{n} sin(j alpha) = sin(n alpha/2) sin((n+1) alpha/2) / sin(alpha/2)."""
+    half = 0.5 * alpha
+    den = np.sin(half)
+    small = np.abs(den) < 1e-12
+    out = np.sin(n * half) * np.sin((n + 1) * half) / np.where(small, 1.0, den)
+    return np.where(small, 0.0, out)
+
+
+@lru_cache(maxsize=64)
+def _collocation_cauchy(n: int) -> np.ndarray:
+    """At the collocation points t_k the exact transform is w_i / (pi (t_k - s_i))."""
+    rule = bounded_rule(n)
+    m = rule.w[None, :] / (np.pi * (rule.t[:, None] - rule.s[None, :]))
+    m.setflags(write=False)
+    return m
+
+
+def cauchy_matrix(t: np.ndarray, n: int) -> np.ndarray:
+    """M[k, i] with (1/pi) int_{-1}^{1} sqrt(1-s^2) phi(s) / (t_k - s) ds = sum_i M[k, i] phi_i.
+
+    Exact for polynomial phi of degree < N, for any real t_k (inside, on or outside
+    [-1, 1]). On the interval this is the principal value.
+
+    The product of the closed forms with the U-coefficients of phi,
+    M[k, i] = (2/(N+1)) sin(theta_i) sum_{j=1}^{N} G_j(t_k) sin(j theta_i), is summed in
+    closed form (no matrix product, so no BLAS threads in the inner loop of a root finder):
+    for |t| <= 1, G_j = cos(j phi) and the sum is a pair of Dirichlet-type sine sums; for
+    |t| > 1, G_j = z^j and it is the imaginary part of a geometric series in z e^{i theta}.
+    """
+    rule = bounded_rule(n)
+    t = np.asarray(t, dtype=float).ravel()
+    if t.size == n + 1 and np.allclose(t, rule.t, rtol=0.0, atol=1e-12):
+        return _collocation_cauchy(n).copy()
+    theta = rule.theta[None, :]
+    scale = (2.0 / (n + 1)) * np.sin(theta)
+    out = np.empty((t.size, n))
+    inside = np.abs(t) <= 1.0
+    if inside.any():
+        phi = np.arccos(t[inside])[:, None]
+        out[inside] = scale * 0.5 * (_sine_sum(theta + phi, n) + _sine_sum(theta - phi, n))
+    if (~inside).any():
+        to = t[~inside]
+        z = np.sign(to) / (np.abs(to) + np.sqrt(to * to - 1.0))  # |z| < 1
+        q = z[:, None] * np.exp(1j * theta)
+        out[~inside] = scale * (q * (1.0 - q**n) / (1.0 - q)).imag
+    return out
+
+
+def interpolation_matrix(t: np.ndarray, n: int) -> np.ndarray:
+    """E[k, i] with phi(t_k) = sum_i E[k, i] phi_i (polynomial of degree < N through the nodes).
+
+    Points outside [-1, 1] get zero rows (the density vanishes off its interval).
+    """
+    t = np.asarray(t, dtype=float).ravel()
+    inside = np.abs(t) <= 1.0
+    tc = np.clip(t, -1.0, 1.0)
+    angle = np.arccos(tc)[:, None]
+    m = np.arange(n)[None, :]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        u = np.sin((m + 1) * angle) / np.sin(angle)
+    ends = np.isclose(np.abs(tc), 1.0)
+    if ends.any():  # U_m(+-1) = (+-1)^m (m + 1)
+        u[ends] = np.sign(tc[ends])[:, None] ** m * (m + 1)
+    e = u @ _coefficient_matrix(n)
+    e[~inside] = 0.0
+    return e
+
+
+def cumulative_matrix(t: np.ndarray, n: int) -> np.ndarray:
+    """Q[k, i] with int_{-1}^{t_k} sqrt(1-s^2) phi(s) ds = sum_i Q[k, i] phi_i.
+
+    With s = cos(theta): int sqrt(1-s^2) U_m ds from -1 to t equals
+    (1/2) [sin((m+2) th)/(m+2) - sin(m th)/m] (m >= 1) and (1/2)[pi - th + sin(2 th)/2]
+    (m = 0), th = arccos(t). Points beyond +1 get the full integral, below -1 zero.
+    """
+    t = np.clip(np.asarray(t, dtype=float).ravel(), -1.0, 1.0)
+    th = np.arccos(t)[:, None]
+    m = np.arange(n)[None, :]
+    msafe = np.where(m == 0, 1, m)
+    g = 0.5 * (np.sin((m + 2) * th) / (m + 2) - np.sin(m * th) / msafe)
+    g[:, 0] = 0.5 * (np.pi - th[:, 0] + 0.5 * np.sin(2 * th[:, 0]))
+    return g @ _coefficient_matrix(n)
+
+
+def legendre(n: int, lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes and weights on the finite interval [lo, hi]."""
+    u, wu = np.polynomial.legendre.leggauss(n)
+    half = 0.5 * (hi - lo)
+    return lo + half * (u + 1.0), half * wu
+
+
+def legendre_semi_infinite(
+    n: int, start: float, direction: int = 1, scale: float = 1.0
+) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes and weights for int_start^{+inf} (direction=+1) or int_{-inf}^start (-1).
+
+    Mapping x = start + direction * scale * (1 + u)/(1 - u) of Gauss-Legendre nodes u;
+    exact in the limit for integrands that decay like 1/x^2 or faster and are smooth on
+    the scale ``scale`` (e.g. the layer thickness for Flamant fields at depth c).
+    """
+    if direction not in (1, -1):
+        raise ValueError("direction must be +1 or -1")
+    u, wu = np.polynomial.legendre.leggauss(n)
+    x = start + direction * scale * (1.0 + u) / (1.0 - u)
+    w = wu * 2.0 * scale / (1.0 - u) ** 2
+    return x, w
