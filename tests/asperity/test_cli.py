@@ -1,0 +1,82 @@
+"""``contactlab asperity ...``: small runs write CF netCDF; bad input exits 2 with a message."""
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from contactlab.cli import main
+
+
+def _run(argv, capsys):
+    code = main(argv)
+    return code, capsys.readouterr().err
+
+
+@pytest.mark.parametrize("argv, message", [
+    (["grid", "--N", "1", "4"], "odd"),
+    (["grid", "--N", "3", "--pt-over-pd", "-0.01"], "positive"),
+    (["multi", "--laws", "uniform", "--pt-over-pm", "0.5"], "Pt/Pm"),
+    (["multi", "--tables", '{"t": {"P_over_Pm": [-1, 1], "n": [1, 1]}}'], "(0, 1]"),
+    (["bem", "--law", "shear_limit", "--tau-max", "0", "--cells", "8"], "tau_max"),
+    (["bem", "--law", "combined", "--tau-max", "-0.5", "--cells", "8"], "tau_max"),
+    (["grid-bem", "--N", "2", "--area-ratio", "0.2"], "odd"),
+])
+def test_bad_parameters_exit_2(tmp_path, capsys, argv, message):
+    code, err = _run(["asperity", *argv, "--out", str(tmp_path / "x.nc")], capsys)
+    assert code == 2
+    assert err.startswith("contactlab: error:") and message in err
+    assert not (tmp_path / "x.nc").exists()
+
+
+def _check_cf(path):
+    with xr.open_dataset(path) as ds:
+        for name, var in {**ds.data_vars, **ds.coords}.items():
+            if var.dtype.kind not in "OUS":
+                assert "long_name" in var.attrs and "units" in var.attrs, name
+        assert {"title", "source", "history"} <= set(ds.attrs)
+        return ds.load()
+
+
+def test_small_study_end_to_end(tmp_path, capsys):
+    out = tmp_path
+    for law, extra in (("coulomb", []), ("shear_limit", ["--tau-max", "0.86", "0.57"])):
+        assert main(["asperity", "bem", "--law", law, *extra, "--cells", "12",
+                     "--q-points", "11", "--out", str(out / f"{law}.nc")]) == 0
+    assert main(["asperity", "single", "--bem", str(out / "coulomb.nc"),
+                 str(out / "shear_limit.nc"), "--q-points", "11",
+                 "--out", str(out / "single.nc")]) == 0
+    ds = _check_cf(out / "single.nc")
+    assert ds["displacement_ratio"].dims == ("law", "Q_ratio")
+    assert {"stuck", "coulomb", "bem_coulomb", "bem_shear_limit_0.86"} <= set(
+        ds["law"].values.tolist())
+    assert ds["Q_ratio"].values[0] == 0 and ds["Q_ratio"].values[-1] == 1
+    assert main(["asperity", "multi", "--laws", "uniform", "--m", "10", "--pt-over-pm", "10",
+                 "--points", "11", "--out", str(out / "multi.nc")]) == 0
+    ds = _check_cf(out / "multi.nc")
+    assert ds["Q_ratio"].dims == ("law", "scaled_displacement")
+    assert float(ds["S_n"].sel(law="single_asperity")) == 1.0
+    assert main(["asperity", "grid", "--N", "1", "3", "--load-points", "4", "--area-points", "4",
+                 "--out", str(out / "grid.nc")]) == 0
+    ds = _check_cf(out / "grid.nc")
+    assert ds["u_cen_over_u_r"].dims == ("N", "Pt_over_Pd")
+    assert np.allclose(ds["stiffness_fixed"], ds["stiffness_expanding"], rtol=1e-12)
+    for n in (1, 3):
+        assert main(["asperity", "grid-bem", "--N", str(n), "--area-ratio", "0.3",
+                     "--cells-per-spacing", "8", "--equal-loads",
+                     "--out", str(out / f"gb{n}.nc")]) == 0
+    assert main(["asperity", "merge-grid-bem", str(out / "gb3.nc"), str(out / "gb1.nc"),
+                 "--out", str(out / "grid_bem.nc")]) == 0
+    ds = _check_cf(out / "grid_bem.nc")
+    assert ds["N"].values.tolist() == [1, 3]
+    assert main(["asperity", "transverse", "--fractions", "0.5", "--cells", "8",
+                 "--tol", "1e-6", "--out", str(out / "tr.nc")]) == 0
+    _check_cf(out / "tr.nc")
+    rep = out / "report"
+    assert main(["asperity", "report", "single", str(out / "single.nc"), str(out / "tr.nc"),
+                 "--report-dir", str(rep), "--out", str(rep / "s1.html")]) == 0
+    assert main(["asperity", "report", "multi", str(out / "multi.nc"),
+                 "--report-dir", str(rep), "--out", str(rep / "s2.html")]) == 0
+    assert main(["asperity", "report", "grid", str(out / "grid.nc"), str(out / "grid_bem.nc"),
+                 "--report-dir", str(rep), "--out", str(rep / "s3.html")]) == 0
+    assert (rep / "figures" / "asperity_fig_3_6.png").is_file()
+    assert "<section id='asperity-grid'>" in (rep / "s3.html").read_text()
