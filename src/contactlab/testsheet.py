@@ -7,6 +7,7 @@ existing data files, each error naming the sheet, the row and the column.
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from pathlib import Path
 
 import pandas as pd
@@ -38,15 +39,21 @@ def read_test_sheet(path: str | Path) -> pd.DataFrame:
     return sheet.set_index("id", drop=False)
 
 
-def check_data_files(sheet: pd.DataFrame, sheet_path: str | Path, root: str | Path = ".") -> None:
+def check_data_files(sheet: pd.DataFrame, sheet_path: str | Path, root: str | Path = ".",
+                     generated: Collection[str] = ()) -> None:
     """Raise :class:`TestSheetError` if a data path in the sheet does not exist.
 
-    Paths are relative to ``root`` (the workflow's working directory).
+    Paths are relative to ``root`` (the workflow's working directory). ``generated`` lists
+    the exact paths a workflow rule produces (e.g. the demo data under ``results/demo/``);
+    only those may be missing at start-up, every other path must exist.
     """
+    made = {Path(p).as_posix() for p in generated}
     for row_number, (test_id, row) in enumerate(sheet.iterrows(), start=2):
         for column in PATH_COLUMNS:
             value = row.get(column)
             if value is None or pd.isna(value) or str(value).strip() == "":
+                continue
+            if Path(str(value)).as_posix() in made:
                 continue
             if not (Path(root) / str(value)).exists():
                 raise TestSheetError(

@@ -7,6 +7,7 @@ from pathlib import Path
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
+from contactlab.stiffness.demo import demo_data_files
 from contactlab.testsheet import TestSheetError, check_data_files, read_test_sheet
 
 
@@ -23,7 +24,7 @@ except WorkflowError as exc:
 try:
     TESTS = read_test_sheet(config["tests"])
     validate(TESTS, "../schemas/tests.schema.yaml")
-    check_data_files(TESTS, config["tests"])
+    check_data_files(TESTS, config["tests"], generated=demo_data_files())
 except TestSheetError as exc:
     raise WorkflowError(str(exc)) from None
 except WorkflowError as exc:

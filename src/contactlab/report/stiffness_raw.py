@@ -1,0 +1,431 @@
+"""Report section 21: contact stiffness recomputed from raw data next to the thesis.
+
+Per test, figures like Figs 2.8-2.17 (normal and tangential load-displacement data with the
+fitted curves, stiffness against load with the error lines of eq. 2.8, per-step f, beta_t,
+Kt0 and the mean-row Kt0 of sec. 2.5.4), each with the published values overlaid; a summary
+figure like Figs 2.40-2.42; and the section with every number of Tables 2.1-2.4 and
+2.7-2.10 from raw data beside the published one and the difference, the per-step recovery
+of the published parameters, and the list of flagged (non-converged) fits.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+import xarray as xr
+
+from contactlab.published import per_step_fits, read_published
+from contactlab.report.section import Section, save_figure, write_table
+from contactlab.stiffness.compare import compare_with_published, printed_decimals
+from contactlab.stiffness.process import flagged_steps
+from contactlab.testsheet import read_test_sheet
+
+__all__ = ["build_section", "recovery_table", "test_figures"]
+
+_KEYS = {"2.1": ["test", "direction"], "2.2": ["test", "direction"], "2.3": ["test"],
+         "2.4": ["test", "basis"], "2.7": ["test", "direction"], "2.8": ["test", "direction"],
+         "2.9": ["test", "basis"], "2.10": ["test"]}
+
+
+def _published_normal(test: str, published_dir: Path | None) -> pd.DataFrame:
+    table = pd.concat([read_published("2.1", published_dir), read_published("2.7",
+                                                                            published_dir)])
+    return table[table["test"] == test].set_index("direction")
+
+
+def _published_steps(test: str, published_dir: Path | None) -> pd.DataFrame:
+    try:
+        steps = per_step_fits(published_dir)
+    except FileNotFoundError:
+        return pd.DataFrame()
+    return steps[steps["test"] == test]
+
+
+def _published_mean_row(test: str, published_dir: Path | None) -> pd.DataFrame:
+    from contactlab.published import mean_row_stiffness
+
+    try:
+        rows = mean_row_stiffness(published_dir)
+    except FileNotFoundError:
+        return pd.DataFrame()
+    return rows[rows["test"] == test]
+
+
+def test_figures(result: Path, out_dir: Path, published_dir: Path | None = None) -> list[Path]:
+    """Write the four figures of one test; return their PNG paths."""
+    with xr.open_dataset(result) as opened:
+        ds = opened.load()
+    test = str(ds.attrs["test"])
+    area = float(ds.attrs["nominal_area_mm2"])
+    out_dir = Path(out_dir)
+    paths = [out_dir / f"stiffness_raw_{test}_{name}.png"
+             for name in ("normal", "tangential", "steps", "mean_row")]
+    kind = ds["kind"].values.astype(str)
+    direction = ds["direction"].values.astype(str)
+    step_of = ds["frame_step"].values
+    reconstructed = " (RECONSTRUCTED demo data)" if int(ds.attrs.get("reconstructed", 0)) \
+        else ""
+
+    # Figs 2.8-2.13: normal loading (top) and unloading (bottom)
+    pub_n = _published_normal(test, published_dir)
+    fig, axes = plt.subplots(2, 2, figsize=(9, 6.5))
+    for r, d in enumerate(("loading", "unloading")):
+        idx = np.flatnonzero((kind == "normal") & (direction == d))
+        ax_d, ax_k = axes[r]
+        for i in idx:
+            sel = step_of == i
+            ax_d.plot(ds["uc"].values[sel], -ds["Pn"].values[sel], "o", ms=3, label="from raw")
+            ax_d.plot(ds["displacement_fit"].values[i], ds["load_grid"].values[i], "-",
+                      label=f"fit, gof {float(ds['gof'][i]):.3f}")
+            load, k = ds["load_grid"].values[i], ds["stiffness_An"].values[i]
+            moe = ds["stiffness_An_moe"].values[i]
+            ax_k.plot(load, k, "-", label="from raw (eq. 2.4)")
+            ax_k.plot(load, k + moe, ":", color="grey")
+            ax_k.plot(load, k - moe, ":", color="grey", label="error lines (eq. 2.8)")
+            if d in pub_n.index:
+                p = pub_n.loc[d]
+                if np.isfinite(p["beta_n"]) and np.isfinite(p["P0"]):
+                    ax_k.plot(load, p["beta_n"] * (load - p["P0"]) * 1000.0 / area, "--",
+                              label="published (Table 2.1/2.7)")
+                    ax_k.errorbar([float(ds.attrs["max_normal_load_kN"])], [p["Kn_An"]],
+                                  yerr=[p["Kn_An_moe"]], fmt="s", color="k", ms=4)
+        ax_d.set_xlabel("uc (um)")
+        ax_d.set_ylabel("-Pn (kN)")
+        ax_d.set_title(f"{test} normal {d}")
+        ax_k.set_xlabel("-Pn (kN)")
+        ax_k.set_ylabel("Kn/An (kN/mm^3)")
+        ax_d.legend(fontsize=7, frameon=False)
+        ax_k.legend(fontsize=7, frameon=False)
+    fig.suptitle(f"Test {test}: normal steps{reconstructed}", fontsize=10)
+    fig.tight_layout()
+    save_figure(fig, paths[0])
+
+    # Figs 2.14, 2.15: Qt against vc with fits; Kt against Qt
+    pub_t = _published_steps(test, published_dir)
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4))
+    tang = np.flatnonzero(kind == "tangential")
+    colors = plt.cm.viridis(np.linspace(0, 0.9, max(len(tang), 1)))
+    for c, i in zip(colors, tang, strict=False):
+        sel = step_of == i
+        label = f"{direction[i][0].upper()}{int(ds['step_number'][i])}"
+        axes[0].plot(ds["vc"].values[sel], ds["Qt"].values[sel], "o", ms=2.5, color=c)
+        axes[0].plot(ds["displacement_fit"].values[i], ds["load_grid"].values[i], "-",
+                     color=c, label=label)
+        axes[1].plot(ds["load_grid"].values[i], ds["stiffness_An"].values[i], "-", color=c,
+                     label=label)
+        hit = pub_t[(pub_t["direction"] == direction[i])
+                    & (pub_t["step"] == int(ds["step_number"][i]))]
+        if len(hit):
+            q = ds["load_grid"].values[i]
+            p = hit.iloc[0]
+            axes[1].plot(q, p["beta_t"] * (q - p["Qs"]) * 1000.0 / area, "--", color=c,
+                         lw=0.8)
+    axes[0].set_xlabel("vc (um)")
+    axes[0].set_ylabel("Qt (kN)")
+    axes[1].set_xlabel("Qt (kN)")
+    axes[1].set_ylabel("Kt/An (kN/mm^3)")
+    axes[1].set_title("solid: from raw; dashed: published (App. A)", fontsize=8)
+    axes[0].legend(fontsize=6, ncol=2, frameon=False)
+    fig.suptitle(f"Test {test}: tangential steps{reconstructed}", fontsize=10)
+    fig.tight_layout()
+    save_figure(fig, paths[1])
+
+    # Figs 2.16, 2.17 top: f, beta_t and Kt0 per step
+    fig, axes = plt.subplots(3, 2, figsize=(9, 7.5), sharex=True)
+    p_max = float(ds.attrs["max_normal_load_kN"])
+    for col, d in enumerate(("loading", "unloading")):
+        idx = np.flatnonzero((kind == "tangential") & (direction == d))
+        steps = ds["step_number"].values[idx]
+        beta = ds["beta"].values[idx]
+        qs = ds["offset"].values[idx]
+        values = {"f": np.abs(qs) / p_max, "beta_t": beta,
+                  "Kt0_An": -beta * qs * 1000.0 / area}
+        margins = {"f": ds["offset_moe"].values[idx] / p_max,
+                   "beta_t": ds["beta_moe"].values[idx],
+                   "Kt0_An": np.abs(values["Kt0_An"]) * np.hypot(
+                       ds["beta_moe"].values[idx] / np.abs(beta),
+                       ds["offset_moe"].values[idx] / np.abs(qs))}
+        pub = pub_t[pub_t["direction"] == d]
+        for r, name in enumerate(("f", "beta_t", "Kt0_An")):
+            ax = axes[r, col]
+            ax.errorbar(steps - 0.08, values[name], yerr=margins[name], fmt="o", ms=4,
+                        capsize=2, label="from raw")
+            if len(pub):
+                ax.errorbar(pub["step"] + 0.08, pub[name], yerr=pub[f"{name}_moe"], fmt="s",
+                            ms=4, capsize=2, color="k", mfc="none", label="published")
+            ax.set_ylabel({"f": "f", "beta_t": "beta_t (1/um)",
+                           "Kt0_An": "Kt0/An (kN/mm^3)"}[name])
+            finite = np.concatenate([values[name][np.isfinite(values[name])],
+                                     pub[name].to_numpy() if len(pub) else []])
+            if len(finite):
+                lo, hi = float(np.min(finite)), float(np.max(finite))
+                pad = 0.6 * (hi - lo) + 0.3 * abs(hi) + 1e-9
+                ax.set_ylim(lo - pad, hi + pad)
+        axes[0, col].set_title(f"{d} steps")
+        axes[2, col].set_xlabel("step")
+        axes[0, col].legend(fontsize=7, frameon=False)
+    fig.suptitle(f"Test {test}: per-step f, beta_t, Kt0 (95% margins){reconstructed}",
+                 fontsize=10)
+    fig.tight_layout()
+    save_figure(fig, paths[2])
+
+    # Fig 2.17 bottom: mean-row Kt0 with Student-t limits and row extremes
+    pub_r = _published_mean_row(test, published_dir)
+    fig, axes = plt.subplots(1, 2, figsize=(9, 3.5), sharey=True)
+    for col, d in enumerate(("loading", "unloading")):
+        idx = np.flatnonzero((kind == "tangential") & (direction == d))
+        ax = axes[col]
+        steps = ds["step_number"].values[idx]
+        ax.errorbar(steps - 0.08, ds["Kt0_An_mean_row"].values[idx],
+                    yerr=ds["Kt0_An_mean_row_moe"].values[idx], fmt="o", ms=4, capsize=2,
+                    label="mean row, from raw")
+        ax.plot(steps - 0.08, ds["Kt0_An_row_max"].values[idx], "v", ms=3, color="C0")
+        ax.plot(steps - 0.08, ds["Kt0_An_row_min"].values[idx], "^", ms=3, color="C0")
+        beta, qs = ds["beta"].values[idx], ds["offset"].values[idx]
+        ax.plot(steps, -beta * qs * 1000.0 / area, "x", color="C1", label="mean field")
+        pub = pub_r[pub_r["direction"] == d]
+        if len(pub):
+            ax.errorbar(pub["step"] + 0.08, pub["Kt0_An_mean_row"],
+                        yerr=pub["Kt0_An_mean_row_moe"], fmt="s", ms=4, mfc="none",
+                        color="k", capsize=2, label="published mean row")
+            ax.plot(pub["step"] + 0.08, pub["Kt0_An_row_max"], "v", ms=3, color="k",
+                    mfc="none")
+            ax.plot(pub["step"] + 0.08, pub["Kt0_An_row_min"], "^", ms=3, color="k",
+                    mfc="none")
+        ax.set_title(f"{d} steps")
+        ax.set_xlabel("step")
+    axes[0].set_ylabel("Kt0/An (kN/mm^3)")
+    axes[0].legend(fontsize=7, frameon=False)
+    fig.suptitle(f"Test {test}: mean-row Kt0 (sec. 2.5.4), triangles: row max/min"
+                 f"{reconstructed}", fontsize=10)
+    fig.tight_layout()
+    save_figure(fig, paths[3])
+    return paths
+
+
+def recovery_table(results: list[Path], published_dir: Path | None = None) -> pd.DataFrame:
+    """Per step: are the fitted parameters within the published 95% margins?
+
+    Tangential steps against Appendix A, normal steps against Tables 2.1/2.7 with the two
+    corrections the demo uses (SU1 unloading alpha_n/P0 swapped back, S2 unloading alpha_n
+    replaced; column ``note``), see :func:`contactlab.stiffness.demo.demo_truth`.
+    """
+    from contactlab.stiffness.demo import demo_truth
+
+    truth = demo_truth(published_dir).set_index(["test", "kind", "direction", "step"])
+    rows = []
+    for path in results:
+        with xr.open_dataset(path) as ds:
+            test = str(ds.attrs["test"])
+            for i in range(ds.sizes["step"]):
+                kind = str(ds["kind"].values[i])
+                d = str(ds["direction"].values[i])
+                n = int(ds["step_number"].values[i])
+                key = (test, kind, d, n)
+                if key not in truth.index:
+                    continue
+                pub = truth.loc[key]
+                names = ("alpha_t", "beta_t", "Qs") if kind == "tangential" else (
+                    "alpha_n", "beta_n", "P0")
+                row = {"test": test, "kind": kind, "direction": d, "step": n,
+                       "converged": bool(ds["converged"].values[i]),
+                       "gof": float(ds["gof"].values[i]), "gof_published": float(pub["gof"]),
+                       "note": str(pub["note"])}
+                inside = True
+                for name, var, col in zip(names, ("alpha", "beta", "offset"),
+                                          ("alpha", "beta", "c"), strict=True):
+                    ours = float(ds[var].values[i])
+                    moe = float(pub[f"{col}_moe"])
+                    row[name] = ours
+                    row[f"{name}_published"] = float(pub[col])
+                    row[f"{name}_moe"] = float(ds[f"{var}_moe"].values[i])
+                    row[f"{name}_moe_published"] = moe
+                    ok = abs(ours - float(pub[col])) <= moe
+                    row[f"{name}_within"] = ok
+                    inside = inside and ok
+                row["within_margins"] = inside
+                rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def _ours_for(table: str, tables_dir: Path) -> pd.DataFrame | None:
+    path = tables_dir / f"table_{table}.csv"
+    if not path.is_file():
+        return None
+    return pd.read_csv(path, dtype={"test": str, "steps_used": str}, keep_default_na=False,
+                       na_values=[""])
+
+
+def summary_figure(summary: xr.Dataset, sheet: pd.DataFrame, published_dir: Path | None,
+                   png: Path) -> None:
+    """Like Figs 2.40-2.42 (and 2.60, 2.61): Kn, Kt0, f and Cc against -Pn/An."""
+    tests = summary["test"].values.astype(str)
+    pn_an = sheet.loc[tests, "max_normal_load_kN"].to_numpy(float) / sheet.loc[
+        tests, "nominal_area_mm2"].to_numpy(float)
+    pub_n = pd.concat([read_published("2.1", published_dir),
+                       read_published("2.7", published_dir)]).set_index(["test", "direction"])
+    pub_t = pd.concat([read_published("2.2", published_dir),
+                       read_published("2.8", published_dir)]).set_index(["test", "direction"])
+    pub_c = pd.concat([read_published("2.4", published_dir),
+                       read_published("2.9", published_dir)]).set_index(["test", "basis"])
+    fig, axes = plt.subplots(2, 2, figsize=(9, 6.5))
+    panels = [
+        (axes[0, 0], "Kn_An", "normal_direction", "loading", pub_n, "Kn/An loading (kN/mm^3)"),
+        (axes[0, 1], "Kt0_An", "tangential_direction", "combined", pub_t,
+         "mean Kt0/An (kN/mm^3)"),
+        (axes[1, 0], "f", "tangential_direction", "combined", pub_t, "mean f"),
+        (axes[1, 1], "Cc", "basis", "mean", pub_c, "Cc (mean Kn)"),
+    ]
+    for ax, var, dim, sel, pub, label in panels:
+        values = summary[var].sel({dim: sel}).values
+        moe = summary[f"{var}_moe"].sel({dim: sel}).values
+        ax.errorbar(pn_an - 0.005, values, yerr=moe, fmt="o", capsize=2, label="from raw")
+        pv = [pub[var].get((t, sel), np.nan) for t in tests]
+        pm = [pub[f"{var}_moe"].get((t, sel), np.nan) for t in tests]
+        ax.errorbar(pn_an + 0.005, pv, yerr=pm, fmt="s", mfc="none", color="k", capsize=2,
+                    label="published")
+        for x, y, t in zip(pn_an, values, tests, strict=True):
+            if np.isfinite(y):
+                ax.annotate(t, (x, y), fontsize=6, xytext=(3, 3), textcoords="offset points")
+        ax.set_xlabel("-Pn/An (kN/mm^2)")
+        ax.set_ylabel(label)
+    axes[0, 0].legend(fontsize=7, frameon=False)
+    fig.suptitle("Summary from raw data vs thesis (Figs 2.40-2.42, 2.60-2.61)", fontsize=10)
+    fig.tight_layout()
+    save_figure(fig, png)
+
+
+def build_section(results: list[Path], summary_path: Path, tests_path: Path, report_dir: Path,
+                  out: Path, published_dir: Path | None = None,
+                  flags_out: Path | None = None) -> None:
+    """Write section 21 with its comparison, recovery and flag tables and summary figure."""
+    report_dir = Path(report_dir)
+    tables_dir = report_dir / "tables"
+    sheet = read_test_sheet(tests_path)
+    section = Section("Contact stiffness from raw data vs the thesis", "stiffness-raw",
+                      report_dir)
+    demo = []
+    for path in results:
+        with xr.open_dataset(path) as ds:
+            if int(ds.attrs.get("reconstructed", 0)):
+                demo.append(str(ds.attrs["test"]))
+    if demo:
+        section.note(
+            f"The raw data of {', '.join(demo)} are RECONSTRUCTED: synthetic DIC fields and "
+            "load logs generated from the published fit parameters (Tables 2.1, 2.7, "
+            "A.2-A.37) with calibrated noise (contactlab demo dataset, results/demo/). They "
+            "test that the pipeline recovers the thesis; they are not measurements."
+        )
+    section.paragraph(
+        "Each test's frames are reduced to contact displacements uc, vc (sec. 2.3.2), each "
+        "loading and unloading step is fitted with eq. (2.2) or (2.3) by least squares "
+        "(lmfit), and the aggregation of sec. 2.5 gives Tables 2.1-2.4 and 2.7-2.10. "
+        "Below: every published number next to ours from raw data and the difference; "
+        "'_cov' columns in the table CSVs give margins with the fit covariance kept."
+    )
+    flags = [f for path in results for f in _flags(path)]
+    flag_table = pd.DataFrame({"flagged_fit": flags})
+    if flags_out is not None:
+        write_table(flag_table, flags_out)
+    if flags:
+        section.note(f"{len(flags)} fit(s) flagged as not converged (kept out of the means): "
+                     + "; ".join(flags))
+    else:
+        section.paragraph("All step fits converged.")
+
+    recovery = recovery_table(results, published_dir)
+    if len(recovery):
+        per_test = recovery.groupby("test", sort=False)["within_margins"].agg(
+            ["mean", "sum", "count"]).reset_index().rename(
+            columns={"mean": "fraction_within", "sum": "steps_within", "count": "steps"})
+        overall = float(recovery["within_margins"].mean())
+        section.paragraph(
+            f"Recovery of the published per-step parameters (alpha, beta, P0 or Qs all within "
+            f"the published 95% margins): {recovery['within_margins'].sum()} of "
+            f"{len(recovery)} steps ({100 * overall:.1f}%)."
+        )
+        section.table(per_test, "Recovery per test: steps whose fitted parameters lie within "
+                      "the published margins", tables_dir / "stiffness_raw_recovery_by_test.csv")
+        write_table(recovery, tables_dir / "stiffness_raw_recovery.csv")
+
+    comparisons = []
+    for table, keys in _KEYS.items():
+        ours = _ours_for(table, tables_dir)
+        if ours is None:
+            continue
+        published = read_published(table, published_dir)
+        columns = [c for c in published.columns if c not in keys
+                   and pd.api.types.is_numeric_dtype(published[c]) and c in ours.columns]
+        if not columns:
+            continue
+        versions = {"from_raw": ours}
+        other = _ours_for(f"{table}_from_published_steps", tables_dir)
+        if other is not None and all(c in other.columns for c in [*keys, *columns]):
+            versions["from_published_steps"] = other
+        cmp = compare_with_published(versions, published, keys, columns,
+                                     printed_decimals(table, published_dir))
+        cmp.insert(0, "table", table)
+        comparisons.append(cmp)
+    if comparisons:
+        long = pd.concat(comparisons, ignore_index=True)
+        long["relative_difference"] = long["from_raw_minus_published"] / long[
+            "published"].abs().where(long["published"] != 0)
+        keep = ["table", "test", "direction", "basis", "quantity", "unit", "published",
+                "from_published_steps", "from_raw", "from_raw_minus_published",
+                "relative_difference"]
+        long = long.reindex(columns=keep)
+        section.table(long, "Tables 2.1-2.4 and 2.7-2.10: every published number, recomputed "
+                      "from the published per-step values, ours from raw data and the "
+                      "difference (raw - published)", tables_dir
+                      / "stiffness_raw_vs_published.csv")
+    covariance = _covariance_table(tables_dir)
+    if covariance is not None:
+        section.paragraph(
+            "The thesis propagates margins without the covariance of the fit parameters "
+            "(sec. 2.5.1, footnote 2). With the covariance of each fit kept (beta_n with P0, "
+            "beta_t with Qs, strongly correlated), the margins of Kn, Kt0 and Cc shrink:")
+        section.table(covariance, "Margins from raw data: covariance neglected (thesis rule) "
+                      "and kept", tables_dir / "stiffness_raw_margins_covariance.csv")
+    with xr.open_dataset(summary_path) as summary:
+        summary_figure(summary.load(), sheet, published_dir,
+                       report_dir / "figures" / "stiffness_raw_summary.png")
+    section.blocks.append(
+        "<figure><img src='figures/stiffness_raw_summary.png' alt='summary'>"
+        "<figcaption>Kn, Kt0, f and Cc from raw data vs published (PDF beside)</figcaption>"
+        "</figure>")
+    for path in results:
+        with xr.open_dataset(path) as ds:
+            test = str(ds.attrs["test"])
+        for name, caption in (("normal", "normal steps (like Figs 2.8-2.13)"),
+                              ("tangential", "tangential steps (like Figs 2.14, 2.15)"),
+                              ("steps", "per-step f, beta_t, Kt0 (like Figs 2.16, 2.17)"),
+                              ("mean_row", "mean-row Kt0 (like Fig. 2.17 bottom)")):
+            png = f"figures/stiffness_raw_{test}_{name}.png"
+            section.blocks.append(f"<figure><img src='{png}' alt='{test} {name}'>"
+                                  f"<figcaption>Test {test}: {caption}</figcaption></figure>")
+    section.write(out)
+
+
+def _covariance_table(tables_dir: Path) -> pd.DataFrame | None:
+    parts = []
+    for table, col, key in (("2.1", "Kn_An", "direction"), ("2.7", "Kn_An", "direction"),
+                            ("2.2", "Kt0_An", "direction"), ("2.8", "Kt0_An", "direction"),
+                            ("2.4", "Cc", "basis"), ("2.9", "Cc", "basis")):
+        ours = _ours_for(table, tables_dir)
+        if ours is None or f"{col}_moe_cov" not in ours.columns:
+            continue
+        part = ours.loc[:, ["test", key, col, f"{col}_moe", f"{col}_moe_cov"]].rename(
+            columns={key: "row", col: "value", f"{col}_moe": "moe_neglected",
+                     f"{col}_moe_cov": "moe_with_covariance"})
+        part.insert(0, "quantity", col)
+        part.insert(0, "table", table)
+        parts.append(part.dropna(subset=["value"]))
+    return pd.concat(parts, ignore_index=True) if parts else None
+
+
+def _flags(path: Path) -> list[str]:
+    with xr.open_dataset(path) as ds:
+        return flagged_steps(ds.load())

@@ -1,0 +1,135 @@
+"""Per-test raw results -> ``results/stiffness/summary.nc`` and the thesis tables from raw data.
+
+Reads every ``results/stiffness/<test>.nc`` (:mod:`contactlab.stiffness.process`), turns
+them into the per-step tables of the aggregation interface
+(:mod:`contactlab.stiffness.aggregate`) and runs the same aggregation as for the published
+per-step values: Tables 2.1/2.7 (normal fits, Kn at the test load), 2.2/2.8 (means over the
+steps whose Kt0 margin is under 50%, sec. 2.5.3), 2.3/2.10 (beta_n Seq), 2.4/2.9 (Cc) and
+the per-step Appendix A tables, one CSV each in ``results/report/tables/`` named after the
+thesis table. Tests outside the thesis go to the chapter tables by their ``group`` and get
+per-step tables named after the test.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import xarray as xr
+
+from contactlab.io import stamp, write_netcdf
+from contactlab.published import TANGENTIAL_TABLES
+from contactlab.report.section import write_table
+from contactlab.stiffness.errors import ErrorModel
+from contactlab.stiffness.process import step_tables
+from contactlab.stiffness.summary import published_inputs, read_seq, summary_dataset
+from contactlab.stiffness.tables import GROUP_TABLES, build_tables, write_tables
+from contactlab.testsheet import read_test_sheet
+
+__all__ = ["CHAPTER_TABLES", "raw_tables", "summarize_raw", "table_files"]
+
+#: Chapter tables by test group: (normal, tangential means, beta_n Seq, Cc).
+CHAPTER_TABLES = GROUP_TABLES
+STEP_COLUMNS = ["test", "direction", "step", "Kt0_An", "Kt0_An_moe", "Kt0_An_moe_cov",
+                "alpha_t", "alpha_t_moe", "beta_t", "beta_t_moe", "Qs", "Qs_moe", "f", "f_moe",
+                "gof", "corr_beta_t_Qs", "used", "converged", "fit_message", "n_frames"]
+MEAN_ROW_COLUMNS = ["test", "direction", "step", "Kt0_An_mean_row", "Kt0_An_mean_row_moe",
+                    "Kt0_An_row_max", "Kt0_An_row_min"]
+_TABLE_OF = {(test, direction, kind): table
+             for table, (test, direction, kind) in TANGENTIAL_TABLES.items()}
+
+
+def _collect(results: list[Path]) -> dict[str, pd.DataFrame]:
+    parts: dict[str, list[pd.DataFrame]] = {"tangential": [], "normal": [], "mean_row": []}
+    for path in results:
+        with xr.open_dataset(path) as ds:
+            for key, table in step_tables(ds.load()).items():
+                parts[key].append(table)
+    return {key: (pd.concat(v, ignore_index=True) if v else pd.DataFrame())
+            for key, v in parts.items()}
+
+
+def raw_tables(results: list[Path], sheet: pd.DataFrame, seq: pd.Series | None = None,
+               threshold: float = 0.5, error_model: ErrorModel | None = None,
+               texture_wavelength: pd.Series | None = None) -> dict[str, pd.DataFrame]:
+    """The aggregated tables of the raw results (:func:`.tables.build_tables`) plus
+    ``mean_row``. Fits flagged as not converged keep their values but lose their margins,
+    so they never enter the means (sec. 2.5.3)."""
+    parts = _collect(results)
+    steps = parts["tangential"].copy()
+    flagged = ~steps["converged"].astype(bool)
+    steps.loc[flagged, ["alpha_t_moe", "beta_t_moe", "Qs_moe"]] = np.nan
+    normal = parts["normal"].copy()
+    normal.loc[~normal["converged"].astype(bool), ["alpha_n_moe", "beta_n_moe", "P0_moe"]] = \
+        np.nan
+    tables = build_tables(steps, normal, sheet, seq, error_model, threshold=threshold,
+                          texture_wavelength=texture_wavelength)
+    tables["mean_row"] = parts["mean_row"]
+    return tables
+
+
+def table_files(tables: dict[str, pd.DataFrame], sheet: pd.DataFrame) -> dict[str, pd.DataFrame]:
+    """File stem -> table: the chapter tables (``table_2.1`` ...) and the per-step Appendix A
+    tables (``table_A.2`` ..., or ``table_fit_<test>_<direction>`` and
+    ``table_mean_row_<test>_<direction>`` for tests outside the thesis)."""
+    out: dict[str, pd.DataFrame] = {f"table_{n}": tables[n] for numbers in
+                                    GROUP_TABLES.values() for n in numbers if n in tables}
+    for (kind, key, columns) in (("fit", "steps", STEP_COLUMNS),
+                                 ("mean_row", "mean_row", MEAN_ROW_COLUMNS)):
+        table = tables[key]
+        if table.empty:
+            continue
+        for (test, direction), part in table.groupby(["test", "direction"], sort=False):
+            number = _TABLE_OF.get((test, direction, kind))
+            stem = (f"table_A.{number.split('.')[1]}" if number
+                    else f"table_{kind}_{test}_{direction}")
+            out[stem] = part.reindex(columns=columns).reset_index(drop=True)
+    present = set(tables["normal"]["test"]) | set(tables["steps"]["test"])  # A tables only
+    for number, (test, _, kind) in TANGENTIAL_TABLES.items():
+        stem = f"table_{number}"
+        if test in present and stem not in out:  # e.g. a direction without data: header only
+            out[stem] = pd.DataFrame(columns=STEP_COLUMNS if kind == "fit" else MEAN_ROW_COLUMNS)
+    return out
+
+
+def summarize_raw(results: list[Path], tests_path: Path, out: Path, *,
+                  tables_dir: Path = Path("results/report/tables"),
+                  seq_path: Path | None = None, threshold: float = 0.5,
+                  error_model: ErrorModel | None = None,
+                  published_dir: Path | None = None) -> dict[str, pd.DataFrame]:
+    """Write ``summary.nc`` and the from-raw tables; return the tables by file stem."""
+    sheet = read_test_sheet(tests_path)
+    seq = read_seq(seq_path) if seq_path is not None else None
+    wavelength = published_inputs(published_dir)["texture_wavelength"]["texture_wavelength"]
+    tables = raw_tables(list(results), sheet, seq, threshold, error_model, wavelength)
+    write_tables(tables, tables_dir)
+    files = table_files(tables, sheet)
+    for stem, table in files.items():
+        if stem.startswith("table_A.") or stem.startswith("table_fit_") or stem.startswith(
+                "table_mean_row_"):
+            write_table(table, Path(tables_dir) / f"{stem}.csv")
+    ds = summary_dataset(tables, sheet, tables["mean_row"])
+    steps = tables["steps"]
+    test_ids = [str(t) for t in ds["test"].values]
+    ds["steps_flagged"] = ("test", np.array(
+        [int((~steps.loc[steps["test"] == t, "converged"].astype(bool)).sum())
+         for t in test_ids], dtype=np.int32),
+        {"long_name": "tangential step fits flagged as not converged", "units": "1"})
+    flags = {}
+    for path in results:
+        with xr.open_dataset(path) as one:
+            flags[str(one.attrs["test"])] = int(one.attrs.get("reconstructed", 0))
+    ds["reconstructed"] = ("test", np.array([flags.get(t, 0) for t in test_ids], dtype=np.int8),
+                           {"long_name": "raw data are the RECONSTRUCTED demo dataset (1), "
+                                         "not measurements", "units": "1"})
+    m = error_model or ErrorModel()
+    stamp(ds, title="Contact stiffness summary from raw data (thesis Tables 2.1-2.4, 2.7-2.10)",
+          source="per-test results: " + ", ".join(str(p) for p in results),
+          history="contactlab stiffness summarize")
+    ds.attrs.update(kt0_margin_threshold=threshold, tangential_pressure=m.tangential_pressure,
+                    piston_area_cm2=m.piston_area_cm2,
+                    note="recomputed from raw data; for the demo tests the raw data are "
+                         "RECONSTRUCTED from the published fits")
+    write_netcdf(ds, out)
+    return files

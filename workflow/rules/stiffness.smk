@@ -1,0 +1,170 @@
+# Contact stiffness from raw data (thesis ch. 2): demo data, one job per test, summary, report.
+# A test takes part when its row in config/tests.csv has a load_log and fields or a
+# contact_displacement file; adding a row adds its jobs, and only they and the summaries rerun.
+
+import re
+
+from contactlab.published import TANGENTIAL_TABLES
+from contactlab.stiffness.demo import DEMO_TESTS
+from contactlab.stiffness.raw_summary import CHAPTER_TABLES
+from contactlab.stiffness.workflow import raw_data_option, raw_inputs, raw_tests
+
+_RAW = config["stiffness"]["raw"]
+_ERR = config["stiffness"].get("errors", {})
+# the sec. 2.5.2 error model, shared with the published-steps aggregation
+_ERROR_OPTIONS = " ".join(
+    f"--{flag} {_ERR[key]}"
+    for key, flag in (
+        ("piston_area_cm2", "piston-area-cm2"),
+        ("pressure_uncertainty_MPa", "pressure-uncertainty-MPa"),
+        ("piston_area_rel_uncertainty", "piston-area-rel-uncertainty"),
+        ("tangential_pressure_rel_extra", "tangential-pressure-rel-extra"),
+        ("qs_rel_extra", "qs-rel-extra"),
+    )
+    if key in _ERR
+) + f" --tangential-pressure {_RAW['tangential_pressure']}"
+
+
+RAW_TESTS = raw_tests(TESTS)
+_RAW_TEST_PATTERN = "|".join(re.escape(t) for t in RAW_TESTS) or "(?!)"
+RAW_TABLES = [f"results/report/tables/table_{t}.csv" for tables in CHAPTER_TABLES.values()
+              for t in tables]
+RAW_TABLES += [f"results/report/tables/table_{t}.csv"
+               for t, (test, _, _) in TANGENTIAL_TABLES.items() if test in RAW_TESTS]
+RAW_FIGURES = ["normal", "tangential", "steps", "mean_row"]
+
+
+rule stiffness_demo:
+    """RECONSTRUCTED demo raw data of one thesis test from its published fits."""
+    input:
+        published=lambda wc: [PUBLISHED / "table_2.1.csv", PUBLISHED / "table_2.7.csv"]
+        + [PUBLISHED / f"table_{t}.csv" for t, v in TANGENTIAL_TABLES.items() if v[0] == wc.test],
+    output:
+        load_log="results/demo/{test}/load_log.csv",
+        fields="results/demo/{test}/fields.nc",
+        design="results/demo/{test}/design.csv",
+    wildcard_constraints:
+        test="|".join(DEMO_TESTS),
+    params:
+        seed=_RAW["demo_seed"],
+        published=PUBLISHED,
+    log:
+        "logs/stiffness/demo_{test}.log",
+    shell:
+        "contactlab stiffness demo --test {wildcards.test} --seed {params.seed}"
+        " --published-dir {params.published} --out-dir results/demo/{wildcards.test} 2> {log}"
+
+
+rule stiffness_process:
+    """Contact displacement, per-step fits and stiffness curves of one test."""
+    input:
+        unpack(raw_inputs(TESTS)),
+    output:
+        "results/stiffness/{test}.nc",
+    wildcard_constraints:
+        test=_RAW_TEST_PATTERN,
+    params:
+        data=raw_data_option,
+        load=lambda wc: float(TESTS.loc[wc.test, "max_normal_load_kN"]),
+        area=lambda wc: float(TESTS.loc[wc.test, "nominal_area_mm2"]),
+        grid=_RAW["grid_points"],
+        errors=_ERROR_OPTIONS,
+    log:
+        "logs/stiffness/process_{test}.log",
+    shell:
+        "contactlab stiffness process --test {wildcards.test} --load-log {input.load_log}"
+        " {params.data} --max-normal-load-kN {params.load} --nominal-area-mm2 {params.area}"
+        " --grid-points {params.grid} {params.errors}"
+        " --out {output} 2> {log}"
+
+
+rule stiffness_figures:
+    """Figures like Figs 2.8-2.17 for one test, published values overlaid."""
+    input:
+        result="results/stiffness/{test}.nc",
+    output:
+        [
+            report(
+                f"results/report/figures/stiffness_raw_{{test}}_{name}.png",
+                caption="../report/stiffness_raw.rst",
+                category="Contact stiffness",
+                subcategory="{test}",
+            )
+            for name in RAW_FIGURES
+        ],
+    wildcard_constraints:
+        test=_RAW_TEST_PATTERN,
+    params:
+        published=PUBLISHED,
+    log:
+        "logs/stiffness/figures_{test}.log",
+    shell:
+        "contactlab stiffness figures {input.result} --published-dir {params.published}"
+        " --out-dir results/report/figures 2> {log}"
+
+
+rule stiffness_summary:
+    """summary.nc and the thesis tables recomputed from the raw results of every test."""
+    input:
+        results=expand("results/stiffness/{test}.nc", test=RAW_TESTS),
+        tests=config["tests"],
+        seq="results/surfaces/seq.nc",
+    output:
+        summary="results/stiffness/summary.nc",
+        tables=RAW_TABLES,
+    params:
+        threshold=_RAW["kt0_margin_threshold"],
+        errors=_ERROR_OPTIONS,
+        published=PUBLISHED,
+    log:
+        "logs/stiffness/summary.log",
+    shell:
+        "contactlab stiffness summarize {input.results} --tests {input.tests}"
+        " --seq {input.seq} --kt0-threshold {params.threshold} {params.errors}"
+        " --published-dir {params.published}"
+        " --tables-dir results/report/tables --out {output.summary} 2> {log}"
+
+
+rule report_stiffness_raw:
+    """Report section: every number of Tables 2.1-2.4, 2.7-2.10 from raw vs published."""
+    input:
+        results=expand("results/stiffness/{test}.nc", test=RAW_TESTS),
+        summary="results/stiffness/summary.nc",
+        tables=RAW_TABLES,
+        figures=expand("results/report/figures/stiffness_raw_{test}_{name}.png",
+                       test=RAW_TESTS, name=RAW_FIGURES),
+        tests=config["tests"],
+        from_published_steps=[
+            f"results/report/tables/table_{n}_from_published_steps.csv"
+            for n in ["2.1", "2.2", "2.3", "2.4", "2.7", "2.8", "2.9", "2.10"]
+        ],
+        published=[
+            PUBLISHED / f"table_{n}.csv"
+            for n in ["2.1", "2.2", "2.3", "2.4", "2.7", "2.8", "2.9", "2.10",
+                      *TANGENTIAL_TABLES]
+        ],
+    output:
+        section="results/report/sections/21_stiffness_raw.html",
+        comparison="results/report/tables/stiffness_raw_vs_published.csv",
+        recovery="results/report/tables/stiffness_raw_recovery.csv",
+        flags="results/report/tables/stiffness_raw_flagged_fits.csv",
+        figure=report(
+            "results/report/figures/stiffness_raw_summary.png",
+            caption="../report/stiffness_raw.rst",
+            category="Contact stiffness",
+        ),
+    params:
+        published=PUBLISHED,
+    log:
+        "logs/report/stiffness_raw.log",
+    shell:
+        "contactlab stiffness report-raw {input.results} --summary {input.summary}"
+        " --tests {input.tests} --published-dir {params.published}"
+        " --report-dir results/report --flags {output.flags}"
+        " --out {output.section} 2> {log}"
+
+
+ALL_TARGETS.extend(expand("results/stiffness/{test}.nc", test=RAW_TESTS))
+ALL_TARGETS.append("results/stiffness/summary.nc")
+ALL_TARGETS.extend(RAW_TABLES)
+REPORT_SECTIONS.append("results/report/sections/21_stiffness_raw.html")

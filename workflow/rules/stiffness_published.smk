@@ -1,0 +1,87 @@
+# Contact stiffness from the PUBLISHED per-step values (Appendix A, Tables 2.1/2.7): the
+# thesis summary tables recomputed by the aggregation code (sec. 2.5) and compared with the
+# printed ones. Outputs carry the suffix _from_published_steps.
+
+from contactlab.published import MEAN_ROW_TABLES, PER_STEP_FIT_TABLES
+
+STIFFNESS_PUBLISHED_NUMBERS = ["2.1", "2.2", "2.3", "2.4", "2.7", "2.8", "2.9", "2.10"]
+STIFFNESS_PUBLISHED_TABLES = expand(
+    "results/report/tables/table_{n}_from_published_steps.csv", n=STIFFNESS_PUBLISHED_NUMBERS
+)
+_SP_ERRORS = config.get("stiffness", {}).get("errors", {})
+_SP = config.get("stiffness", {}).get("published_steps", {})
+
+# inputs: per-step fit and mean-row tables (A.2-A.39) and the normal fits (2.1, 2.7)
+STIFFNESS_PUBLISHED_INPUTS = [
+    PUBLISHED / f"table_{n}.csv"
+    for n in [*PER_STEP_FIT_TABLES, *MEAN_ROW_TABLES, "2.1", "2.7"]
+]
+
+
+rule stiffness_summary_from_published_steps:
+    """Tables 2.1-2.4, 2.7-2.10 and a summary netCDF from the published per-step values."""
+    input:
+        tests=config["tests"],
+        seq="results/surfaces/seq.nc",
+        published=STIFFNESS_PUBLISHED_INPUTS,
+    output:
+        summary="results/stiffness/summary_from_published_steps.nc",
+        tables=STIFFNESS_PUBLISHED_TABLES,
+    params:
+        published=PUBLISHED,
+        tables_dir=lambda wildcards, output: Path(output.tables[0]).parent,
+        threshold=_SP.get("kt0_margin_threshold", 0.5),
+        pressure=_SP.get("tangential_pressure", "multiply"),
+        area=_SP_ERRORS.get("piston_area_cm2", 6.5),
+        dp=_SP_ERRORS.get("pressure_uncertainty_MPa", 0.135),
+        u_area=_SP_ERRORS.get("piston_area_rel_uncertainty", 0.01),
+        u_tan=_SP_ERRORS.get("tangential_pressure_rel_extra", 0.01),
+        u_qs=_SP_ERRORS.get("qs_rel_extra", 0.01),
+    log:
+        "logs/stiffness/summary_from_published_steps.log",
+    shell:
+        "contactlab stiffness summarize-published --tests {input.tests} --seq {input.seq}"
+        " --published-dir {params.published} --tables-dir {params.tables_dir}"
+        " --kt0-threshold {params.threshold} --tangential-pressure {params.pressure}"
+        " --piston-area-cm2 {params.area} --pressure-uncertainty-MPa {params.dp}"
+        " --piston-area-rel-uncertainty {params.u_area}"
+        " --tangential-pressure-rel-extra {params.u_tan} --qs-rel-extra {params.u_qs}"
+        " --out {output.summary} 2> {log}"
+
+
+rule report_stiffness_published:
+    """Report section: every number of Tables 2.1-2.4, 2.7-2.10, published vs recomputed."""
+    input:
+        summary="results/stiffness/summary_from_published_steps.nc",
+        tables=STIFFNESS_PUBLISHED_TABLES,
+        published=[PUBLISHED / f"table_{n}.csv" for n in STIFFNESS_PUBLISHED_NUMBERS],
+    output:
+        section="results/report/sections/20_stiffness_published.html",
+        tables=expand(
+            "results/report/tables/compare_{n}_from_published_steps.csv",
+            n=STIFFNESS_PUBLISHED_NUMBERS,
+        ),
+        figures=report(
+            expand(
+                "results/report/figures/stiffness_{fig}_from_published_steps.png",
+                fig=["fig_2_40", "fig_2_41", "fig_2_42", "fig_2_60", "fig_2_61", "mean_row"],
+            ),
+            caption="../report/stiffness_published.rst",
+            category="Contact stiffness",
+        ),
+    params:
+        published=PUBLISHED,
+        tables_dir=lambda wildcards, input: Path(input.tables[0]).parent,
+        report_dir=lambda wildcards, output: Path(output.section).parent.parent,
+    log:
+        "logs/report/stiffness_published.log",
+    shell:
+        "contactlab stiffness report-published --summary {input.summary}"
+        " --tables-dir {params.tables_dir} --published-dir {params.published}"
+        " --report-dir {params.report_dir} --out {output.section} 2> {log}"
+
+
+ALL_TARGETS.extend(
+    ["results/stiffness/summary_from_published_steps.nc", *STIFFNESS_PUBLISHED_TABLES]
+)
+REPORT_SECTIONS.append("results/report/sections/20_stiffness_published.html")
