@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from contactlab.published import read_published
 from contactlab.surfaces.roughness import published_roughness
-from contactlab.surfaces.seq import equivalent_roughness, seq_dataset
+from contactlab.surfaces.seq import add_scan_seq, equivalent_roughness, seq_dataset
 from contactlab.testsheet import read_test_sheet
 
 
@@ -51,8 +52,18 @@ def test_seq_reproduces_tables_2_3_and_2_10(repo) -> None:
     assert exact == {"RU1", "RU2", "RU3", "S1", "S2"}
 
 
-def test_seq_names_an_unknown_surface(repo) -> None:
+def test_seq_of_an_unpublished_surface_is_nan(repo) -> None:
+    """A user's own surface has no published Sq; its Seq must come from scans."""
     sheet = read_test_sheet(repo / "config" / "tests.csv").copy()
     sheet.loc["RU1", "pad"] = "no_such_pad"
-    with pytest.raises(KeyError, match=r"RU1.*no_such_pad_B"):
-        seq_dataset(sheet, published_roughness())
+    ds = seq_dataset(sheet, published_roughness())
+    assert np.isnan(float(ds["Seq"].sel(test="RU1")))
+    assert float(ds["Seq"].sel(test="RU2")) == pytest.approx(1.6425, abs=1e-4)
+
+
+def test_scan_seq_insists_on_a_scan_for_every_surface(repo) -> None:
+    sheet = read_test_sheet(repo / "config" / "tests.csv")
+    ds = seq_dataset(sheet, published_roughness())
+    sq = pd.Series({"rough_specimen_B": 1.4})
+    with pytest.raises(KeyError, match=r"test SU1: no areal Sq of surface 'smooth_specimen_B'"):
+        add_scan_seq(ds, sheet, sq)

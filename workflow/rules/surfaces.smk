@@ -1,11 +1,66 @@
-# Surfaces branch: texture parameters of each surface and Seq of each test's interface.
+# Surfaces branch (thesis sec. 2.3.4): texture parameters of every surface from its scans,
+# and Seq of each test's interface from the computed and from the published Sq.
+
+from contactlab.surfaces.sheet import check_scan_files, read_surface_sheet, scan_paths
+
+SURFACES_CONFIG = config.get("surfaces", {})
+SURFACE_SHEET = SURFACES_CONFIG.get("sheet", "config/surfaces.csv")
+DEMO_SCAN_DIR = Path("results/surfaces/demo_scans")
+try:
+    SURFACE_SPECS = read_surface_sheet(SURFACE_SHEET)
+    SCANS = [str(p) for p in scan_paths(SURFACE_SPECS)]
+    DEMO_SCANS = [p for p in SCANS if Path(p).parent == DEMO_SCAN_DIR]
+    check_scan_files(SURFACE_SPECS, SURFACE_SHEET, generated=[Path(p) for p in DEMO_SCANS])
+except (ValueError, FileNotFoundError) as exc:
+    raise WorkflowError(str(exc)) from None
+SURFACE_IDS = [spec.surface for spec in SURFACE_SPECS]
+
+
+if DEMO_SCANS:
+
+    rule demo_scans:
+        """SYNTHETIC X3P scans with the published statistics (Tables A.1, A.26, A.27, 2.6)."""
+        input:
+            sheet=SURFACE_SHEET,
+            published=[PUBLISHED / f"table_{t}.csv" for t in ("A.1", "A.26", "A.27", "2.6")],
+        output:
+            DEMO_SCANS,
+        params:
+            seed=SURFACES_CONFIG.get("demo_seed", 0),
+            out_dir=lambda wildcards, output: Path(output[0]).parent,
+            published=PUBLISHED,
+        log:
+            "logs/surfaces/demo_scans.log",
+        shell:
+            "contactlab surfaces demo-scans --sheet {input.sheet} --out-dir {params.out_dir}"
+            " --seed {params.seed} --published-dir {params.published} > {log} 2>&1"
+
+
+rule surface_texture:
+    """Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz of every surface from its scans."""
+    input:
+        sheet=SURFACE_SHEET,
+        scans=SCANS,
+    output:
+        summary="results/surfaces/texture.nc",
+        surfaces=expand("results/surfaces/{surface}.nc", surface=SURFACE_IDS),
+    params:
+        bins=SURFACES_CONFIG.get("histogram_bins", 80),
+        out_dir=lambda wildcards, output: Path(output.summary).parent,
+    log:
+        "logs/surfaces/texture.log",
+    shell:
+        "contactlab surfaces texture --sheet {input.sheet} --out-dir {params.out_dir}"
+        " --summary {output.summary} --bins {params.bins} > {log} 2>&1"
 
 
 rule seq:
-    """Seq (eq. 2.1) of each test's imaged interface from the published Sq."""
+    """Seq (eq. 2.1) of each test's imaged interface from the scans' and the published Sq."""
     input:
         tests=config["tests"],
+        texture="results/surfaces/texture.nc",
         roughness=[PUBLISHED / "table_A.1.csv", PUBLISHED / "table_A.27.csv"],
+        beta_n=[PUBLISHED / "table_2.1.csv", PUBLISHED / "table_2.7.csv"],
     output:
         "results/surfaces/seq.nc",
     params:
@@ -13,31 +68,55 @@ rule seq:
     log:
         "logs/surfaces/seq.log",
     shell:
-        "contactlab surfaces seq --tests {input.tests} --published-dir {params.published}"
-        " --out {output} 2> {log}"
+        "contactlab surfaces seq --tests {input.tests} --texture {input.texture}"
+        " --published-dir {params.published} --out {output} 2> {log}"
 
 
 rule report_surfaces:
-    """Report section: Seq beside Tables 2.3 and 2.10."""
+    """Report section: Tables A.1, A.26, A.27, 2.6 and Seq (2.3, 2.10) beside ours."""
     input:
         seq="results/surfaces/seq.nc",
-        published=[PUBLISHED / "table_2.3.csv", PUBLISHED / "table_2.10.csv"],
+        texture="results/surfaces/texture.nc",
+        surfaces=expand("results/surfaces/{surface}.nc", surface=SURFACE_IDS),
+        published=[
+            PUBLISHED / f"table_{t}.csv" for t in ("2.3", "2.10", "A.1", "A.26", "A.27", "2.6")
+        ],
     output:
         section="results/report/sections/10_surfaces.html",
         table="results/report/tables/seq.csv",
+        areal="results/report/tables/surfaces_areal.csv",
+        profile="results/report/tables/surfaces_profile.csv",
+        structured="results/report/tables/surfaces_100x.csv",
         figure=report(
             "results/report/figures/seq.png",
             caption="../report/seq.rst",
             category="Surfaces",
         ),
+        maps=report(
+            "results/report/figures/surfaces_maps.png",
+            caption="../report/surfaces_maps.rst",
+            category="Surfaces",
+        ),
+        profiles=report(
+            "results/report/figures/surfaces_profiles.png",
+            caption="../report/surfaces_profiles.rst",
+            category="Surfaces",
+        ),
+        spectra=report(
+            "results/report/figures/surfaces_spectra.png",
+            caption="../report/surfaces_spectra.rst",
+            category="Surfaces",
+        ),
     params:
         published=PUBLISHED,
+        surface_dir=lambda wildcards, input: Path(input.texture).parent,
     log:
         "logs/report/surfaces.log",
     shell:
-        "contactlab report surfaces --seq {input.seq} --published-dir {params.published}"
+        "contactlab surfaces report --seq {input.seq} --texture {input.texture}"
+        " --surface-dir {params.surface_dir} --published-dir {params.published}"
         " --report-dir results/report --out {output.section} 2> {log}"
 
 
-ALL_TARGETS.append("results/surfaces/seq.nc")
+ALL_TARGETS.extend(["results/surfaces/seq.nc", "results/surfaces/texture.nc"])
 REPORT_SECTIONS.append("results/report/sections/10_surfaces.html")

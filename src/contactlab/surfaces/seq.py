@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 import xarray as xr
@@ -22,13 +24,14 @@ def equivalent_roughness(sq_1: np.ndarray | float, sq_2: np.ndarray | float) -> 
     return np.hypot(sq_1, sq_2)
 
 
-def _sq_um(roughness: pd.DataFrame, surface: str, test: str) -> float:
-    """Sq of one surface in um from a roughness table indexed by surface id."""
+def _sq_um(roughness: pd.DataFrame, surface: str) -> float:
+    """Sq of one surface in um from a roughness table indexed by surface id.
+
+    NaN for a surface the thesis did not publish (a user's own test); its Seq then
+    comes from its scans only, and :func:`add_scan_seq` insists that they exist.
+    """
     if surface not in roughness.index:
-        raise KeyError(
-            f"test {test}: surface {surface!r} not found in the published roughness tables "
-            f"(known: {', '.join(roughness.index)})"
-        )
+        return float("nan")
     value = float(roughness.loc[surface, "Sq"])
     unit = roughness.attrs.get("units", {}).get("Sq", "nm")
     return value / 1000.0 if unit == "nm" else value
@@ -43,12 +46,12 @@ def seq_dataset(sheet: pd.DataFrame, roughness: pd.DataFrame) -> xr.Dataset:
     tests = list(sheet["id"])
     sq_specimen = np.array(
         [
-            _sq_um(roughness, surface_id(row.specimen, row.specimen_side), row.id)
+            _sq_um(roughness, surface_id(row.specimen, row.specimen_side))
             for row in sheet.itertuples()
         ]
     )
     sq_pad = np.array(
-        [_sq_um(roughness, surface_id(row.pad, row.pad_side), row.id) for row in sheet.itertuples()]
+        [_sq_um(roughness, surface_id(row.pad, row.pad_side)) for row in sheet.itertuples()]
     )
     um = {"units": "um"}
     return xr.Dataset(
@@ -63,3 +66,59 @@ def seq_dataset(sheet: pd.DataFrame, roughness: pd.DataFrame) -> xr.Dataset:
         },
         coords={"test": ("test", np.array(tests, dtype=object), {"long_name": "test id"})},
     )
+
+
+def add_scan_seq(ds: xr.Dataset, sheet: pd.DataFrame, sq_um: pd.Series,
+                 source: str = "texture summary") -> xr.Dataset:
+    """Add Sq_specimen_scan, Sq_pad_scan and Seq_scan (um) from Sq computed from scans.
+
+    ``sq_um`` maps surface id -> Sq (um) (``results/surfaces/texture.nc``).
+    """
+    def lookup(surface: str, test: str) -> float:
+        value = sq_um.get(surface)
+        if value is None or not np.isfinite(value):
+            raise KeyError(f"test {test}: no areal Sq of surface {surface!r} in {source} "
+                           "(name an areal scan for it in the surface sheet)")
+        return float(value)
+
+    rows = list(sheet.itertuples())
+    specimen = np.array([lookup(surface_id(r.specimen, r.specimen_side), r.id) for r in rows])
+    pad = np.array([lookup(surface_id(r.pad, r.pad_side), r.id) for r in rows])
+    um = {"units": "um"}
+    return ds.assign(
+        Sq_specimen_scan=("test", specimen,
+                          {"long_name": "Sq of the specimen surface computed from its scan", **um}),
+        Sq_pad_scan=("test", pad, {"long_name": "Sq of the pad surface computed from its scan",
+                                   **um}),
+        Seq_scan=("test", equivalent_roughness(specimen, pad),
+                  {"long_name": "equivalent roughness Seq, eq. (2.1), from scans", **um}),
+    )
+
+
+def published_beta_n(directory: Path | None = None) -> pd.Series:
+    """Loading beta_n (1/um) per test from Tables 2.1 and 2.7 (the value Tables 2.3/2.10 use)."""
+    from contactlab.published import read_published
+
+    frames = [read_published(t, directory) for t in ("2.1", "2.7")]
+    table = pd.concat(frames)
+    return table[table["direction"] == "loading"].set_index("test")["beta_n"]
+
+
+def add_beta_n(ds: xr.Dataset, directory: Path | None = None) -> xr.Dataset:
+    """Add published loading beta_n and the products beta_n * Seq (Tables 2.3, 2.10).
+
+    NaN for tests the thesis did not publish; their beta_n * Seq is in the stiffness
+    summary, which fits beta_n from the test's own data.
+    """
+    beta = published_beta_n(directory)
+    values = np.array([float(beta.get(str(t), np.nan)) for t in ds["test"].values])
+    out = ds.assign(
+        beta_n=("test", values, {"long_name": "normal stiffness exponent beta_n, loading, "
+                                              "published (Tables 2.1, 2.7)", "units": "1/um"}),
+        beta_n_Seq=("test", values * ds["Seq"].values,
+                    {"long_name": "beta_n * Seq from the published Sq", "units": "1"}),
+    )
+    if "Seq_scan" in ds:
+        out["beta_n_Seq_scan"] = ("test", values * ds["Seq_scan"].values,
+                                  {"long_name": "beta_n * Seq from the scans' Sq", "units": "1"})
+    return out

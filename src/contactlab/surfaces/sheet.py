@@ -1,0 +1,155 @@
+"""The surface sheet ``config/surfaces.csv``: which scan measures which surface, and how.
+
+One row per measured surface (the rows of Tables A.1, A.26, A.27 and 2.6). The
+test sheet names the two surfaces of each test's interface (specimen + side and
+pad + side, see :func:`contactlab.testsheet.surface_id`); this sheet names their
+scan files and the measurement settings of sec. 2.3.4. Keeping it apart from the
+test sheet lets one surface serve several tests (a specimen side is shared by
+three tests) without repeating its scans.
+
+Columns:
+
+- ``surface``: surface id (``rough_specimen_B``, ``RU1_pad_B``, ``S1_specimen_normal``...).
+- ``objective``: ``20x`` or ``100x`` (informational; the scan file gives the pixel size).
+- ``areal_scan``: scan for the areal parameters (Sa, Sq, Sp, Str, fractal dimension),
+  or empty.
+- ``profile_scan``: scan whose lines give Ra, Rq, Rz, or empty.
+- ``profile_axis``: ``x`` or ``y``, the scan axis the profile lines run along.
+- ``profile_direction``: the direction sec. 2.3.4 states: ``lengthwise`` (along the
+  tangential load; for the ground surfaces this is across the grinding marks),
+  ``normal_to_pattern`` or ``parallel_to_pattern`` (structured specimens).
+- ``profile_length_mm``: length of each profile line (traverse), mm.
+- ``lambda_c_um``: Gaussian cut-off wavelength, um (800 for the 20x scans).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from pathlib import Path
+
+import pandas as pd
+
+COLUMNS = ("surface", "objective", "areal_scan", "profile_scan", "profile_axis",
+           "profile_direction", "profile_length_mm", "lambda_c_um")
+DIRECTIONS = ("lengthwise", "normal_to_pattern", "parallel_to_pattern")
+#: Ids that would collide with other files in results/surfaces/.
+RESERVED = ("seq", "texture", "demo_scans")
+_ID = re.compile(r"^[A-Za-z][A-Za-z0-9_-]*$")
+
+
+@dataclass(frozen=True)
+class SurfaceSpec:
+    """Scans and measurement settings of one surface."""
+
+    surface: str
+    objective: str
+    areal_scan: Path | None
+    profile_scan: Path | None
+    profile_axis: str
+    profile_direction: str | None
+    profile_length_um: float | None
+    lambda_c_um: float
+
+
+def _text(value: object) -> str | None:
+    if value is None or (isinstance(value, float) and pd.isna(value)):
+        return None
+    text = str(value).strip()
+    return text or None
+
+
+def read_surface_sheet(path: str | Path) -> list[SurfaceSpec]:
+    """Read and check the surface sheet; errors name the file, line and column."""
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: surface sheet not found")
+    try:
+        table = pd.read_csv(path, dtype=str, keep_default_na=False, comment="#")
+    except (pd.errors.ParserError, UnicodeDecodeError) as exc:
+        raise ValueError(f"{path}: cannot parse as CSV: {exc}") from exc
+    unknown = [c for c in table.columns if c not in COLUMNS]
+    missing = [c for c in COLUMNS if c not in table.columns]
+    if unknown or missing:
+        raise ValueError(f"{path}: unknown column(s) {unknown}, missing column(s) {missing}; "
+                         f"expected {list(COLUMNS)}")
+    specs: list[SurfaceSpec] = []
+    seen: set[str] = set()
+    for line, row in enumerate(table.to_dict("records"), start=2):
+        where = f"{path}: line {line}"
+        surface = _text(row["surface"]) or ""
+        if not _ID.match(surface):
+            raise ValueError(f"{where}, column 'surface': invalid surface id {surface!r}")
+        if surface in RESERVED:
+            raise ValueError(f"{where}, column 'surface': {surface!r} is reserved "
+                             f"(results/surfaces/{surface}.nc is another result)")
+        if surface in seen:
+            raise ValueError(f"{where}, column 'surface': duplicate surface id {surface!r}")
+        seen.add(surface)
+        areal, profile = _text(row["areal_scan"]), _text(row["profile_scan"])
+        if areal is None and profile is None:
+            raise ValueError(f"{where} ({surface}): neither 'areal_scan' nor 'profile_scan' given")
+        axis = _text(row["profile_axis"]) or "x"
+        if axis not in ("x", "y"):
+            raise ValueError(f"{where} ({surface}), column 'profile_axis': {axis!r} is not x or y")
+        direction = _text(row["profile_direction"])
+        if profile is not None and direction not in DIRECTIONS:
+            raise ValueError(f"{where} ({surface}), column 'profile_direction': {direction!r} "
+                             f"is not one of {list(DIRECTIONS)}")
+        lambda_c = _number(row["lambda_c_um"], f"{where} ({surface}), column 'lambda_c_um'")
+        length = _text(row["profile_length_mm"])
+        length_um = None
+        if profile is not None:
+            length_um = 1000.0 * _number(length, f"{where} ({surface}), column 'profile_length_mm'")
+        specs.append(SurfaceSpec(
+            surface=surface,
+            objective=_text(row["objective"]) or "",
+            areal_scan=Path(areal) if areal else None,
+            profile_scan=Path(profile) if profile else None,
+            profile_axis=axis,
+            profile_direction=direction,
+            profile_length_um=length_um,
+            lambda_c_um=lambda_c,
+        ))
+    if not specs:
+        raise ValueError(f"{path}: no surfaces")
+    return specs
+
+
+def _number(value: object, where: str) -> float:
+    text = _text(value)
+    try:
+        number = float(text) if text is not None else float("nan")
+    except ValueError:
+        number = float("nan")
+    if not number > 0:
+        raise ValueError(f"{where}: expected a positive number, got {text!r}")
+    return number
+
+
+def check_scan_files(specs: list[SurfaceSpec], sheet_path: str | Path,
+                     generated: list[Path] | tuple[Path, ...] = (), root: str | Path = ".") -> None:
+    """Raise FileNotFoundError naming the sheet and surface if a scan file is missing.
+
+    ``generated`` lists scans a workflow rule will write (the demo scans).
+    """
+    made = {Path(p) for p in generated}
+    for spec in specs:
+        for column, path in (("areal_scan", spec.areal_scan), ("profile_scan", spec.profile_scan)):
+            if path is None or path in made:
+                continue
+            if not (Path(root) / path).is_file():
+                raise FileNotFoundError(
+                    f"{sheet_path}: surface {spec.surface}, column '{column}': "
+                    f"scan file not found: {path}"
+                )
+
+
+def scan_paths(specs: list[SurfaceSpec]) -> list[Path]:
+    """Every scan file the sheet names, in sheet order, without repeats."""
+    paths: list[Path] = []
+    for spec in specs:
+        for path in (spec.areal_scan, spec.profile_scan):
+            if path is not None and path not in paths:
+                paths.append(path)
+    return paths

@@ -1,0 +1,271 @@
+"""Texture of one surface from its scans, as in sec. 2.3.4 (Tables A.1, A.26, A.27, 2.6).
+
+Areal scan -> least-squares plane removed (F-operator) -> Gaussian L-filter at
+lambda_c (ISO 16610-61, end-corrected) -> Sa, Sq, Sp, Str, fractal dimension,
+height histogram and radially averaged power spectrum.
+
+Profile scan -> 5 lines along the stated direction, each of the stated profile
+length -> least-squares line removed -> Gaussian filter at lambda_c -> 10 % of
+the length discarded at each end (as the Alicona does, sec. 2.3.4) -> Ra, Rq, Rz
+per sampling length (= lambda_c, ISO 4288), averaged over the sampling lengths
+and over the lines.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import xarray as xr
+
+from contactlab.surfaces.filters import mean_surface, remove_line, remove_plane, roughness_profile
+from contactlab.surfaces.parameters import (
+    arithmetic_mean_height,
+    box_counting_dimension,
+    maximum_peak_height,
+    profile_parameters,
+    texture_aspect_ratio,
+)
+from contactlab.surfaces.scans import Scan, read_scan
+from contactlab.surfaces.sheet import SurfaceSpec
+
+#: Profile lines per surface (sec. 2.3.4: "the average of the values of 5 measurements").
+N_PROFILES = 5
+#: Fraction of each profile line discarded at each end (sec. 2.3.4, Alicona).
+END_FRACTION = 0.1
+#: Largest side of the stored height map used for the report picture (pixels).
+MAP_PIXELS = 256
+
+AREAL = ("Sa", "Sq", "Sp", "Str", "fractal_dimension")
+PROFILE = ("Ra", "Rq", "Rz")
+ATTRS = {
+    "Sa": ("arithmetic mean height Sa (ISO 25178-2)", "um"),
+    "Sq": ("root mean square height Sq (ISO 25178-2)", "um"),
+    "Sp": ("maximum peak height Sp (ISO 25178-2)", "um"),
+    "Str": ("texture aspect ratio Str, ACF threshold s = 0.2 (ISO 25178-2)", "1"),
+    "fractal_dimension": ("fractal dimension, cube counting", "1"),
+    "Ra": ("arithmetic mean deviation Ra (ISO 4287), mean of sampling lengths and lines", "um"),
+    "Rq": ("root mean square deviation Rq (ISO 4287), mean of sampling lengths and lines", "um"),
+    "Rz": ("maximum height Rz (ISO 4287), mean of sampling lengths and lines", "um"),
+}
+
+
+@dataclass
+class SurfaceTexture:
+    """Parameters and spectra of one surface (NaN where a scan is absent)."""
+
+    spec: SurfaceSpec
+    values: dict[str, float] = field(default_factory=dict)
+    areal: dict[str, np.ndarray] = field(default_factory=dict)
+    profile: dict[str, np.ndarray] = field(default_factory=dict)
+    synthetic: bool = False
+
+
+def _check_cut_off(extent_um: float, lambda_c: float, what: str, scan: Scan) -> None:
+    if extent_um < lambda_c:
+        raise ValueError(
+            f"{scan.path}: {what} of {extent_um:.4g} um is smaller than the cut-off "
+            f"lambda_c = {lambda_c:.4g} um; the L-filter cannot separate roughness from form"
+        )
+
+
+def areal_texture(scan: Scan, lambda_c: float, histogram_bins: int = 80) -> dict:
+    """Areal parameters of a scan after plane removal and the lambda_c Gaussian filter."""
+    from SurfaceTopography import Topography
+
+    sx, sy = scan.size_um
+    if scan.heights.shape[1] < 2:
+        raise ValueError(f"{scan.path}: a line scan cannot give areal parameters")
+    _check_cut_off(min(sx, sy), lambda_c, "the smaller side of the scan", scan)
+    form_removed = remove_plane(scan.heights)
+    rough = form_removed - mean_surface(form_removed, lambda_c, scan.dx, scan.dy)
+    rough -= rough.mean()
+    topography = Topography(rough, physical_sizes=(sx, sy), unit="um", periodic=False)
+    q, psd = topography.power_spectrum_from_area(nb_points_per_decade=10)
+    ok = np.isfinite(psd) & (q > 0)
+    counts, edges = np.histogram(rough, bins=histogram_bins, density=True)
+    step_x = max(1, int(np.ceil(rough.shape[0] / MAP_PIXELS)))
+    step_y = max(1, int(np.ceil(rough.shape[1] / MAP_PIXELS)))
+    values = {
+        "Sa": arithmetic_mean_height(rough),
+        "Sq": float(topography.Sq()),
+        "Sp": maximum_peak_height(rough),
+        "Str": texture_aspect_ratio(rough, scan.dx, scan.dy),
+        "fractal_dimension": box_counting_dimension(rough, 0.5 * (scan.dx + scan.dy)),
+    }
+    arrays = {
+        "q": q[ok], "psd": psd[ok], "density": counts, "edges": edges,
+        "map": rough[::step_x, ::step_y], "map_dx": scan.dx * step_x, "map_dy": scan.dy * step_y,
+        "dx": scan.dx, "dy": scan.dy, "size_x": sx, "size_y": sy,
+    }
+    return {"values": values, "arrays": arrays}
+
+
+def profile_lines(scan: Scan, axis: str, length_um: float,
+                  n_lines: int = N_PROFILES) -> tuple[np.ndarray, float]:
+    """``n_lines`` lines of ``length_um`` along ``axis``, evenly spaced across the scan.
+
+    Returns (lines of shape (points, n_lines), spacing along the lines). A scan
+    with fewer lines than asked gives all it has.
+    """
+    heights = scan.heights if axis == "x" else scan.heights.T
+    spacing = scan.dx if axis == "x" else scan.dy
+    along, across = heights.shape
+    points = round(length_um / spacing)
+    if points > along + 1:
+        raise ValueError(
+            f"{scan.path}: profile length {length_um / 1000:.4g} mm is longer than the scan "
+            f"along {axis} ({along * spacing / 1000:.4g} mm)"
+        )
+    points = min(points, along)
+    start = (along - points) // 2
+    if across <= n_lines:
+        columns = np.arange(across)
+    else:
+        columns = np.rint(np.linspace(0, across - 1, n_lines + 2)[1:-1]).astype(int)
+    return heights[start:start + points, columns], spacing
+
+
+def profile_texture(scan: Scan, axis: str, length_um: float, lambda_c: float) -> dict:
+    """Ra, Rq, Rz of ``N_PROFILES`` lines (ISO 4287/4288 as in sec. 2.3.4) and their PSD."""
+    from SurfaceTopography import Topography, UniformLineScan
+
+    lines, spacing = profile_lines(scan, axis, length_um)
+    points = lines.shape[0]
+    trim = round(END_FRACTION * points)
+    _check_cut_off((points - 2 * trim) * spacing, lambda_c,
+                   "the evaluation length of a profile (80 % of the profile length)", scan)
+    results, rough_lines = [], []
+    for k in range(lines.shape[1]):
+        rough = roughness_profile(remove_line(lines[:, k]), lambda_c, spacing)
+        evaluation = rough[trim:points - trim]
+        rough_lines.append(evaluation)
+        results.append(profile_parameters(evaluation, spacing, lambda_c))
+    rough = np.stack(rough_lines, axis=1)
+    if rough.shape[1] > 1:
+        topography = Topography(rough, physical_sizes=(rough.shape[0] * spacing,
+                                                       rough.shape[1] * spacing),
+                                unit="um", periodic=False)
+    else:
+        topography = UniformLineScan(rough[:, 0], physical_sizes=rough.shape[0] * spacing,
+                                     unit="um", periodic=False)
+    q, psd = topography.power_spectrum_from_profile(nb_points_per_decade=10)
+    ok = np.isfinite(psd) & (q > 0)
+    values = {name: float(np.mean([getattr(r, name) for r in results])) for name in PROFILE}
+    arrays = {
+        "q": q[ok], "psd": psd[ok], "lines": rough, "spacing": spacing,
+        "n_lines": rough.shape[1], "n_sampling_lengths": results[0].n_sampling_lengths,
+    }
+    return {"values": values, "arrays": arrays}
+
+
+def surface_texture(spec: SurfaceSpec, histogram_bins: int = 80) -> SurfaceTexture:
+    """Everything the sheet asks for one surface."""
+    texture = SurfaceTexture(spec, dict.fromkeys(AREAL + PROFILE, np.nan))
+    if spec.areal_scan is not None:
+        scan = read_scan(spec.areal_scan)
+        texture.synthetic |= scan.synthetic
+        result = areal_texture(scan, spec.lambda_c_um, histogram_bins)
+        texture.values.update(result["values"])
+        texture.areal = result["arrays"]
+    if spec.profile_scan is not None:
+        assert spec.profile_length_um is not None
+        scan = read_scan(spec.profile_scan)
+        texture.synthetic |= scan.synthetic
+        result = profile_texture(scan, spec.profile_axis, spec.profile_length_um,
+                                 spec.lambda_c_um)
+        texture.values.update(result["values"])
+        texture.profile = result["arrays"]
+    return texture
+
+
+def _var(name: str, dims, data, **extra) -> xr.Variable:
+    long_name, units = ATTRS[name]
+    return xr.Variable(dims, data, {"long_name": long_name, "units": units, **extra})
+
+
+def surface_dataset(texture: SurfaceTexture) -> xr.Dataset:
+    """The CF-style dataset of ``results/surfaces/<surface>.nc``."""
+    spec = texture.spec
+    data: dict[str, xr.Variable] = {
+        name: _var(name, (), texture.values[name]) for name in AREAL + PROFILE
+    }
+    data["lambda_c"] = xr.Variable((), spec.lambda_c_um,
+                                   {"long_name": "Gaussian cut-off wavelength", "units": "um"})
+    coords: dict[str, xr.Variable] = {}
+    if texture.areal:
+        a = texture.areal
+        centres = 0.5 * (a["edges"][1:] + a["edges"][:-1])
+        coords["height"] = xr.Variable("height", centres, {
+            "long_name": "height from the mean plane (bin centre)", "units": "um"})
+        data["height_density"] = xr.Variable("height", a["density"], {
+            "long_name": "probability density of the roughness heights", "units": "1/um"})
+        coords["q_areal"] = xr.Variable("q_areal", a["q"], {
+            "long_name": "wavevector magnitude", "units": "1/um"})
+        data["psd_areal"] = xr.Variable("q_areal", a["psd"], {
+            "long_name": "radially averaged areal power spectral density of the roughness "
+                         "surface", "units": "um^4"})
+        nx, ny = a["map"].shape
+        coords["map_x"] = xr.Variable("map_x", np.arange(nx) * a["map_dx"], {
+            "long_name": "x position in the scan (subsampled)", "units": "um"})
+        coords["map_y"] = xr.Variable("map_y", np.arange(ny) * a["map_dy"], {
+            "long_name": "y position in the scan (subsampled)", "units": "um"})
+        data["roughness_map"] = xr.Variable(("map_x", "map_y"), a["map"].astype(np.float32), {
+            "long_name": "roughness surface after form removal and the lambda_c filter "
+                         "(subsampled for display)", "units": "um"})
+        for key, name in (("dx", "pixel_x"), ("dy", "pixel_y")):
+            data[name] = xr.Variable((), a[key], {
+                "long_name": f"areal scan sampling distance along {name[-1]}", "units": "um"})
+    if texture.profile:
+        p = texture.profile
+        coords["q_profile"] = xr.Variable("q_profile", p["q"], {
+            "long_name": "wavevector", "units": "1/um"})
+        data["psd_profile"] = xr.Variable("q_profile", p["psd"], {
+            "long_name": "power spectral density of the roughness profiles (mean of lines)",
+            "units": "um^3"})
+        lines = p["lines"]
+        coords["s"] = xr.Variable("s", np.arange(lines.shape[0]) * p["spacing"], {
+            "long_name": "position along the evaluation length", "units": "um"})
+        data["profile_first"] = xr.Variable("s", lines[:, 0].astype(np.float32), {
+            "long_name": "first roughness profile over the evaluation length", "units": "um"})
+        data["n_profiles"] = xr.Variable((), p["n_lines"], {
+            "long_name": "number of profile lines averaged", "units": "1"})
+        data["n_sampling_lengths"] = xr.Variable((), p["n_sampling_lengths"], {
+            "long_name": "sampling lengths per profile", "units": "1"})
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update(
+        surface=spec.surface,
+        objective=spec.objective,
+        areal_scan=str(spec.areal_scan or ""),
+        profile_scan=str(spec.profile_scan or ""),
+        profile_axis=spec.profile_axis,
+        profile_direction=spec.profile_direction or "",
+        profile_length_mm=(spec.profile_length_um or 0.0) / 1000.0,
+        synthetic_scans=int(texture.synthetic),
+    )
+    return ds
+
+
+def summary_dataset(textures: list[SurfaceTexture]) -> xr.Dataset:
+    """Parameters of every surface, one row per surface (``results/surfaces/texture.nc``)."""
+    surfaces = np.array([t.spec.surface for t in textures], dtype=object)
+    data = {
+        name: _var(name, "surface", np.array([t.values[name] for t in textures]))
+        for name in AREAL + PROFILE
+    }
+    data["lambda_c"] = xr.Variable("surface", [t.spec.lambda_c_um for t in textures], {
+        "long_name": "Gaussian cut-off wavelength", "units": "um"})
+    data["profile_length"] = xr.Variable(
+        "surface", [(t.spec.profile_length_um or np.nan) / 1000.0 for t in textures],
+        {"long_name": "profile line length", "units": "mm"})
+    data["profile_direction"] = xr.Variable(
+        "surface", np.array([t.spec.profile_direction or "" for t in textures], dtype=object),
+        {"long_name": "profile direction relative to the lay or pattern"})
+    data["synthetic"] = xr.Variable(
+        "surface", np.array([int(t.synthetic) for t in textures], dtype=np.int8),
+        {"long_name": "1 if a scan of the surface is labelled SYNTHETIC", "units": "1"})
+    data["objective"] = xr.Variable(
+        "surface", np.array([t.spec.objective for t in textures], dtype=object),
+        {"long_name": "profilometer objective"})
+    return xr.Dataset(data, coords={"surface": ("surface", surfaces,
+                                                {"long_name": "surface id"})})

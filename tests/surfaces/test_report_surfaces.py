@@ -1,0 +1,57 @@
+"""The surfaces report section from processed demo scans: tables, pictures, labels."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from contactlab.cli import main
+from contactlab.io import stamp, write_netcdf
+from contactlab.surfaces.roughness import published_roughness
+from contactlab.surfaces.seq import add_beta_n, add_scan_seq, seq_dataset
+from contactlab.testsheet import read_test_sheet
+
+
+def test_section_has_every_table_and_picture(processed: pd.DataFrame, repo: Path,
+                                              tmp_path: Path) -> None:
+    work = processed.attrs["work"]
+    sheet = read_test_sheet(repo / "config" / "tests.csv")
+    seq = add_beta_n(add_scan_seq(seq_dataset(sheet, published_roughness()), sheet,
+                                  processed["Sq"]))
+    write_netcdf(stamp(seq, title="t", source="s", history="h"), tmp_path / "seq.nc")
+    report = tmp_path / "report"
+    out = report / "sections" / "10_surfaces.html"
+    status = main(["surfaces", "report", "--seq", str(tmp_path / "seq.nc"),
+                   "--texture", str(work / "texture.nc"), "--surface-dir", str(work),
+                   "--report-dir", str(report), "--out", str(out)])
+    assert status == 0
+    page = out.read_text()
+    assert "SYNTHETIC" in page and "34 surfaces" in page
+    for name in ("surfaces_maps", "surfaces_profiles", "surfaces_spectra", "seq"):
+        assert (report / "figures" / f"{name}.png").stat().st_size > 10_000
+        assert f"figures/{name}.png" in page
+    areal = pd.read_csv(report / "tables" / "surfaces_areal.csv")
+    assert len(areal) == 25
+    assert (areal["Sq_diff_pct"].abs() < 1.0).all()
+    profile = pd.read_csv(report / "tables" / "surfaces_profile.csv")
+    assert len(profile) == 28 and (profile["Rq_diff_pct"].abs() < 1.0).all()
+    structured = pd.read_csv(report / "tables" / "surfaces_100x.csv")
+    assert list(structured["test"]) == ["S3", "S2", "S1"]
+    table = pd.read_csv(report / "tables" / "seq.csv")
+    assert table["difference_scan"].abs().max() < 0.01
+    assert {"beta_n_Seq", "beta_n_Seq_scan", "beta_n_Seq_published"} <= set(table.columns)
+
+
+def test_report_without_texture_keeps_the_published_seq_section(repo: Path,
+                                                                  tmp_path: Path) -> None:
+    """The old single-input form (contactlab report surfaces --seq ...) still works."""
+    sheet = read_test_sheet(repo / "config" / "tests.csv")
+    seq = stamp(seq_dataset(sheet, published_roughness()), title="t", source="s", history="h")
+    write_netcdf(seq, tmp_path / "seq.nc")
+    out = tmp_path / "report" / "s.html"
+    assert main(["report", "surfaces", "--seq", str(tmp_path / "seq.nc"),
+                 "--report-dir", str(tmp_path / "report"), "--out", str(out)]) == 0
+    table = pd.read_csv(tmp_path / "report" / "tables" / "seq.csv")
+    assert table["Seq"].iloc[0] == pytest.approx(2.038, abs=5e-4)

@@ -1,0 +1,68 @@
+"""The surface sheet: columns, settings per surface, and errors naming file, line, column."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from contactlab.surfaces.sheet import check_scan_files, read_surface_sheet, scan_paths
+from contactlab.testsheet import read_test_sheet, surface_id
+
+HEADER = ("surface,objective,areal_scan,profile_scan,profile_axis,profile_direction,"
+          "profile_length_mm,lambda_c_um\n")
+
+
+def write(tmp_path: Path, *rows: str, header: str = HEADER) -> Path:
+    path = tmp_path / "surfaces.csv"
+    path.write_text(header + "\n".join(rows) + "\n")
+    return path
+
+
+def test_default_sheet_follows_sec_2_3_4(repo: Path) -> None:
+    specs = {s.surface: s for s in read_surface_sheet(repo / "config" / "surfaces.csv")}
+    assert len(specs) == 34
+    assert specs["rough_specimen_B"].profile_length_um == 5000.0  # specimens: 5 mm
+    assert specs["RU1_pad_B"].profile_length_um == 4000.0  # pads: 4 mm
+    assert specs["S1_specimen_normal"].profile_length_um == pytest.approx(4980.0)
+    assert specs["S2_specimen_parallel"].profile_axis == "y"
+    assert specs["S3_specimen_100x"].lambda_c_um == 5.0
+    assert all(s.lambda_c_um == 800.0 for s in specs.values() if s.objective == "20x")
+    assert len(scan_paths(list(specs.values()))) == 56
+    # every surface of every test's interface has an areal scan
+    tests = read_test_sheet(repo / "config" / "tests.csv")
+    for row in tests.itertuples():
+        for name, side in ((row.specimen, row.specimen_side), (row.pad, row.pad_side)):
+            assert specs[surface_id(name, side)].areal_scan is not None
+
+
+@pytest.mark.parametrize(
+    ("rows", "header", "match"),
+    [
+        (["a,20x,a.x3p,,,,,800"], HEADER.replace("lambda_c_um", "cutoff"),
+         r"unknown column\(s\) \['cutoff'\]"),
+        (["a,20x,a.x3p,,,,,800", "a,20x,b.x3p,,,,,800"], HEADER, r"line 3.*duplicate"),
+        (["a,20x,,,,,,800"], HEADER, r"line 2 \(a\): neither"),
+        (["a,20x,,p.x3p,z,lengthwise,4,800"], HEADER, r"line 2 \(a\), column 'profile_axis'"),
+        (["a,20x,,p.x3p,x,sideways,4,800"], HEADER, r"column 'profile_direction'"),
+        (["a,20x,,p.x3p,x,lengthwise,,800"], HEADER, r"column 'profile_length_mm'"),
+        (["a,20x,a.x3p,,,,,-5"], HEADER, r"column 'lambda_c_um'.*'-5'"),
+        (["seq,20x,a.x3p,,,,,800"], HEADER, r"'seq' is reserved"),
+    ],
+    ids=["unknown-column", "duplicate", "no-scan", "axis", "direction", "length", "cutoff",
+         "reserved"],
+)
+def test_bad_sheets_are_refused_naming_line_and_column(tmp_path, rows, header, match) -> None:
+    path = write(tmp_path, *rows, header=header)
+    with pytest.raises(ValueError, match=match) as error:
+        read_surface_sheet(path)
+    assert str(path) in str(error.value)
+
+
+def test_missing_scan_names_sheet_surface_and_column(tmp_path: Path) -> None:
+    path = write(tmp_path, "a,20x,a.x3p,,,,,800", "b,20x,,made.x3p,x,lengthwise,4,800")
+    specs = read_surface_sheet(path)
+    with pytest.raises(FileNotFoundError, match=r"surface a, column 'areal_scan'.*a\.x3p"):
+        check_scan_files(specs, path, root=tmp_path)
+    (tmp_path / "a.x3p").write_bytes(b"")
+    check_scan_files(specs, path, generated=[Path("made.x3p")], root=tmp_path)
