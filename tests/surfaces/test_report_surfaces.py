@@ -46,12 +46,12 @@ def test_section_has_every_table_and_picture(processed: pd.DataFrame, repo: Path
 
 def test_report_without_texture_keeps_the_published_seq_section(repo: Path,
                                                                   tmp_path: Path) -> None:
-    """The old single-input form (contactlab report surfaces --seq ...) still works."""
+    """Without scan results the section still shows Seq from the published Sq."""
     sheet = read_test_sheet(repo / "config" / "tests.csv")
     seq = stamp(seq_dataset(sheet, published_roughness()), title="t", source="s", history="h")
     write_netcdf(seq, tmp_path / "seq.nc")
     out = tmp_path / "report" / "s.html"
-    assert main(["report", "surfaces", "--seq", str(tmp_path / "seq.nc"),
+    assert main(["surfaces", "report", "--seq", str(tmp_path / "seq.nc"),
                  "--report-dir", str(tmp_path / "report"), "--out", str(out)]) == 0
     table = pd.read_csv(tmp_path / "report" / "tables" / "seq.csv")
     assert table["Seq"].iloc[0] == pytest.approx(2.038, abs=5e-4)
