@@ -1,0 +1,9 @@
+"""Finite element cross-checks with CalculiX (thesis ch. 8 and sec. 3.2.2).
+
+``mesh2d``/``deck``/``receding``  plane-strain strip-on-block receding contacts (sec. 8.2)
+``asperity``                      3D elastic-perfectly plastic stuck asperity (Fig. 3.8)
+``ccx``/``frd``                   running ccx in a scratch directory, reading .frd/.sta/.dat
+``interface``                     transition points from interface tractions
+``ddt``/``compare``               distributed-dislocation references, agreement, convergence
+``workflow``/``cli``              rule helpers and the ``contactlab fe`` commands
+"""

@@ -1,0 +1,171 @@
+"""CalculiX input decks for the plane-strain strip-on-block receding-contact models (sec. 8.2).
+
+Elements: linear plane-strain quads and triangles (CPE4, CPE3), both bodies linear
+elastic (E, nu). Interface: surface-to-surface penalty contact, strip bottom = slave,
+block top = master (as the thesis assigns them, sec. 8.1), Coulomb friction with a stick
+slope. Loads (symmetric half models, x = 0 is the plane of symmetry):
+
+``gap``      pressure p on the strip's top for x >= w (Fig. 8.1, the problem of ch. 5);
+``line``     a line load P at (0, c), half of it on the half model (Fig. 8.7, ch. 6);
+``uniform``  pressure p on the strip's top for x <= w (Fig. 8.13, ch. 7).
+
+Boundary conditions of the block: ``roller`` (base fixed in y, far edge free: Fig. 8.1) or
+``encastre`` (base and far edge fixed: Figs 8.7, 8.13). Both bodies have u_x = 0 on x = 0.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from contactlab.fe.mesh2d import PlaneMesh
+
+PROBLEMS = ("gap", "line", "uniform")
+EDGES = ("roller", "encastre")
+
+
+@dataclass
+class RecedingModel:
+    """Loading, material, contact and solver controls of one 2D receding-contact model.
+
+    Units: N and mm (the thesis's FE units, ch. 8). ``load`` is p (N/mm^2) for the
+    pressure problems and P (N/mm, the full line load) for ``line``. ``penalty`` is the
+    contact stiffness (N/mm^3) and ``stick_slope`` the tangential stiffness of sticking
+    contact (N/mm^3); both are multiples of E/h when not given. One load increment by
+    default: a receding contact under proportional load is self-similar (chs 5-7).
+    """
+
+    problem: str
+    w: float = 2.5
+    f: float = 0.5
+    load: float = 1.0
+    young: float = 200_000.0
+    poisson: float = 0.3
+    edges: str = "roller"
+    penalty: float | None = None
+    stick_slope: float | None = None
+    increments: int = 1
+
+    def check(self) -> None:
+        if self.problem not in PROBLEMS:
+            raise ValueError(f"problem must be one of {PROBLEMS}, got {self.problem!r}")
+        if self.edges not in EDGES:
+            raise ValueError(f"edges must be one of {EDGES}, got {self.edges!r}")
+        if not (self.f > 0 and self.load > 0 and self.young > 0 and 0 <= self.poisson < 0.5):
+            raise ValueError(f"bad friction, load or material in {self}")
+        if self.problem != "line" and self.w <= 0:
+            raise ValueError(f"w must be > 0 for the {self.problem} problem, got {self.w}")
+
+
+def _ids(values: list[int], per_line: int = 12) -> str:
+    rows = [values[i:i + per_line] for i in range(0, len(values), per_line)]
+    return "\n".join(", ".join(str(v) for v in row) for row in rows)
+
+
+def _loaded_faces(mesh: PlaneMesh, model: RecedingModel) -> list[tuple[int, int]]:
+    """Faces on the strip's top that carry the pressure (by their mid-point x)."""
+    out = []
+    strip = mesh.elements["STRIP"]
+    for e, face in mesh.edges["STRIP_TOP"]:
+        conn = strip[e]
+        a, b = conn[face - 1], conn[face % len(conn)]
+        xm = 0.5 * (mesh.nodes[a][0] + mesh.nodes[b][0])
+        if (model.problem == "gap" and xm > model.w) or (
+            model.problem == "uniform" and xm < model.w
+        ):
+            out.append((e, face))
+    return out
+
+
+def penalty_defaults(model: RecedingModel, h: float) -> tuple[float, float]:
+    """Contact penalty and stick slope: 50 E/h and 5 E/h unless set explicitly."""
+    k = model.penalty if model.penalty else 50.0 * model.young / h
+    lam = model.stick_slope if model.stick_slope else 5.0 * model.young / h
+    return float(k), float(lam)
+
+
+def receding_deck(mesh: PlaneMesh, model: RecedingModel, h: float) -> str:
+    """The CalculiX input deck (text) of ``model`` on ``mesh``; ``h`` the finest element size."""
+    model.check()
+    k, lam = penalty_defaults(model, h)
+    out: list[str] = [
+        f"** contactlab: receding contact '{model.problem}', plane strain half model (ch. 8)",
+        "*NODE, NSET=NALL",
+    ]
+    out += [f"{n}, {x:.10g}, {y:.10g}" for n, (x, y) in sorted(mesh.nodes.items())]
+    for group, cells in mesh.elements.items():
+        for corners, etype in ((4, "CPE4"), (3, "CPE3")):
+            ids = sorted(e for e, c in cells.items() if len(c) == corners)
+            if not ids:
+                continue
+            out.append(f"*ELEMENT, TYPE={etype}, ELSET={group}")
+            out += [f"{e}, " + ", ".join(str(n) for n in cells[e]) for e in ids]
+    for name, ids in mesh.node_sets.items():
+        out += [f"*NSET, NSET={name}", _ids(ids)]
+    top = [n for n in mesh.node_sets["STRIP_TOP"] if abs(mesh.nodes[n][0]) < 1e-12]
+    out += ["*NSET, NSET=LOADPOINT", _ids(top)]
+    out += ["*ELSET, ELSET=EALL", "STRIP, BLOCK"]
+    out += [
+        "*MATERIAL, NAME=ELASTIC", "*ELASTIC", f"{model.young:.10g}, {model.poisson:.10g}",
+        "*SOLID SECTION, ELSET=EALL, MATERIAL=ELASTIC", "1.",
+    ]
+    out.append("*SURFACE, NAME=SSTRIP, TYPE=ELEMENT")
+    out += [f"{e}, S{face}" for e, face in mesh.edges["STRIP_BOTTOM"]]
+    out.append("*SURFACE, NAME=SBLOCK, TYPE=ELEMENT")
+    out += [f"{e}, S{face}" for e, face in mesh.edges["BLOCK_TOP"]]
+    out += [
+        "*CONTACT PAIR, INTERACTION=INTERFACE, TYPE=SURFACE TO SURFACE", "SSTRIP, SBLOCK",
+        "*SURFACE INTERACTION, NAME=INTERFACE",
+        "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{k:.6g}",
+        "*FRICTION", f"{model.f:.10g}, {lam:.6g}",
+    ]
+    out += ["*BOUNDARY", "STRIP_LEFT, 1, 1", "BLOCK_LEFT, 1, 1"]
+    if model.edges == "roller":
+        out.append("BLOCK_BASE, 2, 2")
+    else:
+        out += ["BLOCK_BASE, 1, 2", "BLOCK_RIGHT, 1, 2"]
+    dt = 1.0 / max(1, model.increments)
+    out += [
+        "*STEP, INC=1000",
+        "*STATIC",
+        f"{dt:.6g}, 1., {dt * 1e-4:.6g}, {dt:.6g}",
+    ]
+    if model.problem == "line":
+        if len(top) != 1:
+            raise ValueError("the line-load model needs exactly one node at (0, c)")
+        out += ["*CLOAD", f"LOADPOINT, 2, {-0.5 * model.load:.10g}"]
+    else:
+        out.append("*DLOAD")
+        out += [f"{e}, P{face}, {model.load:.10g}" for e, face in _loaded_faces(mesh, model)]
+    out += [
+        "*NODE FILE, NSET=NALL", "U",
+        "*EL FILE", "S",
+        "*CONTACT FILE", "CDIS, CSTR",
+        "*END STEP", "",
+    ]
+    return "\n".join(out)
+
+
+def kolosov(poisson: float) -> float:
+    """Kolosov's constant of plane strain, kappa = 3 - 4 nu."""
+    return 3.0 - 4.0 * poisson
+
+
+def displacement_unit(model: RecedingModel, thickness: float) -> float:
+    """The length (mm) that normalises separation and slip: (kappa + 1) q c / (2 mu).
+
+    q is p for the pressure problems and P/c for the line load (chs 5-7).
+    """
+    mu = model.young / (2.0 * (1.0 + model.poisson))
+    q = model.load / thickness if model.problem == "line" else model.load
+    return (kolosov(model.poisson) + 1.0) * q * thickness / (2.0 * mu)
+
+
+def traction_unit(model: RecedingModel, thickness: float) -> float:
+    """The stress (N/mm^2) that normalises N and S: p, or P/c for the line load."""
+    return model.load / thickness if model.problem == "line" else model.load
+
+
+def as_array(values: list[float]) -> np.ndarray:
+    return np.asarray(values, dtype=float)

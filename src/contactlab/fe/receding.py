@@ -1,0 +1,158 @@
+"""Finite element receding-contact models of sec. 8.2: build, run with CalculiX, post-process.
+
+One call, :func:`run_receding`, meshes the half model (gmsh), writes the deck, runs
+``ccx`` and returns an xarray Dataset with the interface profiles (N, S, separation,
+slip; Part III normalisation), the transition points and the run's metadata. The
+problems and the thesis's model sizes:
+
+==========  =======================================  =====================  ==========
+problem     load (Fig.)                              strip x block (mm)     block edges
+==========  =======================================  =====================  ==========
+gap         p on |x| >= w, w_hat = 2.5 (8.1), f 0.5   20 x 1, 20 x 20        roller
+line        P at x = 0 (8.7), f 0.5                  20 x 1, 20 x 20        encastre
+uniform     p on |x| <= w, w_hat = 2.5 (8.13), f 0.3  25 x 1, 25 x 25        encastre
+==========  =======================================  =====================  ==========
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from contactlab.fe.ccx import CcxRun, ccx_version, run_ccx
+from contactlab.fe.deck import (
+    RecedingModel,
+    displacement_unit,
+    penalty_defaults,
+    receding_deck,
+    traction_unit,
+)
+from contactlab.fe.interface import (
+    N_TOL,
+    SLIP_TOL,
+    mobilisation,
+    separation_point,
+    stick_slip_point,
+)
+from contactlab.fe.mesh2d import PlaneMesh, StripBlockGeometry, strip_on_block
+
+#: Name of the stick-slip point of each problem (a3 in ch. 5, a in chs 6-7).
+STICK_SLIP_NAME = {"gap": "a3", "line": "a", "uniform": "a"}
+
+
+def geometry_for(model: RecedingModel, geom: StripBlockGeometry) -> StripBlockGeometry:
+    """Add the patch edge w as a mesh break for the pressure problems."""
+    if model.problem == "line":
+        return geom
+    return StripBlockGeometry(
+        length=geom.length, thickness=geom.thickness, depth=geom.depth, h=geom.h,
+        x_fine=geom.x_fine, layer_rows=geom.layer_rows, growth=geom.growth,
+        breaks=(model.w * geom.thickness,),
+    )
+
+
+def _nodal(run: CcxRun, block: str, comp: str, ids: np.ndarray) -> np.ndarray:
+    data = run.frd.last(block)
+    index = {int(n): i for i, n in enumerate(data.nodes)}
+    return data.values[comp][[index[int(i)] for i in ids]]
+
+
+def interface_profiles(mesh: PlaneMesh, run: CcxRun, model: RecedingModel,
+                       thickness: float) -> dict[str, np.ndarray]:
+    """x/c, N, S, separation and slip at the interface nodes (normalised, Part III).
+
+    N = -CPRESS and S = CSHEAR1 of the slave (strip) surface: the strip's local tangent
+    points along +x, so CSHEAR1 is sigma_xy in the thesis's sign (checked against the
+    block's nodal sigma_xy in the tests). Separation and slip are strip minus block
+    displacements of the paired interface nodes.
+    """
+    x, strip, block = mesh.interface
+    q = traction_unit(model, thickness)
+    unit = displacement_unit(model, thickness)
+    return {
+        "x": x / thickness,
+        "N": -_nodal(run, "CONTACT", "CPRESS", strip) / q,
+        "S": _nodal(run, "CONTACT", "CSHEAR1", strip) / q,
+        "separation": (_nodal(run, "DISP", "D2", strip) - _nodal(run, "DISP", "D2", block))
+        / unit,
+        "slip": (_nodal(run, "DISP", "D1", strip) - _nodal(run, "DISP", "D1", block)) / unit,
+        "sigma_xy_block": _nodal(run, "STRESS", "SXY", block) / q,
+        "sigma_yy_block": _nodal(run, "STRESS", "SYY", block) / q,
+    }
+
+
+def transitions(prof: dict[str, np.ndarray], model: RecedingModel,
+                n_tol: float = N_TOL, slip_tol: float = SLIP_TOL) -> tuple[float, float]:
+    """(b, a) of a profile: a is a3 for the gap problem (slip inside, stick outside)."""
+    inner = model.problem == "gap"
+    b = separation_point(prof["x"], prof["N"], inner=inner, n_tol=n_tol)
+    a = stick_slip_point(prof["x"], prof["S"], prof["N"], model.f, slip_outside=not inner,
+                         n_tol=n_tol, slip_tol=slip_tol)
+    return b, a
+
+
+def _var(values, long_name: str, units: str = "1", dims=("x",), **attrs) -> xr.Variable:
+    return xr.Variable(dims, np.asarray(values), {"long_name": long_name, "units": units, **attrs})
+
+
+def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = "",
+                 threads: int = 1, keep: str | None = None) -> xr.Dataset:
+    """Mesh, run and post-process one model; the Dataset of one FE solution."""
+    model.check()
+    geom = geometry_for(model, geom)
+    mesh = strip_on_block(geom)
+    deck = receding_deck(mesh, model, geom.h)
+    run = run_ccx(deck, job=model.problem, threads=threads, keep=keep)
+    prof = interface_profiles(mesh, run, model, geom.thickness)
+    b, a = transitions(prof, model)
+    name = STICK_SLIP_NAME[model.problem]
+    k, lam = penalty_defaults(model, geom.h)
+    x = mesh.interface[0]
+    # equilibrium: interface normal force against the applied load on the half model
+    applied = 0.5 * model.load if model.problem == "line" else model.load * (
+        geom.length - model.w * geom.thickness if model.problem == "gap"
+        else model.w * geom.thickness)
+    carried = float(np.trapezoid(-prof["N"] * traction_unit(model, geom.thickness), x))
+    ds = xr.Dataset(
+        {
+            "N": _var(prof["N"], "normal interface traction over the load scale (N/q)"),
+            "S": _var(prof["S"], "shear interface traction over the load scale (S/q)"),
+            "separation": _var(prof["separation"],
+                               "separation v2 - v1 over (kappa+1) q c / (2 mu)"),
+            "slip": _var(prof["slip"], "relative slip u2 - u1 over (kappa+1) q c / (2 mu)"),
+            "mobilisation": _var(mobilisation(prof["S"], prof["N"], model.f),
+                                 "mobilised friction |S| / (f |N|)"),
+            "sigma_xy_block": _var(prof["sigma_xy_block"],
+                                   "nodal sigma_xy of the block at the interface over q"),
+            "sigma_yy_block": _var(prof["sigma_yy_block"],
+                                   "nodal sigma_yy of the block at the interface over q"),
+            "b_fe": _var(b, "separation point b/c from finite elements", dims=()),
+            f"{name}_fe": _var(a, f"stick-slip point {name}/c from finite elements", dims=()),
+            "wall_time": _var(run.wall_time, "wall-clock time of the ccx run", "s", dims=()),
+            "n_elements": _var(mesh.n_elements, "number of elements", dims=()),
+            "n_nodes": _var(mesh.n_nodes, "number of nodes", dims=()),
+            "h": _var(geom.h / geom.thickness, "interface element size h/c", dims=()),
+            "iterations": _var(run.sta["iterations"], "Newton iterations (all increments)",
+                               dims=()),
+            "increments": _var(run.sta["increments"], "converged increments", dims=()),
+            "equilibrium_error": _var(carried / applied - 1.0,
+                                      "interface normal force over applied load minus 1",
+                                      dims=()),
+            "max_penetration": _var(float(max(0.0, -np.min(prof["separation"]))),
+                                    "largest penalty penetration (normalised like separation)",
+                                    dims=()),
+        },
+        coords={"x": _var(prof["x"], "distance from the plane of symmetry over c (x/c)")},
+    )
+    ds.attrs.update(
+        problem=model.problem, f=model.f, w_hat=model.w if model.problem != "line" else np.nan,
+        level=level, edges=model.edges, young_N_per_mm2=model.young, poisson=model.poisson,
+        strip_length_mm=geom.length, strip_thickness_mm=geom.thickness,
+        block_depth_mm=geom.depth, x_fine_mm=geom.x_fine, layer_rows=geom.layer_rows,
+        growth=geom.growth, penalty_N_per_mm3=k, stick_slope_N_per_mm3=lam,
+        load_increments=model.increments, element_types="CPE4 (strip), CPE4 + CPE3 (block)",
+        contact="surface-to-surface penalty, strip slave, block master, Coulomb friction",
+        n_tol=N_TOL, slip_tol=SLIP_TOL, solver=f"CalculiX ccx {ccx_version()}",
+        converged=int(run.sta["final_time"] >= 1.0 - 1e-9),
+    )
+    return ds

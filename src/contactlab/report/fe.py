@@ -1,0 +1,255 @@
+"""Report section for the finite element cross-checks (thesis ch. 8 and sec. 3.2.2).
+
+FE interface profiles over the distributed-dislocation solutions (Figs 8.3-8.6, 8.9-8.12,
+8.16-8.19), the agreement table of the transition points, the mesh convergence (sec.
+8.3) and the elastic-perfectly plastic stuck asperity (Fig. 3.8). Figures come from the
+results files only.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+import xarray as xr
+from matplotlib.ticker import NullFormatter
+
+from contactlab.report.section import Section
+
+TITLES = {
+    "gap": ("Gap problem (ch. 5), w/c = {w:g}, f = {f:g}", "Figs 8.3-8.6"),
+    "line": ("Line load (ch. 6), f = {f:g}", "Figs 8.9-8.12"),
+    "uniform": ("Constant pressure patch (ch. 7), w/c = {w:g}, f = {f:g}", "Figs 8.16-8.19"),
+}
+PANELS = (("N", "N/q"), ("S", "S/q"), ("separation", "separation (normalised)"),
+          ("slip", "slip (normalised)"))
+
+
+def _stick_slip(ds: xr.Dataset) -> str:
+    return "a3" if ds.attrs["problem"] == "gap" else "a"
+
+
+def profile_figure(ds: xr.Dataset) -> plt.Figure:
+    """Four panels: N, S, separation and slip of FE (dots) and DDT (line) against x/c."""
+    problem = ds.attrs["problem"]
+    a = _stick_slip(ds)
+    x = ds["x"].values
+    xmax = {"gap": 6.0, "line": 5.0, "uniform": 7.0}[problem]
+    keep = x <= xmax
+    fig, axes = plt.subplots(2, 2, figsize=(9, 6.4), sharex=True)
+    for ax, (name, label) in zip(axes.flat, PANELS, strict=True):
+        ax.plot(x[keep], ds[name].values[keep], ".", ms=3, color="C0", label="FE (CalculiX)")
+        ddt = ds[f"{name}_ddt"].values
+        if np.isfinite(ddt).any():
+            ax.plot(x[keep], ddt[keep], "-", color="C3", lw=1.2, label="distributed dislocations")
+        for key, style in (("b", ":"), (a, "--")):
+            for src, color in (("fe", "C0"), ("ddt", "C3")):
+                value = float(ds[f"{key}_{src}"])
+                if np.isfinite(value):
+                    ax.axvline(value, color=color, ls=style, lw=0.8)
+        ax.set_ylabel(label)
+        ax.grid(alpha=0.3)
+    for ax in axes[1]:
+        ax.set_xlabel("x/c")
+    axes[0, 0].legend(fontsize=8)
+    title, figs = TITLES[problem]
+    fig.suptitle(f"{title.format(w=ds.attrs.get('w_hat', np.nan), f=ds.attrs['f'])}"
+                 f" (thesis {figs}); dotted: b, dashed: {a}")
+    fig.tight_layout()
+    return fig
+
+
+def agreement_table(results: list[xr.Dataset]) -> pd.DataFrame:
+    """One row per problem: mesh, run time, b and a of FE and DDT with the differences."""
+    rows = []
+    for ds in results:
+        a = _stick_slip(ds)
+        rows.append({
+            "problem": ds.attrs["problem"],
+            "f": float(ds.attrs["f"]),
+            "w/c": float(ds.attrs.get("w_hat", np.nan)),
+            "h/c": float(ds["h"]),
+            "elements": int(ds["n_elements"]),
+            "ccx time (s)": float(ds["wall_time"]),
+            "b FE": float(ds["b_fe"]),
+            "b DDT": float(ds["b_ddt"]),
+            "b diff (%)": float(ds["b_difference"]),
+            "stick-slip": a,
+            "a FE": float(ds[f"{a}_fe"]),
+            "a DDT": float(ds[f"{a}_ddt"]),
+            "a diff (%)": float(ds[f"{a}_difference"]),
+            "max |dN|": float(ds["N_max_difference"]),
+            "max |dS|": float(ds["S_max_difference"]),
+        })
+    return pd.DataFrame(rows)
+
+
+def convergence_table(conv: list[xr.Dataset]) -> pd.DataFrame:
+    rows = []
+    for ds in conv:
+        a = "a3" if ds.attrs["problem"] == "gap" else "a"
+        for i, mesh in enumerate(ds["mesh"].values):
+            rows.append({
+                "problem": ds.attrs["problem"], "mesh": str(mesh),
+                "h/c": float(ds["h"][i]), "elements": int(ds["n_elements"][i]),
+                "ccx time (s)": float(ds["wall_time"][i]),
+                "iterations": int(ds["iterations"][i]),
+                "b FE": float(ds["b_fe"][i]), "a FE": float(ds[f"{a}_fe"][i]),
+            })
+    return pd.DataFrame(rows)
+
+
+def convergence_figure(conv: list[xr.Dataset]) -> plt.Figure:
+    """Transition points against h/c, and each problem's normal traction per mesh."""
+    fig, axes = plt.subplots(2, len(conv), figsize=(4.2 * len(conv), 6.4), squeeze=False)
+    for k, ds in enumerate(conv):
+        a = "a3" if ds.attrs["problem"] == "gap" else "a"
+        h = ds["h"].values
+        ax = axes[0, k]
+        ax.plot(h, ds["b_fe"].values, "o-", label="b")
+        ax.plot(h, ds[f"{a}_fe"].values, "s-", label=a)
+        ax.set_xscale("log")
+        ax.set_xticks(h, [f"{v:g}" for v in h])
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        ax.set_xlabel("interface element size h/c")
+        ax.set_ylabel("transition point / c")
+        ax.set_title(ds.attrs["problem"])
+        ax.legend(fontsize=8)
+        ax.grid(alpha=0.3)
+        ax = axes[1, k]
+        for i, mesh in enumerate(ds["mesh"].values):
+            ax.plot(ds["x"].values, ds["N_profile"].values[i], lw=1,
+                    label=f"{mesh} (h/c = {h[i]:g})")
+        ax.set_xlabel("x/c")
+        ax.set_ylabel("N/q")
+        ax.legend(fontsize=7)
+        ax.grid(alpha=0.3)
+    fig.suptitle("Mesh convergence of the FE models (thesis sec. 8.3, Figs 8.20-8.23)")
+    fig.tight_layout()
+    return fig
+
+
+def asperity_figure(ds: xr.Dataset) -> plt.Figure:
+    """Fig. 3.8: Delta_x/Delta_n against Q/Q_n for each yield limit, stuck, Mindlin, BEM."""
+    fig, axes = plt.subplots(1, 2, figsize=(10, 4.2))
+    q = ds["q_ratio"].values
+    for ax, key, label in ((axes[0], "displacement_ratio",
+                            "Delta_n = Q_n x elastic stuck FE compliance"),
+                           (axes[1], "displacement_ratio_eq33", "Delta_n by eq. (3.3)")):
+        ax.plot(ds["stuck"].values, q, "k-", lw=1, label="elastic stuck")
+        ax.plot(ds["mindlin"].values, q, "k--", lw=1, label="Cattaneo-Mindlin (3.5)")
+        if np.isfinite(ds["bem_coulomb"].values).any():
+            ax.plot(ds["bem_coulomb"].values, q, "k:", lw=1.2, label="BEM, Coulomb")
+        for i in range(ds.sizes["model"]):
+            ratio = ds["yield_ratio"].values[i]
+            text = f"sigma_y = {ratio:.2f} sigma_v" if np.isfinite(ratio) else "elastic (FE)"
+            ax.plot(ds[key].values[i], ds["Q_ratio"].values[i], "o-", ms=3, label=text)
+        ax.set_xlabel("Delta_x / Delta_n")
+        ax.set_ylabel("Q / Q_n")
+        ax.set_title(label, fontsize=9)
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize=7)
+    fig.suptitle("Elastic-perfectly plastic stuck asperity (thesis Fig. 3.8), CalculiX")
+    fig.tight_layout()
+    return fig
+
+
+def _note_for(ds: xr.Dataset) -> str:
+    problem = ds.attrs["problem"]
+    if ds.attrs.get("ddt_status", "ok") != "ok":
+        return (f"{problem}: {ds.attrs.get('ddt_missing_reason', ds.attrs['ddt_status'])}. "
+                "The FE side is complete; the comparison fills in when the receding branch "
+                "provides the solver.")
+    return ""
+
+
+def build_section(results: list[Path], convergence: list[Path], asperity: Path | None,
+                  report_dir: Path, out: Path) -> None:
+    """Write the FE section, its tables and figures."""
+    report_dir = Path(report_dir)
+    datasets = []
+    for path in results:
+        with xr.open_dataset(path) as ds:
+            datasets.append(ds.load())
+    sec = Section("Finite element cross-checks (CalculiX)", "fe", report_dir)
+    sec.paragraph(
+        "The receding contacts of chs 5-7 modelled as a finite strip on a finite block in "
+        "plane strain (CPE4/CPE3, gmsh meshes, CalculiX surface-to-surface penalty contact "
+        "with Coulomb friction, strip slave, block master), symmetric half models, as in "
+        "sec. 8.2. Tractions are normalised by the load scale q (p, or P/c for the line "
+        "load), separation and slip by (kappa+1) q c/(2 mu), lengths by c. Transition "
+        "points from the FE tractions: contact where -N > 1e-3 q, slip where |S| >= "
+        "0.99 f|N|, interpolated between the bracketing nodes."
+    )
+    table = agreement_table(datasets)
+    sec.table(table, "Transition points of FE and distributed dislocations (DDT), units of "
+              "c; differences (FE - DDT)/DDT in percent; max |dN|, |dS| over the plotted "
+              "grid in units of q", report_dir / "tables" / "fe_agreement.csv")
+    for ds in datasets:
+        note = _note_for(ds)
+        if note:
+            sec.note(note)
+    sec.paragraph(
+        "Reading the table: the separation points agree within about 1 % for all three "
+        "problems. The gap problem's separation is only ~1e-3 in normalised units, so its "
+        "b moves by several percent between meshes (convergence table) while a3 converges "
+        "from below to within 1 %. For the line load and the patch the FE stick-slip point "
+        "a lies above the DDT one: the DDT shear rises steeply into a, which the finite "
+        "mesh and the penalty stick slope (elastic micro-slip of sticking nodes, 5 E/h) "
+        "smooth, and the finite encastred block adds to it (see the README, Finite element "
+        "cross-checks, for the refinement, stick-slope and model-size runs). Slip far from "
+        "the load is held back by the encastred block edges, as in the thesis (sec. 8.2.2)."
+    )
+    by_problem = {ds.attrs["problem"]: ds for ds in datasets}
+    for problem in ("gap", "line", "uniform"):
+        if problem not in by_problem:
+            continue
+        ds = by_problem[problem]
+        title, figs = TITLES[problem]
+        caption = (f"{title.format(w=ds.attrs.get('w_hat', np.nan), f=ds.attrs['f'])}: FE "
+                   f"(h/c = {float(ds['h']):g}, {int(ds['n_elements'])} elements, block edges "
+                   f"{ds.attrs['edges']}) over the distributed-dislocation solution ({figs}).")
+        sec.figure(profile_figure(ds), caption, report_dir / "figures" / f"fe_{problem}.png")
+    if "gap" not in by_problem:  # the rule declares fe_gap.png; say why it is empty
+        fig, ax = plt.subplots(figsize=(4, 1))
+        ax.axis("off")
+        ax.text(0.5, 0.5, "gap problem not in this study (fe.problems)", ha="center")
+        sec.figure(fig, "The gap problem was not run.", report_dir / "figures" / "fe_gap.png")
+    conv = []
+    for path in convergence:
+        with xr.open_dataset(path) as ds:
+            conv.append(ds.load())
+    if conv:
+        sec.table(convergence_table(conv), "Mesh convergence (sec. 8.3): transition points "
+                  "and ccx wall times per mesh", report_dir / "tables" / "fe_convergence.csv")
+        sec.figure(convergence_figure(conv), "Transition points against the element size and "
+                   "the normal traction on each mesh (sec. 8.3).",
+                   report_dir / "figures" / "fe_convergence.png")
+    if asperity is not None and Path(asperity).exists():
+        with xr.open_dataset(asperity) as ds:
+            asp = ds.load()
+        sec.paragraph(
+            "Elastic-perfectly plastic stuck asperity (sec. 3.2.2): a sphere (R = "
+            f"{asp.attrs['radius_mm']:g} mm) on a block, half model, C3D10, normal approach "
+            f"{asp.attrs['approach_mm']:g} mm then tangential displacement, contact stuck "
+            f"(f = {asp.attrs['friction']:g}). r_c = {asp.attrs['r_c_mm']:.4g} mm, p0 = "
+            f"{asp.attrs['p0_N_per_mm2']:.5g} N/mm^2 (Hertz), Q_n = sigma_y pi r_c^2. "
+            f"BEM curve: {asp.attrs.get('bem_source', 'none')}."
+        )
+        rows = pd.DataFrame({
+            "model": [str(m) for m in asp["model"].values],
+            "sigma_y/sigma_v": asp["yield_ratio"].values,
+            "P/P_Hertz": asp["P_normal"].values / asp["P_hertz"].values,
+            "elements": asp["n_elements"].values.astype(int),
+            "ccx time (s)": asp["wall_time"].values,
+        })
+        sec.table(rows, "Asperity models: normal load after the normal step over Hertz, "
+                  "size and ccx wall time", report_dir / "tables" / "fe_asperity.csv")
+        sec.figure(asperity_figure(asp), "Delta_x/Delta_n against Q/Q_n for the yield limits "
+                   "(thesis Fig. 3.8) with the elastic stuck and Cattaneo-Mindlin curves; the "
+                   "Coulomb BEM (dotted) lies on the Mindlin curve. Left: Delta_n from the "
+                   "elastic stuck FE model's compliance; right: Delta_n by eq. (3.3).",
+                   report_dir / "figures" / "fe_asperity.png")
+    sec.write(out)

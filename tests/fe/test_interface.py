@@ -1,0 +1,44 @@
+"""Transition points from interface profiles (pure functions of contactlab.fe.interface)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from contactlab.fe.interface import (
+    mobilisation,
+    profile_difference,
+    separation_point,
+    stick_slip_point,
+)
+
+
+def test_separation_point_inner_and_outer() -> None:
+    x = np.linspace(0.0, 4.0, 401)
+    # gap-like: open on x < 1, pressure grows beyond
+    n_inner = -np.clip(x - 1.0, 0.0, None)
+    assert separation_point(x, n_inner, inner=True, n_tol=1e-6) == pytest.approx(1.0, abs=1e-5)
+    # line-load-like: contact on x < 2.5, open beyond
+    n_outer = -np.clip(2.5 - x, 0.0, None)
+    assert separation_point(x, n_outer, inner=False, n_tol=1e-6) == pytest.approx(2.5, abs=1e-5)
+    assert np.isnan(separation_point(x, -np.ones_like(x), inner=True))
+
+
+def test_stick_slip_point_both_orders() -> None:
+    x = np.linspace(0.0, 5.0, 501)
+    n = -np.ones_like(x)
+    f = 0.4
+    # slip (|S| = f|N|) on x < 3, then the mobilisation falls linearly
+    s = np.where(x < 3.0, f, f * (1.0 - (x - 3.0) / 2.0))
+    assert stick_slip_point(x, s, n, f, slip_outside=False) == pytest.approx(3.02, abs=1e-3)
+    # stick inside x < 1.5 rising to slip beyond
+    s2 = np.where(x > 1.5, f, f * (0.5 + x / 3.0))
+    assert stick_slip_point(x, s2, n, f, slip_outside=True) == pytest.approx(1.47, abs=1e-3)
+
+
+def test_mobilisation_and_difference() -> None:
+    r = mobilisation(np.array([0.1, 0.2, 0.0]), np.array([-1.0, -0.4, 0.0]), 0.5)
+    assert r == pytest.approx([0.2, 1.0, 0.0])
+    x = np.arange(3.0)
+    assert profile_difference(x, np.array([1.0, 2.0, 3.0]), np.array([1.0, 2.5, 3.0]), 1.0) \
+        == pytest.approx(0.5)

@@ -1,0 +1,63 @@
+"""Helpers of workflow/rules/fe.smk and the fe: sections of the default and e2e configs."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import jsonschema
+import yaml
+
+from contactlab.fe import workflow as fe_wf
+
+
+def _config(repo: Path, name: str) -> dict:
+    return yaml.safe_load((repo / name).read_text())
+
+
+def test_configs_validate_and_name_existing_levels(repo: Path) -> None:
+    schema = yaml.safe_load((repo / "workflow/schemas/config.schema.yaml").read_text())
+    for name in ("config/config.yaml", "tests/e2e_config.yaml"):
+        config = _config(repo, name)
+        jsonschema.validate(config, schema)
+        fe = config["fe"]
+        for spec in fe["problems"].values():
+            assert spec["level"] in fe["levels"]
+            assert set(spec.get("convergence", [])) <= set(fe["levels"])
+
+
+def test_arguments_and_file_lists(repo: Path) -> None:
+    fe = _config(repo, "config/config.yaml")["fe"]
+    args = fe_wf.receding_args(fe, "gap", "coarse")
+    assert "--problem gap" in args and f"--h {fe['levels']['coarse']}" in args
+    assert fe_wf.comparison_run(fe, "line").startswith("results/fe/runs/line_")
+    path = "results/receding/line.nc"
+    with_file = {**fe, "problems": {"line": {**fe["problems"]["line"], "ddt_file": path}}}
+    assert fe_wf.ddt_inputs(with_file, "line", []) == []  # no rule makes it: not an input
+    assert fe_wf.ddt_inputs(with_file, "line", [path]) == [path]
+    assert fe_wf.ddt_file_arg(with_file, "line") == f"--ddt-file {path}"
+    assert fe_wf.ddt_sources("gap") == ["src/contactlab/receding/gap.py"]
+    assert fe_wf.asperity_runs({**fe, "asperity": {**fe["asperity"], "enabled": False}}) == []
+    runs = fe_wf.asperity_runs({**fe, "asperity": {**fe["asperity"], "enabled": True}})
+    assert runs[0] == "results/fe/asperity/sy0.nc" and len(runs) == 5
+    assert "--h-contact" in fe_wf.asperity_args(fe) and "enabled" not in fe_wf.asperity_args(fe)
+    assert fe_wf.convergence_files({"enabled": False}) == []
+
+
+def test_asperity_opt_in_plans_its_jobs(workflow_copy: Path) -> None:
+    """With fe.asperity.enabled the DAG gets one ccx job per yield stress plus the elastic."""
+    import os
+    import subprocess
+    import sys
+
+    env = dict(os.environ)
+    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
+    (workflow_copy / "config" / "asperity_on.yaml").write_text(
+        "fe:\n  asperity:\n    enabled: true\n    yield_stress: [3000]\n")
+    run = subprocess.run(
+        [sys.executable, "-m", "snakemake", "--configfile", "config/e2e.yaml",
+         "config/asperity_on.yaml", "-n", "--", "results/report/sections/70_fe.html"],
+        cwd=workflow_copy, env=env, capture_output=True, text=True, check=False)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert "results/fe/asperity/sy0.nc" in run.stdout
+    assert "results/fe/asperity/sy3000.nc" in run.stdout
+    assert "fe_asperity_gather" in run.stdout
