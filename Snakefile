@@ -14,6 +14,11 @@ report: "workflow/report/workflow.rst"
 
 include: "workflow/rules/common.smk"
 include: "workflow/rules/surfaces.smk"
+include: "workflow/rules/receding.smk"
+include: "workflow/rules/asperity.smk"
+include: "workflow/rules/stiffness.smk"
+include: "workflow/rules/stiffness_published.smk"
+include: "workflow/rules/fe.smk"
 include: "workflow/rules/report.smk"
 
 

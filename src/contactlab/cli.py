@@ -16,6 +16,10 @@ from contactlab import __version__
 
 COMMAND_MODULES: tuple[str, ...] = (
     "contactlab.surfaces.cli",
+    "contactlab.stiffness.cli",
+    "contactlab.asperity.cli",
+    "contactlab.receding.cli",
+    "contactlab.fe.cli",
     "contactlab.report.cli",
 )
 

@@ -152,3 +152,209 @@ ALL_TARGETS.extend(
     ]
 )
 REPORT_SECTIONS.append("results/report/sections/50_receding_gap.html")
+
+
+# ---- Line load (ch. 6) and pressure patches (ch. 7): lift-off at all remote points.
+# Sweeps split per problem and f-chunk (interleaved f values), gathered along f.
+
+from contactlab.receding.workflow import liftoff_profile_name, liftoff_profile_point
+
+LINE = config["receding"]["line"]
+LINE_F = sweep_values(LINE["f"])
+LINE_CHUNKS = list(range(min(LINE["chunks"], len(LINE_F))))
+LINE_PROFILES = [liftoff_profile_name(f) for f in LINE["profiles"]]
+PATCHES = config["receding"]["patches"]
+PATCH_F = sweep_values(PATCHES["f"])
+PATCH_W = sweep_values(PATCHES["w"])
+PATCH_CHUNKS = list(range(min(PATCHES["chunks"], len(PATCH_F))))
+PATCH_PROFILES = [liftoff_profile_name(p) for p in PATCHES["profiles"]]
+
+
+rule receding_line_chunk:
+    """a, b, K_T of the line load (and the Chaise model) for one chunk of f."""
+    output:
+        temp("results/receding/chunks/line_{chunk}.nc"),
+    wildcard_constraints:
+        chunk=r"\d+",
+    params:
+        f=lambda wc: chunk_values(LINE_F, wc.chunk, len(LINE_CHUNKS)),
+        n=LINE["n"],
+        lam=LINE["lambda"],
+        e=LINE["e"],
+        chaise="" if LINE["chaise"] else "--no-chaise",
+        env=RECEDING_ENV,
+    log:
+        "logs/receding/line_{chunk}.log",
+    shell:
+        "{params.env} contactlab receding line-sweep --f {params.f} --n {params.n}"
+        " --lam {params.lam} --e {params.e} {params.chaise} --out {output} 2> {log}"
+
+
+rule receding_line_gather:
+    """results/receding/line.nc: the line-load sweep over f (Figs 6.3, 7.6)."""
+    input:
+        expand("results/receding/chunks/line_{chunk}.nc", chunk=LINE_CHUNKS),
+    output:
+        "results/receding/line.nc",
+    log:
+        "logs/receding/line_gather.log",
+    shell:
+        "contactlab receding liftoff-gather {input} --out {output} 2> {log}"
+
+
+rule receding_patch_chunk:
+    """a, b, K_T of one pressure patch law over (f chunk, w/c)."""
+    output:
+        temp("results/receding/chunks/patch_{law}_{chunk}.nc"),
+    wildcard_constraints:
+        law="uniform|hertz|punch",
+        chunk=r"\d+",
+    params:
+        f=lambda wc: chunk_values(PATCH_F, wc.chunk, len(PATCH_CHUNKS)),
+        w=" ".join(str(w) for w in PATCH_W),
+        n=PATCHES["n"],
+        lam_b=PATCHES["lambda_b"],
+        e_minus_w=PATCHES["e_minus_w"],
+        env=RECEDING_ENV,
+    log:
+        "logs/receding/patch_{law}_{chunk}.log",
+    shell:
+        "{params.env} contactlab receding patch-sweep --problem {wildcards.law}"
+        " --f {params.f} --w-hat {params.w} --n {params.n} --lam-b {params.lam_b}"
+        " --e-minus-w {params.e_minus_w} --out {output} 2> {log}"
+
+
+rule receding_patch_gather:
+    """results/receding/<law>.nc: a pressure patch over (f, w/c) (Figs 7.5, 7.6, 7.9, 7.10)."""
+    input:
+        lambda wc: expand("results/receding/chunks/patch_{law}_{chunk}.nc", law=wc.law,
+                          chunk=PATCH_CHUNKS),
+    output:
+        "results/receding/{law}.nc",
+    wildcard_constraints:
+        law="uniform|hertz|punch",
+    log:
+        "logs/receding/patch_gather_{law}.log",
+    shell:
+        "contactlab receding liftoff-gather {input} --out {output} 2> {log}"
+
+
+rule receding_line_profile:
+    """Densities, tractions, separation and slip of the line load (and Chaise model)."""
+    output:
+        "results/receding/profiles/line_f{f}.nc",
+    params:
+        n=LINE["n"],
+        x_max=LINE["profile_x_max"],
+        env=RECEDING_ENV,
+    log:
+        "logs/receding/line_profile_f{f}.log",
+    shell:
+        "{params.env} contactlab receding liftoff-profile --problem line --f {wildcards.f}"
+        " --n {params.n} --x-max {params.x_max} --chaise --out {output} 2> {log}"
+
+
+rule receding_patch_profile:
+    """Densities, tractions, separation and slip of one pressure patch solution."""
+    output:
+        "results/receding/profiles/{point}.nc",
+    wildcard_constraints:
+        point=r"patch_[a-z]+_w[0-9.]+_f[0-9.]+",
+    params:
+        law=lambda wc: liftoff_profile_point(PATCHES["profiles"], wc.point)["law"],
+        w=lambda wc: liftoff_profile_point(PATCHES["profiles"], wc.point)["w"],
+        f=lambda wc: liftoff_profile_point(PATCHES["profiles"], wc.point)["f"],
+        n=PATCHES["n"],
+        x_max=PATCHES["profile_x_max"],
+        env=RECEDING_ENV,
+    log:
+        "logs/receding/{point}.log",
+    shell:
+        "{params.env} contactlab receding liftoff-profile --problem {params.law}"
+        " --w-hat {params.w} --f {params.f} --n {params.n} --x-max {params.x_max}"
+        " --out {output} 2> {log}"
+
+
+rule report_receding_line_patch:
+    """Report section: Figs 6.3-6.6 and 7.2-7.10 and tables of the lifting-off problems."""
+    input:
+        line="results/receding/line.nc",
+        patches=expand("results/receding/{law}.nc", law=PATCHES["laws"]),
+        profiles=[
+            *expand("results/receding/profiles/{p}.nc", p=LINE_PROFILES),
+            *expand("results/receding/profiles/{p}.nc", p=PATCH_PROFILES),
+        ],
+    output:
+        section="results/report/sections/51_receding_line_patch.html",
+        tables=[
+            "results/report/tables/receding_line_sweep.csv",
+            "results/report/tables/receding_patch_points.csv",
+            "results/report/tables/receding_patch_fits.csv",
+        ],
+        line_zones=report(
+            "results/report/figures/receding_line_zones.png",
+            caption="../report/receding_line_patch.rst",
+            category="Receding contacts",
+        ),
+        line_densities=report(
+            "results/report/figures/receding_line_densities.png",
+            caption="../report/receding_line_patch.rst",
+            category="Receding contacts",
+        ),
+        line_tractions=report(
+            "results/report/figures/receding_line_tractions.png",
+            caption="../report/receding_line_patch.rst",
+            category="Receding contacts",
+        ),
+        line_displacements=report(
+            "results/report/figures/receding_line_displacements.png",
+            caption="../report/receding_line_patch.rst",
+            category="Receding contacts",
+        ),
+        patch_tractions=report(
+            "results/report/figures/receding_patch_tractions.png",
+            caption="../report/receding_line_patch.rst",
+            category="Receding contacts",
+        ),
+        patch_densities=report(
+            "results/report/figures/receding_patch_densities.png",
+            caption="../report/receding_line_patch.rst",
+            category="Receding contacts",
+        ),
+        patch_displacements=report(
+            "results/report/figures/receding_patch_displacements.png",
+            caption="../report/receding_line_patch.rst",
+            category="Receding contacts",
+        ),
+        patch_zones=report(
+            "results/report/figures/receding_patch_zones.png",
+            caption="../report/receding_line_patch.rst",
+            category="Receding contacts",
+        ),
+        patch_slope=report(
+            "results/report/figures/receding_patch_slope.png",
+            caption="../report/receding_line_patch.rst",
+            category="Receding contacts",
+        ),
+        patch_wide=report(
+            "results/report/figures/receding_patch_wide.png",
+            caption="../report/receding_line_patch.rst",
+            category="Receding contacts",
+        ),
+    log:
+        "logs/report/receding_line_patch.log",
+    shell:
+        "contactlab receding liftoff-report --line {input.line} --patches {input.patches}"
+        " --profiles {input.profiles} --report-dir results/report --out {output.section}"
+        " 2> {log}"
+
+
+ALL_TARGETS.extend(
+    [
+        "results/receding/line.nc",
+        *expand("results/receding/{law}.nc", law=PATCHES["laws"]),
+        *expand("results/receding/profiles/{p}.nc", p=LINE_PROFILES),
+        *expand("results/receding/profiles/{p}.nc", p=PATCH_PROFILES),
+    ]
+)
+REPORT_SECTIONS.append("results/report/sections/51_receding_line_patch.html")

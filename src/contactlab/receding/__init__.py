@@ -10,6 +10,14 @@ Layout of the subpackage (pure cores first, I/O at the edge):
 ``solve``         linear solve for fixed transition points + root finding on leftover equations
 ``gap``           the semi-infinite pressure patch problem of ch. 5 (the "gap" problem)
 ``sweep``         parameter sweeps, regime boundaries and profiles as xarray datasets
+``loading``       symmetric loads p(x) of chs 6-7 (line, uniform, hertz, punch, table):
+                  bilateral tractions and the remote climb form by integration
+``preformed``     the preformed climb density A_y and its stresses (Cauchy part exact)
+``remote``        remote forms of the densities and the remote slip relation (eq. 6.32)
+``liftoff``       the lifting-off problem of secs 6.2-6.4, 7.4 (and the Chaise model)
+``line``/``patch``  the line load (ch. 6) and pressure patches (ch. 7)
+``frictionless``  their f = 0 limit (whole-line glide density)
+``liftoff_sweep`` sweeps over f and w/c, profiles; ``liftoff_cli``/``liftoff_report``
 ``cli``/``report``  command line and report section
 
 Normalisation used throughout (Part III): lengths in units of the layer thickness c

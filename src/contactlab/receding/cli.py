@@ -43,6 +43,15 @@ def solution_summary(sol, seconds: float, problem: str = "gap") -> dict:
 def _solve(args: argparse.Namespace) -> None:
     from contactlab.receding.gap import solve_gap
 
+    if args.problem != "gap":
+        from contactlab.receding.liftoff_cli import run_solve
+
+        run_solve(args)
+        return
+    if args.w_hat is None:
+        raise ValueError("problem gap needs --w-hat (gap half-width w/c)")
+    if args.n is None:
+        args.n = 100
     start = time.perf_counter()
     sol = solve_gap(args.w_hat, args.f, args.n)
     summary = solution_summary(sol, time.perf_counter() - start, args.problem)
@@ -136,11 +145,14 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     commands = parser.add_subparsers(dest="receding_command", required=True)
 
     solve = commands.add_parser("solve", help="one solution (printed, --json for JSON)")
-    solve.add_argument("--problem", choices=["gap"], default="gap",
-                       help="gap: pressure on |x| >= w (ch. 5)")
-    solve.add_argument("--w-hat", type=float, required=True, help="w/c")
+    solve.add_argument("--problem", choices=["gap", "line", "uniform", "hertz", "punch"],
+                       default="gap",
+                       help="gap: pressure on |x| >= w (ch. 5); line: line load (ch. 6); "
+                            "uniform/hertz/punch: pressure patch on |x| <= w (ch. 7)")
+    solve.add_argument("--w-hat", type=float, default=None, help="w/c (not for line)")
     solve.add_argument("--f", type=float, required=True, help="friction coefficient")
-    solve.add_argument("--n", type=int, default=100, help="integration points N (even)")
+    solve.add_argument("--n", type=int, default=None,
+                       help="integration points N (even; default 100, 500 for line)")
     solve.add_argument("--json", action="store_true", help="print one JSON object")
     solve.set_defaults(func=_solve)
 
@@ -171,6 +183,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     profile.add_argument("--points", type=int, default=601)
     profile.add_argument("--out", type=Path, required=True)
     profile.set_defaults(func=_profile)
+
+    from contactlab.receding import liftoff_cli
+
+    liftoff_cli.register(commands)
 
     report = commands.add_parser("report", help="report section of the gap problem")
     report.add_argument("--sweep", type=Path, required=True, help="gap.nc (main N)")

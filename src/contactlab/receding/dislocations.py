@@ -15,6 +15,9 @@ the normalised form ``B_bar(xi) = phi(s) sqrt(1 - s^2)`` with ``xi = T(s)`` for 
                    3e-3 at N = 40, 6e-4 at N = 160 for a smooth phi; tests); a
                    Gauss-Jacobi rule absorbing sqrt((1+s)/(1-s)) would restore spectral
                    accuracy for the semi-infinite problems of chs 6-7.
+``infinite``       xi = lam log((1 + s) / (1 - s)) on the whole line (lo = -inf, hi = inf,
+                   no image): the glide density of the frictionless limit f = 0 of chs 6-7,
+                   which is smooth and non-zero at x = 0 (``receding.frictionless``).
 
 Optionally the density has a mirror image with ``B(-xi) = parity * B(xi)``: glide
 densities of a problem symmetric in x are even (parity +1, the two slip zones of eqs
@@ -52,7 +55,7 @@ from contactlab.receding.quadrature import (
     interpolation_matrix,
 )
 
-MAPPINGS = ("linear", "log", "semi-infinite")
+MAPPINGS = ("linear", "log", "semi-infinite", "infinite")
 #: parity of each Green's function in d = x - xi (odd: -1, even: +1), App. B.1
 _KERNEL_PARITY = {("glide", "shear"): -1, ("glide", "normal"): 1,
                   ("climb", "shear"): 1, ("climb", "normal"): -1}
@@ -83,7 +86,10 @@ class DensityInterval:
             raise ValueError(f"a log map needs 0 < lo < hi < inf, got [{self.lo}, {self.hi}]")
         if self.mapping == "semi-infinite" and not (np.isinf(self.hi) and self.lam > 0):
             raise ValueError("a semi-infinite map needs hi = inf and a scale lam > 0")
-        if self.mapping != "semi-infinite" and not np.isfinite(self.hi):
+        if self.mapping == "infinite" and not (np.isinf(self.lo) and np.isinf(self.hi)
+                                               and self.lam > 0 and self.parity == 0):
+            raise ValueError("an infinite map needs lo = -inf, hi = inf, lam > 0, no image")
+        if self.mapping not in ("semi-infinite", "infinite") and not np.isfinite(self.hi):
             raise ValueError("an infinite interval needs mapping='semi-infinite'")
 
     # ---- the map T: [-1, 1] -> [lo, hi]
@@ -102,6 +108,8 @@ class DensityInterval:
             return self.mid + self.half * s
         if self.mapping == "log":
             return self.lo * np.exp(0.5 * (1.0 + s) * np.log(self.hi / self.lo))
+        if self.mapping == "infinite":
+            return self.lam * np.log((1.0 + s) / (1.0 - s))
         return self.lo + self.lam * np.log(2.0 / (1.0 - s))
 
     def derivative(self, s: np.ndarray) -> np.ndarray:
@@ -111,6 +119,8 @@ class DensityInterval:
             return np.full_like(s, self.half)
         if self.mapping == "log":
             return 0.5 * np.log(self.hi / self.lo) * self.transform(s)
+        if self.mapping == "infinite":
+            return 2.0 * self.lam / (1.0 - s * s)
         return self.lam / (1.0 - s)
 
     def preimage(self, x: np.ndarray) -> np.ndarray:
@@ -122,6 +132,8 @@ class DensityInterval:
             with np.errstate(divide="ignore", invalid="ignore"):
                 t = 2.0 * np.log(x / self.lo) / np.log(self.hi / self.lo) - 1.0
             return np.where(x > 0, t, np.nan)
+        if self.mapping == "infinite":
+            return np.tanh(x / (2.0 * self.lam))
         return 1.0 - 2.0 * np.exp(-(x - self.lo) / self.lam)
 
     @property

@@ -54,7 +54,9 @@ def solve_line(f: float = 0.5, n: int = 500, lam: float = 3.5, e: float = 5.0,
 
         return solve_frictionless(load, n, lam, lam, e, problem=problem, preformed=preformed)
     seeds = [guess] if guess is not None else []
-    seeds.append(line_guess(f))
+    a0, b0 = line_guess(f)
+    # the Chaise model separates a little further out (b about 6 % larger)
+    seeds.append((a0, b0) if preformed else (a0, 1.06 * b0))
     sol = None
     for seed in seeds:
         sol = solve_liftoff(load, f, n, lam, lam, e, preformed, seed, problem)

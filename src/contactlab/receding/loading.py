@@ -47,6 +47,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 LAWS = ("line", "uniform", "hertz", "punch", "table")
+#: laws whose remote form g has a closed form (used; the quadrature sum is the check)
+CLOSED = ("line", "uniform", "hertz", "punch")
 #: Aliases accepted for the named laws (thesis names and the FE branch's "constant").
 ALIASES = {"constant": "uniform", "A1": "uniform", "sqrt_bounded": "hertz", "A2": "hertz",
            "sqrt_singular": "punch", "A3": "punch", "point": "line"}
@@ -111,6 +113,13 @@ class Load:
         """g(x) = (1/2 pi) int p_hat/(x - xi) dxi (odd), for |x| > w: the load part of the
         remote climb density, eq. (7.14) normalised."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
+        if self.law in CLOSED:
+            return remote_form_closed(self.law, self.w, x)
+        return self.remote_g_sum(x)
+
+    def remote_g_sum(self, x: np.ndarray) -> np.ndarray:
+        """g(x) by the quadrature sum of eq. (7.14) (any law; the closed forms' check)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
         return (1.0 / (x[:, None] - self.nodes[None, :])) @ self.weights / (2.0 * np.pi)
 
     def remote_g_prime(self, x: np.ndarray) -> np.ndarray:
@@ -166,9 +175,11 @@ def make_load(law: str, w: float = 0.0, table: Mapping[str, Sequence[float]] | N
         raise ValueError(f"unknown pressure law {law!r}; use one of {', '.join(LAWS)}")
     if law == "line":
         return Load("line", 0.0, np.zeros(1), np.ones(1))
-    if not (np.isfinite(w) and w > 0):
-        raise ValueError(f"w_hat must be a positive number (patch half-width w/c), got {w}")
-    m = points or _points(w)
+    if law != "table" or pressure is not None:
+        if not (np.isfinite(w) and w > 0):
+            raise ValueError(f"w_hat must be a positive number (patch half-width w/c), "
+                             f"got {w}")
+    m = points or _points(w) if law != "table" else 0
     if law == "uniform":
         u, wu = np.polynomial.legendre.leggauss(m)
         return Load(law, w, w * u, 0.5 * wu, amplitude_per_T=1.0 / (2.0 * w))

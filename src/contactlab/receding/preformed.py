@@ -50,6 +50,7 @@ adaptive principal-value quadrature (scipy ``quad`` with the Cauchy weight) at m
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
@@ -85,9 +86,14 @@ def _h_yyy_rest(d: np.ndarray) -> np.ndarray:
     return d * (-4.0 / q**2 - 64.0 / q**3)
 
 
+@lru_cache(maxsize=4)
+def _gauss(m: int) -> tuple[np.ndarray, np.ndarray]:
+    return np.polynomial.legendre.leggauss(m)
+
+
 def _graded(lo: np.ndarray, hi: np.ndarray, towards_hi: bool) -> tuple[np.ndarray, np.ndarray]:
     """Nodes/weights (m, P*G) on [lo, hi] per row, panels halving towards one end."""
-    u, wu = np.polynomial.legendre.leggauss(_GAUSS)
+    u, wu = _gauss(_GAUSS)
     frac = np.concatenate([[0.0], 1.0 - 0.5 ** np.arange(1, _LEVELS), [1.0]])  # 0 .. 1
     if not towards_hi:
         frac = 1.0 - frac[::-1]
@@ -102,7 +108,7 @@ def _graded(lo: np.ndarray, hi: np.ndarray, towards_hi: bool) -> tuple[np.ndarra
 
 
 def _tail(start: np.ndarray, scale: float = 2.0) -> tuple[np.ndarray, np.ndarray]:
-    u, wu = np.polynomial.legendre.leggauss(_TAIL)
+    u, wu = _gauss(_TAIL)
     x = start[:, None] + scale * ((1.0 + u) / (1.0 - u))[None, :]
     w = np.broadcast_to(wu * 2.0 * scale / (1.0 - u) ** 2, x.shape)
     return x, w

@@ -35,3 +35,19 @@ def profile_point(points: Sequence[Mapping[str, float]], name: str) -> Mapping[s
         if profile_name(point) == name:
             return point
     raise ValueError(f"no receding.gap.profiles entry named {name!r}")
+
+
+def liftoff_profile_name(point: Mapping[str, float] | float, law: str = "line") -> str:
+    """File stem of a line/patch profile: ``line_f0.5`` or ``patch_uniform_w1_f0.3``."""
+    if isinstance(point, Mapping):
+        return f"patch_{point['law']}_w{point['w']:g}_f{point['f']:g}"
+    return f"{law}_f{float(point):g}"
+
+
+def liftoff_profile_point(points: Sequence[Mapping[str, float]], name: str
+                          ) -> Mapping[str, float]:
+    """The configured patch profile point with this file stem."""
+    for point in points:
+        if liftoff_profile_name(point) == name:
+            return point
+    raise ValueError(f"no receding.patches.profiles entry named {name!r}")

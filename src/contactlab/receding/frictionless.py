@@ -1,0 +1,96 @@
+"""The frictionless limit f = 0 of the lifting-off problems (chs 6-7).
+
+With f = 0 the shear vanishes on the whole interface, so there is no stick zone: the
+even glide density lives on the whole line and is smooth and non-zero at x = 0, which
+the bounded glide density on [a, inf) of the f > 0 problem cannot represent (its a
+collapses to 0 as f -> 0). Here B_x uses the map xi = lam log((1 + s) / (1 - s)) of the
+whole line (``DensityInterval(mapping="infinite")``), bounded at both infinities.
+
+Rows: N + 1 normal rows on [b, inf) (N = 0), N + 1 shear rows on the line (S = 0), and
+B_yc(e) = 0; unknowns phi_x, phi_y, K. With N even the glide row at x = 0 holds by
+symmetry (S is odd) and is left out with the climb row nearest t = 0; b is the root of
+that climb row.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from contactlab.receding._blas import single_thread
+from contactlab.receding.dislocations import DensityInterval
+from contactlab.receding.liftoff import LiftoffSolution, check_inputs
+from contactlab.receding.loading import Load
+from contactlab.receding.preformed import Preformed
+from contactlab.receding.quadrature import interpolation_matrix
+from contactlab.receding.solve import LinearSystem, find_transitions
+
+
+def assemble_frictionless(load: Load, n: int, b: float, lam_a: float, lam_b: float, e: float,
+                          preformed: bool = True):
+    glide = DensityInterval("glide", -np.inf, np.inf, n, mapping="infinite", lam=lam_a)
+    climb = DensityInterval("climb", b, np.inf, n, parity=-1, mapping="semi-infinite",
+                            lam=lam_b)
+    xb, xa = climb.collocation, glide.collocation
+    m = n + 1
+    _, gn_b = glide.influence(xb)
+    gs_a, _ = glide.influence(xa)
+    _, cn_b = climb.influence(xb)
+    cs_a, _ = climb.influence(xa)
+    sb_a, _ = load.bilateral(xa)
+    _, nb_b = load.bilateral(xb)
+    cols_n, cols_s = [gn_b, cn_b], [gs_a, cs_a]
+    rhs_n, rhs_s = -nb_b, -sb_a
+    if preformed:
+        pre = Preformed(load, b, e)
+        _, pn = pre.stresses(xb)
+        ps, _ = pre.stresses(xa)
+        cols_n.append(pn[:, 1:2])
+        cols_s.append(ps[:, 1:2])
+        rhs_n, rhs_s = rhs_n - pn[:, 0], rhs_s - ps[:, 0]
+    matrix = np.vstack([np.hstack(cols_n), np.hstack(cols_s)])
+    rhs = np.concatenate([rhs_n, rhs_s])
+    if preformed:
+        row = np.concatenate([np.zeros(n), interpolation_matrix(climb.preimage(np.array([e])),
+                                                                n)[0], [0.0]])
+        matrix, rhs = np.vstack([matrix, row]), np.concatenate([rhs, [0.0]])
+    centre = n // 2
+    return LinearSystem(matrix, rhs, leftover=[centre, m + centre], targets=[0]), glide, climb
+
+
+def solve_frictionless(load: Load, n: int, lam_a: float, lam_b: float, e: float,
+                       problem: str = "", preformed: bool = True,
+                       guess: float | None = None) -> LiftoffSolution:
+    """f = 0: find b (and K_T) with S = 0 everywhere (see module docstring)."""
+    check_inputs(0.0, n, lam_a, lam_b, e, load)
+    start = time.perf_counter()
+
+    def system(p: np.ndarray) -> LinearSystem:
+        b = float(np.exp(min(p[0], 4.0)))
+        if b >= e - 0.25:
+            raise ValueError("b too close to e")
+        return assemble_frictionless(load, n, b, lam_a, lam_b, e, preformed)[0]
+
+    b0 = [guess] if guess else []
+    b0 += [1.35 + 0.5 * load.w, 1.2 + load.w, 1.6 + 0.3 * load.w]
+    root = find_transitions(system, [np.array([np.log(v)]) for v in b0], tol=1e-11,
+                            accept=1e-8)
+    b = float(np.exp(root.params[0]))
+    sol = LiftoffSolution(problem=problem or load.law, load=load, f=0.0, n=n, lam_a=lam_a,
+                          lam_b=lam_b, e=e, preformed_used=preformed, regime="frictionless",
+                          a=0.0, b=b, nfev=root.nfev, message="; ".join(root.history))
+    with single_thread():
+        sysm, glide, climb = assemble_frictionless(load, n, b, lam_a, lam_b, e, preformed)
+    sol.glide, sol.climb = glide, climb
+    if root.phi.size == sysm.matrix.shape[1]:
+        sol.phi_x, sol.phi_y = root.phi[:n], root.phi[n:2 * n]
+        sol.K_T = float(root.phi[2 * n]) if preformed else np.nan
+        sol.residual = float(np.max(np.abs(sysm.matrix @ root.phi - sysm.rhs)))
+    sol.leftover = root.residual
+    sol.converged = root.converged
+    if not sol.converged:
+        sol.regime = "failed"
+    sol.evaluate_checks()
+    sol.seconds = time.perf_counter() - start
+    return sol

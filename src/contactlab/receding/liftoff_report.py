@@ -1,0 +1,323 @@
+"""Report section of the lifting-off problems (chs 6-7): Figs 6.3-6.6, 7.2-7.10, tables.
+
+Figures come from results files only (line.nc, <law>.nc, profiles).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pandas as pd
+import xarray as xr
+
+from contactlab.report.section import Section
+
+LAW_NAMES = {"uniform": "constant (A1)", "hertz": "Hertzian (A2)", "punch": "flat punch (A3)"}
+LAW_COLORS = {"uniform": "C0", "hertz": "C1", "punch": "C2", "line": "k"}
+
+
+def _open(path: Path) -> xr.Dataset:
+    with xr.open_dataset(path) as ds:
+        return ds.load()
+
+
+def _ok(ds: xr.Dataset, var: str, suffix: str = "") -> xr.DataArray:
+    return ds[var + suffix].where(ds["converged" + suffix] == 1)
+
+
+def line_zones_figure(line: xr.Dataset) -> plt.Figure:
+    """Fig. 6.3: K_T (top), a and b (bottom) against f, with the Chaise model."""
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(6, 7), sharex=True)
+    f = line["f"].values
+    top.plot(f, _ok(line, "K_T"), "k.-", label="current model (A_y preformed)")
+    top.set_ylabel("K_T = k_l 2 mu c / ((kappa+1) P)")
+    top.legend(fontsize=8, frameon=False)
+    for key, color in (("a", "C0"), ("b", "C3")):
+        bottom.plot(f, _ok(line, key), ".-", color=color, label=f"{key}/c, current model")
+        if key + "_chaise" in line:
+            bottom.plot(f, _ok(line, key, "_chaise"), "x--", color=color,
+                        label=f"{key}/c, Chaise et al. model")
+    bottom.set_xlabel("coefficient of friction f")
+    bottom.set_ylabel("x/c")
+    bottom.legend(fontsize=8, frameon=False)
+    return fig
+
+
+def densities_figure(profile: xr.Dataset, title: str) -> plt.Figure:
+    """Figs 6.4, 7.3, 7.8: B_y, A_y, B_yc (top); B_x and its remote form (bottom)."""
+    fig, (top, bl, br) = plt.subplots(3, 1, figsize=(6.5, 9))
+    x = profile["x"].values
+    top.plot(x, profile["climb_density"], "k-", label="B_y (total)")
+    top.plot(x, profile["preformed_density"], "C0--", label="A_y (preformed)")
+    top.plot(x, profile["corrective_climb_density"], "C3-", label="B_yc (corrective)")
+    top.plot(x, profile["remote_climb"], "C2:", label="remote form")
+    top.axvline(profile.attrs["e"], color="0.6", lw=0.7, ls=":")
+    top.set_ylabel("climb density")
+    top.legend(fontsize=8, frameon=False)
+    top.set_title(title, fontsize=9)
+    bl.plot(x, profile["glide_density"], "k-", label="B_x")
+    bl.set_ylabel("glide density")
+    far = x > max(3.0, profile.attrs["b"])
+    br.plot(x[far], profile["glide_density"].values[far], "k-", label="B_x")
+    br.plot(x[far], profile["remote_glide"].values[far], "C1--",
+            label="remote form (eq. 6.5/7.11, x >> d)")
+    br.set_xlabel("x/c")
+    br.set_ylabel("glide density (far)")
+    for ax in (bl, br):
+        ax.legend(fontsize=8, frameon=False)
+    return fig
+
+
+def tractions_figure(profiles: list[xr.Dataset], labels: list[str],
+                     chaise: bool = False) -> plt.Figure:
+    """Figs 6.5 (with the Chaise model) and 7.2: N and S against x."""
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    for k, (prof, label) in enumerate(zip(profiles, labels, strict=True)):
+        color = f"C{k}"
+        ax.plot(prof["x"], prof["normal"], "-", color=color, label=f"N/T, {label}")
+        ax.plot(prof["x"], prof["shear"], "--", color=color, label=f"S/T, {label}")
+        if chaise and "normal_chaise" in prof:
+            ax.plot(prof["x"], prof["normal_chaise"], ":", color="C3", label="N/T, Chaise model")
+            ax.plot(prof["x"], prof["shear_chaise"], "-.", color="C3", label="S/T, Chaise model")
+    w = max(float(p.attrs.get("w_hat", 0.0)) for p in profiles)
+    ax.set_xlim(0, min(6.0 + w, float(profiles[0]["x"].max())))
+    ax.axhline(0, color="0.7", lw=0.6)
+    ax.set_xlabel("x/c")
+    ax.set_ylabel("traction / T")
+    ax.legend(fontsize=7, frameon=False)
+    return fig
+
+
+def displacements_figure(profile: xr.Dataset, title: str) -> plt.Figure:
+    """Figs 6.6, 7.4: separation (top) and slip (bottom), with the Chaise model if present
+    and the slip at infinity from the remote slip relation."""
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(6.5, 7), sharex=True)
+    x = profile["x"]
+    top.plot(x, profile["separation"], "k-", label="current model")
+    bottom.plot(x, profile["slip"], "k-", label="current model")
+    if "separation_chaise" in profile:
+        top.plot(x, profile["separation_chaise"], "C3--", label="Chaise et al. model")
+        bottom.plot(x, profile["slip_chaise"], "C3--", label="Chaise et al. model")
+    rhs = profile.attrs.get("remote_slip_rhs", np.nan)
+    if np.isfinite(rhs):
+        bottom.axhline(-rhs, color="C2", ls=":", label="slip at infinity, eq. (6.32) corrected")
+    top.set_ylabel("separation 2 mu g/((kappa+1) T c)")
+    bottom.set_ylabel("slip 2 mu u/((kappa+1) T c)")
+    bottom.set_xlabel("x/c")
+    top.set_title(title, fontsize=9)
+    for ax in (top, bottom):
+        ax.legend(fontsize=8, frameon=False)
+    return fig
+
+
+def patch_zones_figure(patches: dict[str, xr.Dataset], w: float) -> plt.Figure:
+    """Fig. 7.5: a and b against f at w_hat = w for each law."""
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    for law, ds in patches.items():
+        col = ds.sel(w_hat=w, method="nearest")
+        ax.plot(col["f"], _ok(col, "a"), "o-", ms=3, color=LAW_COLORS[law],
+                label=f"a/c, {LAW_NAMES[law]}")
+        ax.plot(col["f"], _ok(col, "b"), "s--", ms=3, color=LAW_COLORS[law],
+                label=f"b/c, {LAW_NAMES[law]}")
+    ax.set_xlabel("coefficient of friction f")
+    ax.set_ylabel("x/c")
+    ax.set_title(f"w/c = {w:g}", fontsize=9)
+    ax.legend(fontsize=7, frameon=False)
+    return fig
+
+
+def patch_slope_figure(patches: dict[str, xr.Dataset], line: xr.Dataset, w: float
+                       ) -> plt.Figure:
+    """Fig. 7.6: K_T against f at w_hat = w for the laws and the line load."""
+    fig, ax = plt.subplots(figsize=(6.5, 4))
+    ax.plot(line["f"], _ok(line, "K_T"), "k.-", label="line load (ch. 6)")
+    for law, ds in patches.items():
+        col = ds.sel(w_hat=w, method="nearest")
+        ax.plot(col["f"], _ok(col, "K_T"), "o-", ms=3, color=LAW_COLORS[law],
+                label=LAW_NAMES[law])
+    ax.set_xlabel("coefficient of friction f")
+    ax.set_ylabel("K_T = k_l 2 mu / ((kappa+1) T)")
+    ax.set_title(f"w/c = {w:g}", fontsize=9)
+    ax.legend(fontsize=8, frameon=False)
+    return fig
+
+
+def wide_fits(patches: dict[str, xr.Dataset], f: float) -> pd.DataFrame:
+    """The fits of sec. 7.6 to K_B(w) at friction f: uniform alpha ln w + beta, Hertzian
+    alpha sqrt(w) + beta, punch K_inf + gamma / w (asymptote)."""
+    rows = []
+    for law, ds in patches.items():
+        row = ds.sel(f=f, method="nearest")
+        w = row["w_hat"].values
+        k = _ok(row, "K_B").values
+        use = np.isfinite(k) & (w >= 2.0)
+        if use.sum() < 2:
+            continue
+        basis = {"uniform": np.log(w), "hertz": np.sqrt(w), "punch": 1.0 / w}[law]
+        slope, icpt = np.polyfit(basis[use], k[use], 1)
+        form = {"uniform": "alpha ln(w/c) + beta", "hertz": "alpha sqrt(w/c) + beta",
+                "punch": "K_inf + gamma c/w (K_inf = beta)"}[law]
+        resid = float(np.max(np.abs(slope * basis[use] + icpt - k[use])))
+        rows.append({"law": law, "f": float(row["f"]), "fit": form, "alpha_or_gamma": slope,
+                     "beta": icpt, "max_misfit": resid, "points": int(use.sum()),
+                     "w_range": f"{w[use].min():g}-{w[use].max():g}"})
+    columns = ["law", "f", "fit", "alpha_or_gamma", "beta", "max_misfit", "points", "w_range"]
+    return pd.DataFrame(rows, columns=columns)
+
+
+def wide_figure(patches: dict[str, xr.Dataset], line: xr.Dataset, f: float,
+                fits: pd.DataFrame) -> plt.Figure:
+    """Figs 7.9 (K_B against w with the fits) and 7.10 (a - w, b - w against w)."""
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(6.5, 8))
+    wl = np.linspace(0.5, 22.0, 200)
+    for law, ds in patches.items():
+        row = ds.sel(f=f, method="nearest")
+        color = LAW_COLORS[law]
+        top.plot(row["w_hat"], _ok(row, "K_B"), "o", ms=4, color=color, label=LAW_NAMES[law])
+        fit = fits[fits["law"] == law] if len(fits) else fits
+        if len(fit):
+            basis = {"uniform": np.log(wl), "hertz": np.sqrt(wl), "punch": 1.0 / wl}[law]
+            top.plot(wl, fit["alpha_or_gamma"].iloc[0] * basis + fit["beta"].iloc[0], "-",
+                     color=color, lw=0.8, label=f"fit {fit['fit'].iloc[0]}")
+        w = row["w_hat"]
+        bottom.plot(w, _ok(row, "a") - w, "o-", ms=3, color=color,
+                    label=f"(a - w)/c, {LAW_NAMES[law]}")
+        bottom.plot(w, _ok(row, "b") - w, "s--", ms=3, color=color,
+                    label=f"(b - w)/c, {LAW_NAMES[law]}")
+    lrow = line.sel(f=f, method="nearest")
+    if int(lrow["converged"]) == 1:
+        bottom.plot([0.0], [float(lrow["a"])], "k^", label="line load a/c")
+        bottom.plot([0.0], [float(lrow["b"])], "kv", label="line load b/c")
+    top.set_ylabel("K_B = k_l 2 mu / ((kappa+1) B_N)")
+    top.set_title(f"f = {float(lrow['f']):g}; B_N of eqs 7.37-7.39", fontsize=9)
+    bottom.set_xlabel("w/c")
+    bottom.set_ylabel("position relative to the patch edge / c")
+    for ax in (top, bottom):
+        ax.legend(fontsize=7, frameon=False)
+    return fig
+
+
+def line_table(line: xr.Dataset) -> pd.DataFrame:
+    cols = ["a", "b", "K_T", "converged", "admissible", "residual", "remote_slip_error",
+            "regime"]
+    if "a_chaise" in line:
+        cols += ["a_chaise", "b_chaise"]
+    df = line[cols].to_dataframe().reset_index()
+    codes = dict(enumerate(line["regime"].attrs["flag_meanings"].split(), start=-1))
+    df["regime"] = df["regime"].map(codes)
+    return df
+
+
+def points_table(profiles: list[xr.Dataset]) -> pd.DataFrame:
+    keys = ["problem", "w_hat", "f", "N", "a", "b", "K_T", "converged", "admissible",
+            "residual", "remote_slip_lhs", "remote_slip_rhs", "remote_slip_error",
+            "max_tension", "max_stick_excess", "max_slip_mismatch", "max_separated_traction"]
+    return pd.DataFrame([{k: p.attrs.get(k, np.nan) for k in keys} for p in profiles])
+
+
+def _diagnostics(line: xr.Dataset, patches: dict[str, xr.Dataset]) -> str:
+    parts = []
+    for name, ds in [("line", line), *patches.items()]:
+        conv = ds["converged"].values
+        err = np.abs(ds["remote_slip_error"].values[conv == 1])
+        parts.append(f"{name}: {int(conv.sum())}/{conv.size} converged, |remote slip "
+                     f"error| <= {np.nanmax(err) if err.size else np.nan:.2e}, largest "
+                     f"residual {np.nanmax(ds['residual'].values):.1e}")
+        if "regime" in ds:
+            nostick = int((ds["regime"].values == 1).sum())
+            if nostick:
+                parts[-1] += f", {nostick} below the critical friction (no stick zone)"
+    return "Diagnostics: " + "; ".join(parts) + "."
+
+
+def build_section(line_path: Path, patch_paths: list[Path], profile_paths: list[Path],
+                  report_dir: Path, out: Path, f_wide: float = 0.3, w_fixed: float = 1.0
+                  ) -> None:
+    """Write section 51 with the figures and tables of chs 6-7."""
+    report_dir = Path(report_dir)
+    line = _open(line_path)
+    patches = {}
+    for path in patch_paths:
+        ds = _open(path)
+        patches[ds.attrs["problem"]] = ds
+    profiles = [_open(p) for p in profile_paths]
+    figures = report_dir / "figures"
+    tables = report_dir / "tables"
+    section = Section("Receding contact with lift-off at remote points: line load and "
+                      "pressure patches (chs 6-7)", "receding-line-patch", report_dir)
+    section.paragraph(
+        "A layer of thickness c pressed on a half-plane of the same material by a line load "
+        "(ch. 6) or a symmetric pressure on |x| <= w (ch. 7) sticks on |x| < a, slips on "
+        "a < |x| < b and lifts off beyond b with its ends rising at slope k_l. A preformed "
+        "climb density A_y (zero to b, a cubic to e, the remote form -K_T + g(x) beyond) "
+        "carries the remote behaviour; bounded-bounded glide and corrective climb densities "
+        "on [a, inf) and [b, inf) (map xi = a + lambda log(2/(1-s))) satisfy the contact "
+        "conditions, and B_yc(e) = 0 fixes K_T. The stresses of A_y are evaluated for any "
+        "load: the Cauchy part analytically, the rest by graded Gauss quadrature. Lengths in "
+        "c, tractions in T = load per thickness (P/c for the line load), "
+        "K_T = k_l 2 mu/((kappa+1) T). The Chaise et al. model uses bounded-bounded "
+        "densities only."
+    )
+    section.paragraph(
+        "Remote slip relation (eq. 6.32 with the sign of the K term corrected, generalised "
+        "as eq. 7.32): int_0^inf B_x = -1/8 - K_T/2 + (1/4) int_0^b x S dx in the units "
+        "above; 'remote_slip_error' is left minus right side on every solution."
+    )
+    section.note(_diagnostics(line, patches))
+    section.figure(line_zones_figure(line), "Line load: remote slope K_T and transition "
+                   "points a, b against f, with the Chaise et al. model (cf. Fig. 6.3)",
+                   figures / "receding_line_zones.png")
+    line_prof = [p for p in profiles if p.attrs.get("problem") == "line"]
+    patch_prof = [p for p in profiles if p.attrs.get("problem") != "line"]
+    if line_prof:
+        lp = min(line_prof, key=lambda p: abs(p.attrs["f"] - 0.5))
+        title = f"line load, f = {lp.attrs['f']:g}, N = {lp.attrs['N']}"
+        section.figure(densities_figure(lp, title), "Line load: climb densities B_y, A_y, "
+                       "B_yc and the glide density with its remote form (cf. Fig. 6.4)",
+                       figures / "receding_line_densities.png")
+        section.figure(tractions_figure([lp], ["current model"], chaise=True),
+                       "Line load: tractions, current and Chaise et al. models "
+                       "(cf. Fig. 6.5)", figures / "receding_line_tractions.png")
+        section.figure(displacements_figure(lp, title), "Line load: separation and slip, "
+                       "current and Chaise et al. models, slip at infinity from the remote "
+                       "slip relation (cf. Fig. 6.6)", figures / "receding_line_displacements.png")
+    near = [p for p in patch_prof if abs(p.attrs["w_hat"] - w_fixed) < 1e-9]
+    if near:
+        section.figure(tractions_figure(near, [LAW_NAMES.get(p.attrs["law"], p.attrs["law"])
+                                               for p in near]),
+                       f"Pressure patches: tractions at w/c = {w_fixed:g} (cf. Fig. 7.2)",
+                       figures / "receding_patch_tractions.png")
+    hertz = [p for p in near if p.attrs["law"] == "hertz"] or near
+    wide = [p for p in patch_prof if p.attrs["w_hat"] > 5.0]
+    dens_prof = wide[0] if wide else (hertz[0] if hertz else None)
+    if dens_prof is not None:
+        section.figure(densities_figure(dens_prof, f"{dens_prof.attrs['law']}, w/c = "
+                                                   f"{dens_prof.attrs['w_hat']:g}, f = "
+                                                   f"{dens_prof.attrs['f']:g}"),
+                       "Pressure patch: densities (cf. Figs 7.3 and 7.8)",
+                       figures / "receding_patch_densities.png")
+    if hertz:
+        hp = hertz[0]
+        section.figure(displacements_figure(hp, f"{hp.attrs['law']}, w/c = "
+                                                f"{hp.attrs['w_hat']:g}, f = {hp.attrs['f']:g}"),
+                       "Pressure patch: slip and separation (cf. Fig. 7.4)",
+                       figures / "receding_patch_displacements.png")
+    section.figure(patch_zones_figure(patches, w_fixed), "Pressure patches: a and b against "
+                   f"f at w/c = {w_fixed:g} (cf. Fig. 7.5)", figures / "receding_patch_zones.png")
+    section.figure(patch_slope_figure(patches, line, w_fixed), "Remote slope K_T against f "
+                   f"for the patches at w/c = {w_fixed:g} and the line load (cf. Fig. 7.6)",
+                   figures / "receding_patch_slope.png")
+    fits = wide_fits(patches, f_wide)
+    section.figure(wide_figure(patches, line, f_wide, fits), "Wide patches: slope normalised "
+                   "by B1, B2, B3 with the fits of sec. 7.6 (top, cf. Fig. 7.9); transition "
+                   "points relative to the patch edge (bottom, cf. Fig. 7.10)",
+                   figures / "receding_patch_wide.png")
+    section.table(line_table(line), "Line load: transition points, slope and diagnostics",
+                  tables / "receding_line_sweep.csv", digits=4)
+    section.table(points_table(profiles), "Profile points: solutions and diagnostics",
+                  tables / "receding_patch_points.csv", digits=4)
+    section.table(fits, f"Fits of K_B(w) at f = {f_wide:g} (sec. 7.6)",
+                  tables / "receding_patch_fits.csv", digits=4)
+    section.write(out)

@@ -1,0 +1,272 @@
+"""Sweeps of the lifting-off problems (line load, patches) as CF datasets, and profiles.
+
+Pure functions: numbers in, xarray out. Sweeps continue along f (largest first) and, for
+patches, along w_hat (smallest first), each converged solution seeding its neighbours;
+a failed point is kept with ``converged = 0``, its residual and its regime code, never
+dropped, and never stops the sweep.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+import xarray as xr
+
+from contactlab.receding.liftoff import REGIMES, LiftoffSolution
+from contactlab.receding.line import solve_line
+from contactlab.receding.patch import default_lambdas, slope_normalisations, solve_patch
+
+ONE = "1"
+CODES = ("failed", *REGIMES)
+REGIME_ATTRS = {"long_name": "solution regime", "units": ONE,
+                "flag_values": np.arange(-1, len(REGIMES), dtype=np.int8),
+                "flag_meanings": " ".join(CODES)}
+SCALARS = {
+    "a": "end of the central stick zone a/c",
+    "b": "start of separation b/c",
+    "K_T": "remote slope of the layer k_l 2 mu / ((kappa + 1) T), T = load per thickness",
+    "residual": "largest residual of all discretised equations at the solution (units of T)",
+    "remote_slip_error": "remote slip relation (corrected eq. 6.32/7.32): lhs - rhs, "
+                         "in (kappa + 1) T c / (2 mu)",
+    "remote_slip_lhs": "int_0^inf B_x dx, times 2 mu / ((kappa + 1) T c)",
+    "remote_slip_rhs": "-1/8 - K_T/2 + (1/4) int_0^b x S dx / (T c^2)",
+    "seconds": "wall time of the solution",
+}
+CHECKS = {
+    "max_tension": "largest N/T in contact (admissible <= 0)",
+    "max_stick_excess": "largest |S| - f|N| in the stick zone, /T (admissible <= 0)",
+    "max_slip_mismatch": "largest friction-law or slip-direction mismatch in the slip zone, /T",
+    "max_separated_traction": "largest |N|, |S| in the separation zone, /T",
+    "max_overlap": "largest overlap for x > b, 2 mu g / ((kappa + 1) T c)",
+}
+
+
+def _code(sol: LiftoffSolution) -> int:
+    if sol.converged and sol.regime in REGIMES:
+        return REGIMES.index(sol.regime)
+    if sol.regime == "no_stick":
+        return REGIMES.index("no_stick")
+    return -1
+
+
+def _record(sol: LiftoffSolution) -> dict[str, float]:
+    rec = {k: np.nan for k in [*SCALARS, *CHECKS]}
+    rec.update(a=sol.a, b=sol.b, K_T=sol.K_T, residual=sol.residual, seconds=sol.seconds)
+    if sol.converged:
+        if sol.preformed_used:
+            rel = sol.remote_slip()
+            rec.update(remote_slip_error=rel["error"], remote_slip_lhs=rel["lhs"],
+                       remote_slip_rhs=rel["rhs"])
+        rec.update({k: sol.checks.get(k, np.nan) for k in CHECKS})
+    else:
+        rec.update(a=np.nan, b=np.nan, K_T=np.nan)
+    rec["converged"] = int(sol.converged)
+    rec["admissible"] = int(sol.admissible)
+    rec["regime"] = _code(sol)
+    rec["nfev"] = sol.nfev
+    return rec
+
+
+def _failed(problem: str, f: float, n: int, exc: Exception) -> dict[str, float]:
+    rec = {k: np.nan for k in [*SCALARS, *CHECKS]}
+    rec.update(converged=0, admissible=0, regime=-1, nfev=0)
+    return rec
+
+
+def _variables(records: np.ndarray, dims: tuple[str, ...], suffix: str = "",
+               what: str = "") -> dict:
+    """Data variables from an object array of record dicts."""
+    out = {}
+    flat = records.ravel()
+    shape = records.shape
+    for key, name in {**SCALARS, **CHECKS}.items():
+        values = np.array([r[key] for r in flat], dtype=float).reshape(shape)
+        unit = "s" if key == "seconds" else ONE
+        out[key + suffix] = (dims, values, {"long_name": name + what, "units": unit})
+    for key, name, dtype in (("converged", "root finder converged (1) or not", np.int8),
+                             ("admissible", "contact conditions hold within CHECK_TOL",
+                              np.int8),
+                             ("nfev", "linear solves used by the root finder", np.int32)):
+        values = np.array([r[key] for r in flat], dtype=dtype).reshape(shape)
+        out[key + suffix] = (dims, values, {"long_name": name + what, "units": ONE})
+    regime = np.array([r["regime"] for r in flat], dtype=np.int8).reshape(shape)
+    out["regime" + suffix] = (dims, regime, {**REGIME_ATTRS,
+                                             "long_name": "solution regime" + what})
+    return out
+
+
+def _f_coord(f_values: np.ndarray) -> dict:
+    return {"f": ("f", np.asarray(f_values, dtype=float),
+                  {"long_name": "coefficient of friction", "units": ONE})}
+
+
+def check_f(f_values) -> np.ndarray:
+    f_values = np.asarray(f_values, dtype=float)
+    if np.any(~np.isfinite(f_values)) or np.any(f_values < 0):
+        raise ValueError(f"friction coefficients must be >= 0, got {f_values.tolist()}")
+    return f_values
+
+
+def sweep_line(f_values, n: int = 500, lam: float = 3.5, e: float = 5.0,
+               chaise: bool = True) -> xr.Dataset:
+    """The line load (ch. 6) at every f (dim f), and the Chaise et al. model (suffix
+    ``_chaise``) for Figs 6.3, 6.5, 6.6."""
+    f_values = check_f(f_values)
+    models = [("", True)] + ([("_chaise", False)] if chaise else [])
+    data = {}
+    for suffix, preformed in models:
+        records = np.empty(f_values.size, dtype=object)
+        prev = None
+        for j in np.argsort(f_values)[::-1]:
+            f = float(f_values[j])
+            try:
+                sol = solve_line(f, n, lam, e, guess=prev, preformed=preformed)
+                records[j] = _record(sol)
+                if sol.converged and sol.regime == "slip_separation":
+                    prev = (sol.a, sol.b)
+            except (ValueError, np.linalg.LinAlgError) as exc:
+                records[j] = _failed("line", f, n, exc)
+        what = " (Chaise et al. model, bounded-bounded densities only)" if suffix else ""
+        data.update(_variables(records, ("f",), suffix, what))
+    for key in [k for k in data if k.startswith("remote_slip") and k.endswith("_chaise")]:
+        data.pop(key)
+    ds = xr.Dataset(data, coords=_f_coord(f_values))
+    ds.attrs.update({"problem": "line", "N": int(n), "lambda": lam, "e": e,
+                     "units_note": "lengths in c, tractions in T = P/c"})
+    return ds
+
+
+def sweep_patch(law: str, f_values, w_values, n: int = 100, lam_b: float = 2.0,
+                e_extra: float = 5.0) -> xr.Dataset:
+    """A pressure patch over (f, w_hat), with the thesis's lambda_a(w) (sec. 7.4)."""
+    f_values = check_f(f_values)
+    w_values = np.asarray(w_values, dtype=float)
+    if np.any(~np.isfinite(w_values)) or np.any(w_values <= 0):
+        raise ValueError(f"w_hat must be positive, got {w_values.tolist()}")
+    records = np.empty((f_values.size, w_values.size), dtype=object)
+    k_n = np.full(records.shape, np.nan)
+    k_b = np.full(records.shape, np.nan)
+    lam_a = np.array([default_lambdas(float(w))[0] for w in w_values])
+    seeds: dict[int, tuple[float, float]] = {}  # by w index: last converged (a, b)
+    for i in np.argsort(f_values)[::-1]:
+        f = float(f_values[i])
+        prev_w: tuple[float, float] | None = None
+        for j in np.argsort(w_values):
+            w = float(w_values[j])
+            guess = seeds.get(j, prev_w)
+            try:
+                sol = solve_patch(law, f, w, n, lam_a=float(lam_a[j]), lam_b=lam_b,
+                                  e=w + e_extra, guess=guess)
+                if not sol.converged and guess is not None:
+                    sol = solve_patch(law, f, w, n, lam_a=float(lam_a[j]), lam_b=lam_b,
+                                      e=w + e_extra)
+                records[i, j] = _record(sol)
+                if sol.converged and sol.regime == "slip_separation":
+                    seeds[j] = prev_w = (sol.a, sol.b)
+                    norms = slope_normalisations(sol.load.law, w, sol.K_T)
+                    k_n[i, j], k_b[i, j] = norms["K_N"], norms["K_B"]
+            except (ValueError, np.linalg.LinAlgError) as exc:
+                records[i, j] = _failed(law, f, n, exc)
+    dims = ("f", "w_hat")
+    data = _variables(records, dims)
+    data["K_N"] = (dims, k_n, {"long_name": "remote slope k_l 4 mu / ((kappa + 1) A_N) "
+                                            "(K1, K2, K3 of eqs 7.13, 7.16, 7.18)",
+                               "units": ONE})
+    data["K_B"] = (dims, k_b, {"long_name": "remote slope k_l 2 mu / ((kappa + 1) B_N), "
+                                            "B_N of eqs 7.37-7.39 (Fig. 7.9)", "units": ONE})
+    data["lambda_a"] = (("w_hat",), lam_a, {"long_name": "map scale lambda_a of [a, inf)",
+                                            "units": ONE})
+    coords = {**_f_coord(f_values),
+              "w_hat": ("w_hat", w_values, {"long_name": "patch half-width w/c",
+                                            "units": ONE})}
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update({"problem": law, "N": int(n), "lambda_b": lam_b,
+                     "e_minus_w": e_extra,
+                     "units_note": "lengths in c, tractions in T = int p dx / c"})
+    return ds
+
+
+def profile_dataset(sol: LiftoffSolution, x_max: float, points: int,
+                    chaise: LiftoffSolution | None = None) -> xr.Dataset:
+    """Densities, tractions, separation and slip on 0 <= x <= x_max (Figs 6.4-6.6, 7.2-7.4,
+    7.8), with the Chaise model's tractions and displacements when given. The profile
+    spans 0 <= x <= w + x_max (beyond the patch edge by x_max)."""
+    x = np.linspace(0.0, sol.load.w + x_max, points)
+    unit_d = "times 2 mu / ((kappa + 1) T)"
+    unit_g = "times 2 mu / ((kappa + 1) T c)"
+    variables: dict[str, tuple[np.ndarray, str]] = {}
+    if sol.converged:
+        s, nn = sol.tractions(x)
+        sb, nb = sol.load.bilateral(x)
+        rel = sol.remote_slip() if sol.preformed_used else {"lhs": np.nan}
+        variables.update({
+            "shear": (s, "shear traction S/T"),
+            "normal": (nn, "normal traction N/T"),
+            "shear_bilateral": (sb, "bilateral shear traction sigma_xy^b / T"),
+            "normal_bilateral": (nb, "bilateral normal traction sigma_yy^b / T"),
+            "friction_limit": (sol.f * np.abs(nn), "friction limit f|N|/T"),
+            "glide_density": (sol.glide_density(x), f"glide density B_x {unit_d}"),
+            "climb_density": (sol.climb_density(x), f"total climb density B_y {unit_d}"),
+            "preformed_density": (sol.preformed_density(x),
+                                  f"preformed climb density A_y {unit_d}"),
+            "corrective_climb_density": (sol.corrective_climb_density(x),
+                                         f"corrective climb density B_yc {unit_d}"),
+            "separation": (sol.separation(x), f"separation v2 - v1 {unit_g}"),
+            "slip": (sol.slip(x), f"slip u2 - u1 {unit_g}"),
+            "remote_climb": (np.where(x > sol.load.w + 0.5,
+                                      -sol._k + sol.load.remote_g(np.maximum(x, sol.load.w
+                                                                             + 0.5)),
+                                      np.nan),
+                             f"remote form of B_y, eq. (6.4)/(7.12)-(7.17) {unit_d}"),
+        })
+        far = x > sol.b
+        glide_far = np.full_like(x, np.nan)
+        glide_far[far] = sol.remote_glide(x[far])
+        variables["remote_glide"] = (glide_far, "remote form of B_x, eq. (6.5)/(7.11), "
+                                                f"(I/pi)/(d^2 - x^2), x > b {unit_d}")
+        variables["slip_remote_expected"] = (np.full_like(x, -rel["lhs"] if np.isfinite(
+            rel["lhs"]) else np.nan), "slip at infinity, -int_0^inf B_x " + unit_g)
+    if chaise is not None and chaise.converged:
+        s, nn = chaise.tractions(x)
+        variables.update({
+            "shear_chaise": (s, "shear traction S/T, Chaise et al. model"),
+            "normal_chaise": (nn, "normal traction N/T, Chaise et al. model"),
+            "separation_chaise": (chaise.separation(x), f"separation, Chaise model {unit_g}"),
+            "slip_chaise": (chaise.slip(x), f"slip, Chaise model {unit_g}"),
+            "climb_density_chaise": (chaise.climb_density(x),
+                                     f"climb density, Chaise model {unit_d}"),
+            "glide_density_chaise": (chaise.glide_density(x),
+                                     f"glide density, Chaise model {unit_d}"),
+        })
+    ds = xr.Dataset(
+        {k: ("x", v, {"long_name": name, "units": ONE}) for k, (v, name) in variables.items()},
+        coords={"x": ("x", x, {"long_name": "position along the interface x/c",
+                                "units": ONE})},
+    )
+    ds.attrs.update(solution_attrs(sol))
+    if chaise is not None:
+        ds.attrs.update({"a_chaise": chaise.a, "b_chaise": chaise.b,
+                         "converged_chaise": int(chaise.converged)})
+    return ds
+
+
+def solution_attrs(sol: LiftoffSolution) -> dict:
+    rel = sol.remote_slip() if (sol.converged and sol.preformed_used) else {}
+    attrs = {"problem": sol.problem, "law": sol.load.law, "w_hat": sol.load.w, "f": sol.f,
+             "N": sol.n, "lambda_a": sol.lam_a, "lambda_b": sol.lam_b, "e": sol.e,
+             "a": sol.a, "b": sol.b, "K_T": sol.K_T, "regime": sol.regime,
+             "converged": int(sol.converged), "admissible": int(sol.admissible),
+             "residual": sol.residual, "nfev": sol.nfev, "solver_log": sol.message,
+             "remote_slip_error": rel.get("error", np.nan),
+             "remote_slip_lhs": rel.get("lhs", np.nan),
+             "remote_slip_rhs": rel.get("rhs", np.nan),
+             "shear_moment": sol.shear_moment() if sol.converged else np.nan}
+    attrs.update(sol.checks)
+    return attrs
+
+
+def timed(func, *args, **kwargs):
+    start = time.perf_counter()
+    out = func(*args, **kwargs)
+    return out, time.perf_counter() - start

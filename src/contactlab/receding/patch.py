@@ -1,0 +1,113 @@
+"""Pressure patches of ch. 7: uniform (A1), Hertzian (A2), flat punch (A3) or any table.
+
+``solve_patch(law, f, w_hat, n)`` solves the lifting-off receding contact under a
+symmetric pressure on |x| <= w (``loading.make_load``) with the method of ch. 6
+(``liftoff``). Results: a, b in units of c, K_T = k_l 2 mu / ((kappa + 1) T) with T the
+load per thickness (eq. 7.33), tractions in T. Thesis defaults (sec. 7.4): N = 100,
+e = 5c + w, lambda_b = 2 and lambda_a = 2 for w <= c, 5 for larger w, 10 beyond 10c.
+
+The thesis's normalisations are recovered from K_T and T: K_N = 4 pi K_T / (2 w) ...
+see ``slope_normalisations``: for the uniform patch T = 2 A1 w_hat (7.34), for the
+Hertzian T = pi A2 c w_hat^2 / 2 (7.35), for the punch T = pi A3 / c (7.36); the
+semi-infinite normalisations B1 = A1, B2 sqrt(c) = A2 c sqrt(2 w_hat),
+B3 / sqrt(c) = A3 / (c sqrt(2 w_hat)) (eqs 7.37-7.39) of Fig. 7.9.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+from contactlab.receding.liftoff import LiftoffSolution, solve_liftoff
+from contactlab.receding.line import flag_no_stick, line_guess
+from contactlab.receding.loading import Load, make_load
+
+LAWS = ("uniform", "hertz", "punch")
+
+
+def default_lambdas(w: float) -> tuple[float, float]:
+    """(lambda_a, lambda_b) of sec. 7.4."""
+    lam_a = 2.0 if w <= 1.0 else 5.0 if w <= 10.0 else 10.0
+    return lam_a, 2.0
+
+
+def _continuation(load: Load, f: float, n: int, lam_a: float, lam_b: float, e_extra: float,
+                  preformed: bool) -> tuple[float, float] | None:
+    """(a, b) reached by continuation in w from the line load at a coarse N."""
+    from contactlab.receding.liftoff import COARSE_N
+
+    guess = line_guess(f)
+    steps = [w for w in (0.1, 0.25, 0.5, 1.0, 2.0, 3.0, 5.0, 7.5, 10.0, 14.0, 20.0, 30.0)
+             if w < load.w] + [load.w]
+    for w in steps:
+        step_load = load if w == load.w else _scaled(load, w)
+        la, lb = (lam_a, lam_b) if w == load.w else default_lambdas(w)
+        sol = solve_liftoff(step_load, f, min(n, COARSE_N), la, lb, w + e_extra, preformed,
+                            guess)
+        if not sol.converged:
+            return None
+        guess = (sol.a, sol.b)
+    return guess
+
+
+def _scaled(load: Load, w: float) -> Load:
+    if load.law == "table":
+        assert load.table_x is not None and load.table_p is not None
+        return make_load("table", table={"x": load.table_x * w / load.w, "p": load.table_p})
+    return make_load(load.law, w)
+
+
+def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int = 100,
+                lam_a: float | None = None, lam_b: float | None = None,
+                e: float | None = None, table: Mapping[str, Sequence[float]] | None = None,
+                guess: tuple[float, float] | None = None,
+                preformed: bool = True) -> LiftoffSolution:
+    """A pressure patch at friction f and half-width w_hat (see module docstring).
+
+    ``law`` is uniform/hertz/punch (aliases: constant, A1, A2, A3) or ``table`` with
+    ``table = {"x": [...], "p": [...]}`` (w_hat is then the table's extent).
+    """
+    if not (np.isfinite(f) and f >= 0):
+        raise ValueError(f"friction coefficient f must be >= 0, got {f}")
+    load = make_load(law, w_hat, table)
+    la, lb = default_lambdas(load.w)
+    lam_a = la if lam_a is None else lam_a
+    lam_b = lb if lam_b is None else lam_b
+    e = load.w + 5.0 if e is None else e
+    if f == 0:
+        from contactlab.receding.frictionless import solve_frictionless
+
+        return solve_frictionless(load, n, lam_a, lam_b, e, problem=load.law,
+                                  preformed=preformed)
+    if guess is None:
+        a0, b0 = line_guess(f)
+        guess = (a0 + 0.15 * load.w, b0 + 0.5 * load.w)
+    sol = solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, load.law)
+    if not sol.converged:
+        seed = _continuation(load, f, n, lam_a, lam_b, e - load.w, preformed)
+        if seed is not None:
+            sol = solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, seed, load.law)
+    if not sol.converged:
+        sol = flag_no_stick(sol, lam_a, lam_b)
+    return sol
+
+
+def solve_uniform(f: float = 0.3, w_hat: float = 2.5, n: int = 100) -> LiftoffSolution:
+    """The constant pressure patch (problem A1)."""
+    return solve_patch("uniform", f, w_hat, n)
+
+
+def slope_normalisations(law: str, w: float, k_t: float) -> dict[str, float]:
+    """K_T in the thesis's other normalisations (eqs 7.13, 7.16, 7.18, 7.37-7.39).
+
+    ``K_N`` = k_l 4 mu / ((kappa + 1) A_N) (K1, K2, K3) and ``K_B`` the slope normalised
+    by the semi-infinite amplitudes B1, B2, B3 as k_l 2 mu / ((kappa + 1) B_N) with
+    B1 = A1, B2 = A2 c sqrt(2 w), B3 = A3 / (c sqrt(2 w)) (lengths in c)."""
+    # T per unit amplitude A_N (eqs 7.34-7.36)
+    t_per_a = {"uniform": 2.0 * w, "hertz": np.pi * w * w / 2.0, "punch": np.pi}[law]
+    b_per_a = {"uniform": 1.0, "hertz": np.sqrt(2.0 * w),
+               "punch": 1.0 / np.sqrt(2.0 * w)}[law]
+    # k_l 2 mu/((kappa+1) A_N) = K_T T / A_N
+    k_a = k_t * t_per_a
+    return {"K_N": 2.0 * k_a, "K_B": k_a / b_per_a}

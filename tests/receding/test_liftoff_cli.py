@@ -1,0 +1,101 @@
+"""Command line, sweeps, gather, profiles, report and rules of chs 6-7."""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from contactlab.cli import main
+from contactlab.io import check_cf
+
+
+def test_cli_solve_json(capsys: pytest.CaptureFixture[str]) -> None:
+    keys = ("problem", "f", "w_hat", "a", "b", "K_T", "converged", "residual",
+            "remote_slip_error", "seconds")
+    assert main(["receding", "solve", "--problem", "uniform", "--f", "0.3", "--w-hat", "2.5",
+                 "--n", "64", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert all(k in out for k in keys)
+    assert out["problem"] == "uniform" and out["w_hat"] == 2.5 and out["converged"] is True
+    assert 0 < out["a"] < out["b"] and out["K_T"] > 0
+    assert main(["receding", "solve", "--problem", "line", "--f", "0.5", "--n", "64",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["b"] == pytest.approx(1.80, abs=0.01) and abs(out["remote_slip_error"]) < 3e-3
+    for bad in (["--problem", "line", "--f", "-1"], ["--problem", "hertz", "--f", "0.3"],
+                ["--problem", "punch", "--f", "0.3", "--w-hat", "0"]):
+        assert main(["receding", "solve", *bad]) == 2
+        assert "contactlab: error:" in capsys.readouterr().err
+
+
+def test_sweeps_gather_profile_report(tmp_path: Path) -> None:
+    c0, c1 = tmp_path / "l0.nc", tmp_path / "l1.nc"
+    assert main(["receding", "line-sweep", "--f", "0.5", "--n", "40", "--out", str(c0)]) == 0
+    assert main(["receding", "line-sweep", "--f", "0.3", "0.0", "--n", "40",
+                 "--out", str(c1)]) == 0
+    line = tmp_path / "line.nc"
+    assert main(["receding", "liftoff-gather", str(c0), str(c1), "--out", str(line)]) == 0
+    p0 = tmp_path / "u0.nc"
+    assert main(["receding", "patch-sweep", "--problem", "uniform", "--f", "0.3", "0.5",
+                 "--w-hat", "1", "2.5", "--n", "40", "--out", str(p0)]) == 0
+    uniform = tmp_path / "uniform.nc"
+    assert main(["receding", "liftoff-gather", str(p0), "--out", str(uniform)]) == 0
+    prof_line = tmp_path / "line_f0.5.nc"
+    assert main(["receding", "liftoff-profile", "--problem", "line", "--f", "0.3", "--n",
+                 "40", "--chaise", "--x-max", "8", "--out", str(prof_line)]) == 0
+    prof_patch = tmp_path / "patch.nc"
+    assert main(["receding", "liftoff-profile", "--problem", "uniform", "--f", "0.3",
+                 "--w-hat", "1", "--n", "40", "--x-max", "8", "--out", str(prof_patch)]) == 0
+    with xr.open_dataset(line) as ds:
+        check_cf(ds)
+        assert list(ds["f"].values) == [0.0, 0.3, 0.5]
+        assert (ds["converged"] == 1).all()
+        for key in ("a", "b", "K_T", "converged", "residual", "remote_slip_error",
+                    "a_chaise", "b_chaise"):
+            assert key in ds
+        assert np.all(np.abs(ds["remote_slip_error"].values) < 3e-3)
+        # non-converged points stay in the sweep, flagged, with their residual
+        failed = ds["converged_chaise"].values == 0
+        assert failed.any() and np.all(np.isnan(ds["a_chaise"].values[failed]))
+        assert np.all(np.isfinite(ds["residual_chaise"].values[failed]))
+        assert np.all(ds["regime_chaise"].values[failed] == -1)
+    with xr.open_dataset(uniform) as ds:
+        check_cf(ds)
+        assert dict(ds.sizes) == {"f": 2, "w_hat": 2} and (ds["converged"] == 1).all()
+    with xr.open_dataset(prof_line) as ds:
+        check_cf(ds)
+        assert "separation_chaise" in ds and ds.attrs["converged"] == 1
+    section = tmp_path / "report" / "sections" / "51_receding_line_patch.html"
+    assert main(["receding", "liftoff-report", "--line", str(line), "--patches", str(uniform),
+                 "--profiles", str(prof_line), str(prof_patch), "--report-dir",
+                 str(tmp_path / "report"), "--out", str(section)]) == 0
+    html = section.read_text()
+    assert "Fig. 6.3" in html and "Fig. 7.9" in html
+    assert (tmp_path / "report" / "tables" / "receding_patch_fits.csv").exists()
+    assert main(["receding", "liftoff-gather", str(c0), str(c0), "--out",
+                 str(tmp_path / "bad.nc")]) == 2
+
+
+def test_receding_liftoff_rules_plan(workflow_copy: Path) -> None:
+    env = dict(os.environ)
+    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
+    target = "results/report/sections/51_receding_line_patch.html"
+    run = subprocess.run(
+        [sys.executable, "-m", "snakemake", "--configfile", "config/e2e.yaml", "-n", target],
+        cwd=workflow_copy, env=env, capture_output=True, text=True, check=False,
+    )
+    assert run.returncode == 0, run.stderr[-3000:]
+    jobs = dict(re.findall(r"^(receding_\w+|report_receding_line_patch)\s+(\d+)$",
+                           run.stdout, re.M))
+    assert jobs == {"receding_line_chunk": "2", "receding_line_gather": "1",
+                    "receding_patch_chunk": "3", "receding_patch_gather": "3",
+                    "receding_line_profile": "1", "receding_patch_profile": "1",
+                    "report_receding_line_patch": "1"}
