@@ -40,6 +40,9 @@ def test_workflow_end_to_end(workflow_copy: Path) -> None:
     with xr.open_dataset(results / "surfaces" / "seq.nc") as seq:
         assert seq["Seq"].attrs["units"] == "um"
         assert float(seq["Seq"].sel(test="RU1")) == pytest.approx(2.038, abs=5e-4)
+    with xr.open_dataset(results / "receding" / "table_parabolic.nc") as table:
+        # a pressure shape given in config is swept like the named laws
+        assert table["a"].dims == ("f", "w_hat") and bool(table["converged"].all())
     page = (results / "report" / "index.html").read_text()
     assert "Seq" in page and "figures/seq.png" in page
 

@@ -239,6 +239,49 @@ rule receding_patch_gather:
         "contactlab receding liftoff-gather {input} --out {output} 2> {log}"
 
 
+PATCH_TABLES = PATCHES.get("tables", {})
+
+
+rule receding_table_chunk:
+    """a, b, K_T of a user-given pressure shape (receding.patches.tables) over (f chunk, w/c)."""
+    output:
+        temp("results/receding/chunks/table_{name}_{chunk}.nc"),
+    wildcard_constraints:
+        name="|".join(PATCH_TABLES) or "(?!)",
+        chunk=r"\d+",
+    params:
+        f=lambda wc: chunk_values(PATCH_F, wc.chunk, len(PATCH_CHUNKS)),
+        w=" ".join(str(w) for w in PATCH_W),
+        x=lambda wc: " ".join(str(v) for v in PATCH_TABLES[wc.name]["x"]),
+        p=lambda wc: " ".join(str(v) for v in PATCH_TABLES[wc.name]["p"]),
+        n=PATCHES["n"],
+        lam_b=PATCHES["lambda_b"],
+        e_minus_w=PATCHES["e_minus_w"],
+        env=RECEDING_ENV,
+    log:
+        "logs/receding/table_{name}_{chunk}.log",
+    shell:
+        "{params.env} contactlab receding patch-sweep --problem table"
+        " --table-x {params.x} --table-p {params.p}"
+        " --f {params.f} --w-hat {params.w} --n {params.n} --lam-b {params.lam_b}"
+        " --e-minus-w {params.e_minus_w} --out {output} 2> {log}"
+
+
+rule receding_table_gather:
+    """results/receding/table_<name>.nc: a user-given pressure shape over (f, w/c)."""
+    input:
+        lambda wc: expand("results/receding/chunks/table_{name}_{chunk}.nc", name=wc.name,
+                          chunk=PATCH_CHUNKS),
+    output:
+        "results/receding/table_{name}.nc",
+    wildcard_constraints:
+        name="|".join(PATCH_TABLES) or "(?!)",
+    log:
+        "logs/receding/table_gather_{name}.log",
+    shell:
+        "contactlab receding liftoff-gather {input} --out {output} 2> {log}"
+
+
 rule receding_line_profile:
     """Densities, tractions, separation and slip of the line load (and Chaise model)."""
     output:
@@ -353,6 +396,7 @@ ALL_TARGETS.extend(
     [
         "results/receding/line.nc",
         *expand("results/receding/{law}.nc", law=PATCHES["laws"]),
+        *expand("results/receding/table_{name}.nc", name=PATCH_TABLES),
         *expand("results/receding/profiles/{p}.nc", p=LINE_PROFILES),
         *expand("results/receding/profiles/{p}.nc", p=PATCH_PROFILES),
     ]

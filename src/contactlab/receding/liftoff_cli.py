@@ -83,8 +83,16 @@ def _line_sweep(args: argparse.Namespace) -> None:
 def _patch_sweep(args: argparse.Namespace) -> None:
     from contactlab.receding.liftoff_sweep import sweep_patch
 
+    shape = None
+    if args.table_x is not None or args.table_p is not None:
+        if args.table_x is None or args.table_p is None:
+            raise ValueError("a pressure table needs both --table-x and --table-p")
+        shape = {"x": args.table_x, "p": args.table_p}
     ds = sweep_patch(args.problem, np.asarray(args.f), np.asarray(args.w_hat), args.n,
-                     args.lam_b, args.e_minus_w)
+                     args.lam_b, args.e_minus_w, shape)
+    if shape is not None:
+        ds.attrs.update(table_x_over_w=np.asarray(shape["x"], dtype=float),
+                        table_p=np.asarray(shape["p"], dtype=float))
     stamp(ds, title=f"Pressure patch '{args.problem}' on a layer (thesis ch. 7): a, b, K_T "
                     f"over (f, w/c), N = {args.n}", source=SOURCE,
           history=f"contactlab receding patch-sweep --problem {args.problem} --f "
@@ -144,7 +152,11 @@ def register(commands: argparse._SubParsersAction) -> None:
     sweep.set_defaults(func=_line_sweep)
 
     patch = commands.add_parser("patch-sweep", help="pressure patch (ch. 7) over (f, w/c)")
-    patch.add_argument("--problem", choices=PROBLEMS[1:], required=True)
+    patch.add_argument("--problem", choices=(*PROBLEMS[1:], "table"), required=True)
+    patch.add_argument("--table-x", type=float, nargs="+", default=None,
+                       help="problem table: points x/w of the pressure shape (0..1 or -1..1)")
+    patch.add_argument("--table-p", type=float, nargs="+", default=None,
+                       help="problem table: pressure shape at those points (>= 0)")
     patch.add_argument("--f", type=float, nargs="+", required=True)
     patch.add_argument("--w-hat", type=float, nargs="+", required=True)
     patch.add_argument("--n", type=int, default=100)

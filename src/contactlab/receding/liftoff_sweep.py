@@ -15,6 +15,7 @@ import xarray as xr
 
 from contactlab.receding.liftoff import REGIMES, LiftoffSolution
 from contactlab.receding.line import solve_line
+from contactlab.receding.loading import make_load
 from contactlab.receding.patch import default_lambdas, slope_normalisations, solve_patch
 
 ONE = "1"
@@ -138,8 +139,17 @@ def sweep_line(f_values, n: int = 500, lam: float = 3.5, e: float = 5.0,
 
 
 def sweep_patch(law: str, f_values, w_values, n: int = 100, lam_b: float = 2.0,
-                e_extra: float = 5.0) -> xr.Dataset:
-    """A pressure patch over (f, w_hat), with the thesis's lambda_a(w) (sec. 7.4)."""
+                e_extra: float = 5.0, shape: dict | None = None) -> xr.Dataset:
+    """A pressure patch over (f, w_hat), with the thesis's lambda_a(w) (sec. 7.4).
+
+    ``law="table"`` takes ``shape = {"x": [...], "p": [...]}``: a pressure shape with x
+    in units of the half-width w (0 <= x <= 1, or symmetric on [-1, 1]), scaled to each
+    w_hat of the sweep, so a user's own pressure law is swept like the named ones.
+    """
+    if (law == "table") != (shape is not None):
+        raise ValueError("a pressure shape is needed for law 'table', and only for it")
+    if shape is not None:  # refuse a bad shape up front, not point by point
+        make_load("table", table={"x": np.asarray(shape["x"], dtype=float), "p": shape["p"]})
     f_values = check_f(f_values)
     w_values = np.asarray(w_values, dtype=float)
     if np.any(~np.isfinite(w_values)) or np.any(w_values <= 0):
@@ -155,17 +165,20 @@ def sweep_patch(law: str, f_values, w_values, n: int = 100, lam_b: float = 2.0,
         for j in np.argsort(w_values):
             w = float(w_values[j])
             guess = seeds.get(j, prev_w)
+            table = None if shape is None else {
+                "x": np.asarray(shape["x"], dtype=float) * w, "p": shape["p"]}
             try:
                 sol = solve_patch(law, f, w, n, lam_a=float(lam_a[j]), lam_b=lam_b,
-                                  e=w + e_extra, guess=guess)
+                                  e=w + e_extra, table=table, guess=guess)
                 if not sol.converged and guess is not None:
                     sol = solve_patch(law, f, w, n, lam_a=float(lam_a[j]), lam_b=lam_b,
-                                      e=w + e_extra)
+                                      e=w + e_extra, table=table)
                 records[i, j] = _record(sol)
                 if sol.converged and sol.regime == "slip_separation":
                     seeds[j] = prev_w = (sol.a, sol.b)
-                    norms = slope_normalisations(sol.load.law, w, sol.K_T)
-                    k_n[i, j], k_b[i, j] = norms["K_N"], norms["K_B"]
+                    if sol.load.law != "table":  # K_N, K_B need a named amplitude
+                        norms = slope_normalisations(sol.load.law, w, sol.K_T)
+                        k_n[i, j], k_b[i, j] = norms["K_N"], norms["K_B"]
             except (ValueError, np.linalg.LinAlgError) as exc:
                 records[i, j] = _failed(law, f, n, exc)
     dims = ("f", "w_hat")
