@@ -1,7 +1,8 @@
 """The SYNTHETIC demo scans, processed like real ones, against the published tables.
 
 Stated tolerances (issue 7; also in the report): Sq 1 %, Sa 3 %, Sp 2 %,
-Str +-(0.1 Str + 0.02), Rq 1 %, Ra 3 % (20x) and 10 % (100x), Rz 30 % (20x).
+Str +-(0.1 Str + 0.02), Rq 1 %, Ra 3 % (20x) and 10 % (100x), Rz 30 % (20x),
+fractal dimension +-0.08 (absolute).
 The generator scales with its own periodic spectral filter, the analysis uses the
 non-periodic end-corrected filter, plane/line removal and the X3P round trip, so the
 agreement checks the analysis chain.
@@ -17,7 +18,14 @@ import pytest
 import xarray as xr
 
 from contactlab.published import read_published
-from contactlab.surfaces.demo import LABEL, power_for_ratio, published_targets, seed_for
+from contactlab.surfaces.demo import (
+    LABEL,
+    PIXEL_UM,
+    power_for_ratio,
+    published_targets,
+    seed_for,
+)
+from contactlab.surfaces.parameters import profile_parameters
 from contactlab.surfaces.roughness import published_roughness
 from contactlab.surfaces.scans import read_scan
 from contactlab.surfaces.seq import add_beta_n, add_scan_seq, seq_dataset
@@ -62,8 +70,11 @@ def test_areal_parameters_match_tables_a1_a27(processed: pd.DataFrame) -> None:
         assert 1000 * o["Sa"] == pytest.approx(p["Sa"], rel=0.03), surface
         assert o["Sp"] == pytest.approx(p["Sp"], rel=0.02), surface
         assert abs(o["Str"] - p["Str"]) <= 0.1 * p["Str"] + 0.02, surface
-        # Not comparable with the thesis's (unstated) method; cube counting gives just above 2.
+        # The thesis does not state its method; ours (cube counting) and the published are
+        # both just above 2 for these surfaces, so only an absolute 0.08 is asserted
+        # (observed worst 0.067).
         assert 2.0 < o["fractal_dimension"] < 2.1, surface
+        assert abs(o["fractal_dimension"] - p["fractal_dimension"]) <= 0.08, surface
 
 
 def test_profile_parameters_match_tables_a1_a26(processed: pd.DataFrame) -> None:
@@ -78,12 +89,13 @@ def test_profile_parameters_match_tables_a1_a26(processed: pd.DataFrame) -> None
 
 
 def test_structured_100x_profiles_match_table_2_6(processed: pd.DataFrame) -> None:
+    """Rq 1 %, Ra 10 %; Rz is not asserted against Table 2.6 (see the test below)."""
     for row in read_published("2.6").itertuples():
         o = processed.loc[f"{row.test}_specimen_100x"]
         assert o["lambda_c"] == row.lambda_c
         assert 1000 * o["Rq"] == pytest.approx(row.Rq, rel=0.01), row.test
         assert 1000 * o["Ra"] == pytest.approx(row.Ra, rel=0.10), row.test
-        assert o["Rz"] < row.Rz  # smooth synthetic profiles lack the published spikes
+        assert o["Rz"] < row.Rz  # below the published, which S3 cannot reach (below)
 
 
 def test_grooves_set_the_str_of_the_10um_specimen(processed: pd.DataFrame) -> None:
@@ -122,3 +134,20 @@ def test_surface_files_are_cf_and_hold_spectra(processed: pd.DataFrame) -> None:
 def test_targets_cover_every_published_surface() -> None:
     targets = published_targets()
     assert len(targets["areal"]) == 25 and len(targets["profile"]) == 31
+
+
+def test_published_100x_rz_of_s3_exceeds_what_its_sampling_length_allows() -> None:
+    """Why the 100x Rz is not asserted: with Rq and Rz both means over sampling lengths of
+    n points (sec. 2.3.4), Rz/Rq <= sqrt(2 n) for any heights (range <= sqrt(2 n) rms),
+    and Table 2.6 gives S3 Rz/Rq = 6.9 with n = 10 (bound 4.47), so no profile reproduces
+    it. With the published Ra/Rq (0.77-0.79) as well, the most extreme heights give at
+    most 4.10 (S3), 5.24 (S2, published 6.15) and 7.00 (S1) Rq (numerical maximisation)."""
+    table = read_published("2.6").set_index("test")
+    n = table["lambda_c"] / PIXEL_UM["100x"]
+    ratio = table["Rz"] / (table["Rq"] / 1000)
+    assert ratio["S3"] > np.sqrt(2 * n["S3"])
+    # the bound itself: two opposite spikes in an otherwise flat sampling length
+    z = np.zeros(10)
+    z[[2, 7]] = (1.0, -1.0)
+    p = profile_parameters(z, 0.5, 5.0)
+    assert p.Rz / p.Rq == pytest.approx(np.sqrt(20))
