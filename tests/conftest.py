@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import os
 import shutil
+import subprocess
+import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -32,3 +36,19 @@ def copy_workflow(dest: Path) -> Path:
 def workflow_copy(tmp_path: Path) -> Path:
     """A fresh copy of the workflow in a temporary directory."""
     return copy_workflow(tmp_path)
+
+
+def run_snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]:
+    """Snakemake on the end-to-end config in ``workdir``, this environment first on PATH."""
+    env = dict(os.environ)
+    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
+    return subprocess.run(
+        [sys.executable, "-m", "snakemake", "--configfile", "config/e2e.yaml", *args],
+        cwd=workdir, env=env, capture_output=True, text=True, check=False,
+    )
+
+
+@pytest.fixture
+def snakemake() -> Callable[..., subprocess.CompletedProcess[str]]:
+    """:func:`run_snakemake`, for tests that drive the workflow."""
+    return run_snakemake

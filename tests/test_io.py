@@ -29,3 +29,21 @@ def test_write_netcdf_refuses_variables_without_units(tmp_path: Path) -> None:
     write_netcdf(ds, tmp_path / "x.nc")
     with xr.open_dataset(tmp_path / "x.nc") as back:
         np.testing.assert_array_equal(back["x"], np.arange(3.0))
+
+
+def test_concat_chunks_joins_sorts_and_refuses_overlap_or_missing(tmp_path: Path) -> None:
+    from contactlab.io import concat_chunks
+
+    attrs = {"long_name": "value", "units": "1"}
+    for name, f in (("b", [0.5, 0.7]), ("a", [0.1])):
+        ds = xr.Dataset({"v": ("f", np.array(f) * 2, attrs)},
+                        coords={"f": ("f", f, {"long_name": "f", "units": "1"})})
+        ds.to_netcdf(tmp_path / f"{name}.nc")
+    joined, parts = concat_chunks([tmp_path / "b.nc", tmp_path / "a.nc"], "f")
+    np.testing.assert_array_equal(joined["f"], [0.1, 0.5, 0.7])
+    np.testing.assert_array_equal(joined["v"], [0.2, 1.0, 1.4])
+    assert len(parts) == 2
+    with pytest.raises(ValueError, match="overlap in f"):
+        concat_chunks([tmp_path / "a.nc", tmp_path / "a.nc"], "f")
+    with pytest.raises(FileNotFoundError, match=r"c\.nc not found"):
+        concat_chunks([tmp_path / "a.nc", tmp_path / "c.nc"], "f")

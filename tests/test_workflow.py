@@ -2,26 +2,12 @@
 
 from __future__ import annotations
 
-import os
 import re
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 import xarray as xr
-
-CONFIG = "config/e2e.yaml"
-
-
-def snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]:
-    """Run Snakemake in ``workdir`` with this interpreter's environment on PATH."""
-    env = dict(os.environ)
-    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
-    return subprocess.run(
-        [sys.executable, "-m", "snakemake", "--configfile", CONFIG, *args],
-        cwd=workdir, env=env, capture_output=True, text=True, check=False,
-    )
 
 
 def planned_rules(result: subprocess.CompletedProcess[str]) -> set[str]:
@@ -33,7 +19,7 @@ def planned_rules(result: subprocess.CompletedProcess[str]) -> set[str]:
 
 
 @pytest.mark.slow
-def test_workflow_end_to_end(workflow_copy: Path) -> None:
+def test_workflow_end_to_end(workflow_copy: Path, snakemake) -> None:
     run = snakemake(workflow_copy, "-j2", "all")
     assert run.returncode == 0, run.stderr[-3000:]
     results = workflow_copy / "results"
@@ -63,7 +49,7 @@ def test_workflow_end_to_end(workflow_copy: Path) -> None:
     assert (results / "report" / "snakemake-report.zip").stat().st_size > 0
 
 
-def test_single_target_builds_only_its_ancestors(workflow_copy: Path) -> None:
+def test_single_target_builds_only_its_ancestors(workflow_copy: Path, snakemake) -> None:
     run = snakemake(workflow_copy, "-n", "results/surfaces/seq.nc")
     assert run.returncode == 0, run.stderr
     # Seq starts from the scans: texture parameters of the (demo) scans come first.
@@ -87,7 +73,7 @@ def test_single_target_builds_only_its_ancestors(workflow_copy: Path) -> None:
     ids=["unknown-key", "wrong-type", "missing-file", "negative-load", "unknown-column"],
 )
 def test_malformed_config_fails_fast_and_writes_nothing(
-    workflow_copy: Path, edit: tuple[str, str, str], expected: list[str]
+    workflow_copy: Path, snakemake, edit: tuple[str, str, str], expected: list[str]
 ) -> None:
     path, old, new = edit
     target = workflow_copy / path

@@ -71,6 +71,26 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
     return Path(path)
 
 
+def concat_chunks(paths: list[str | os.PathLike[str]], dim: str) -> tuple[xr.Dataset,
+                                                                        list[xr.Dataset]]:
+    """Join the chunk files of a split sweep along ``dim``; also return the chunks.
+
+    Raises FileNotFoundError for a missing chunk and ValueError if chunks overlap in ``dim``.
+    """
+    parts = []
+    for path in paths:
+        if not Path(path).exists():
+            raise FileNotFoundError(f"sweep chunk {path} not found")
+        with xr.open_dataset(path) as part:
+            parts.append(part.load())
+    ds = xr.concat(parts, dim=dim, data_vars="minimal", coords="minimal",
+                   combine_attrs="drop_conflicts").sortby(dim)
+    if ds[dim].to_index().has_duplicates:
+        raise ValueError(f"sweep chunks {', '.join(map(str, paths))} overlap in {dim}")
+    ds.attrs.pop("history", None)
+    return ds, parts
+
+
 def write_text(text: str, path: str | os.PathLike[str]) -> Path:
     """Write a text file atomically."""
     with atomic_path(path) as tmp:

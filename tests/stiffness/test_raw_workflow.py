@@ -2,26 +2,13 @@
 
 from __future__ import annotations
 
-import os
 import re
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
 from contactlab.stiffness.demo import demo_data_files
 from contactlab.testsheet import TestSheetError, check_data_files, read_test_sheet
-
-
-def snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]:
-    """Run Snakemake in ``workdir`` (e2e config) with this interpreter's environment."""
-    env = dict(os.environ)
-    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
-    return subprocess.run(
-        [sys.executable, "-m", "snakemake", "--configfile", "config/e2e.yaml", *args],
-        cwd=workdir, env=env, capture_output=True, text=True, check=False,
-    )
 
 
 def test_demo_paths_may_be_missing_but_user_paths_may_not(repo: Path, tmp_path: Path) -> None:
@@ -42,7 +29,7 @@ def _jobs(result) -> dict[str, int]:
     return {name: int(count) for name, count in rows if name != "total"}
 
 
-def _placeholders(workdir: Path, target: str) -> None:
+def _placeholders(snakemake, workdir: Path, target: str) -> None:
     """Create every file of the target's DAG (empty) and mark it up to date (--touch)."""
     plan = snakemake(workdir, "-n", target)
     assert plan.returncode == 0, plan.stderr[-3000:]
@@ -59,9 +46,10 @@ def _placeholders(workdir: Path, target: str) -> None:
     assert "Nothing to be done" in again.stdout + again.stderr, again.stdout[-2000:]
 
 
-def test_tenth_test_reruns_only_its_jobs_and_the_summaries(workflow_copy: Path) -> None:
+def test_tenth_test_reruns_only_its_jobs_and_the_summaries(workflow_copy: Path,
+                                                          snakemake) -> None:
     target = "results/report/sections/21_stiffness_raw.html"
-    _placeholders(workflow_copy, target)
+    _placeholders(snakemake, workflow_copy, target)
     data = workflow_copy / "data" / "T10"
     data.mkdir(parents=True)
     (data / "load_log.csv").write_text("frame,step,kind,direction,Pn,Qt\n")

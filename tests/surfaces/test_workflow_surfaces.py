@@ -2,22 +2,9 @@
 
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
-
-
-def snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]:
-    """Snakemake on the end-to-end config in ``workdir`` (as tests/test_workflow.py)."""
-    env = dict(os.environ)
-    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
-    return subprocess.run(
-        [sys.executable, "-m", "snakemake", "--configfile", "config/e2e.yaml", *args],
-        cwd=workdir, env=env, capture_output=True, text=True, check=False,
-    )
 
 
 @pytest.mark.parametrize(
@@ -29,7 +16,7 @@ def snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]:
     ],
     ids=["missing-scan", "bad-axis"],
 )
-def test_bad_surface_sheet_fails_fast(workflow_copy: Path, old: str, new: str,
+def test_bad_surface_sheet_fails_fast(workflow_copy: Path, snakemake, old: str, new: str,
                                       expected: list[str]) -> None:
     sheet = workflow_copy / "config" / "surfaces.csv"
     text = sheet.read_text()

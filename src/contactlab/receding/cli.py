@@ -21,7 +21,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from contactlab.io import stamp, write_netcdf
+from contactlab.io import concat_chunks, stamp, write_netcdf
 
 SOURCE = ("distributed dislocations, thesis ch. 5 (eqs 5.1-5.28, App. B.1); "
           "Gauss-Chebyshev quadrature, MINPACK root finding on the leftover equations")
@@ -78,19 +78,9 @@ def _sweep(args: argparse.Namespace) -> None:
 
 
 def _gather(args: argparse.Namespace) -> None:
-    parts = []
-    for path in args.chunks:
-        if not Path(path).exists():
-            raise FileNotFoundError(f"sweep chunk {path} not found")
-        with xr.open_dataset(path) as part:
-            parts.append(part.load())
-    ds = xr.concat(parts, dim="w_hat", data_vars="minimal", coords="minimal",
-                   combine_attrs="drop_conflicts").sortby("w_hat")
-    if np.unique(ds["w_hat"]).size != ds["w_hat"].size:
-        raise ValueError(f"sweep chunks {', '.join(map(str, args.chunks))} overlap in w_hat")
+    ds, parts = concat_chunks(args.chunks, "w_hat")
     if len({int(part.attrs.get("N", -1)) for part in parts}) != 1:
         raise ValueError(f"sweep chunks {', '.join(map(str, args.chunks))} differ in N")
-    ds.attrs.pop("history", None)
     stamp(ds, title=f"Gap problem (thesis ch. 5): transition points over (f, w/c), "
                     f"N = {ds.attrs.get('N')}",
           source=SOURCE, history=f"contactlab receding gap-gather of {len(parts)} chunks")

@@ -17,9 +17,8 @@ import time
 from pathlib import Path
 
 import numpy as np
-import xarray as xr
 
-from contactlab.io import stamp, write_netcdf
+from contactlab.io import concat_chunks, stamp, write_netcdf
 
 SOURCE = ("distributed dislocations with a preformed climb distribution, thesis chs 6-7 "
           "(eqs 6.3-6.32, 7.1-7.39, App. B); Gauss-Chebyshev on semi-infinite maps, "
@@ -101,20 +100,10 @@ def _patch_sweep(args: argparse.Namespace) -> None:
 
 
 def _gather(args: argparse.Namespace) -> None:
-    parts = []
-    for path in args.chunks:
-        if not Path(path).exists():
-            raise FileNotFoundError(f"sweep chunk {path} not found")
-        with xr.open_dataset(path) as part:
-            parts.append(part.load())
+    ds, parts = concat_chunks(args.chunks, "f")
     if len({part.attrs.get("problem") for part in parts}) != 1:
         raise ValueError(f"sweep chunks {', '.join(map(str, args.chunks))} mix problems")
-    ds = xr.concat(parts, dim="f", data_vars="minimal", coords="minimal",
-                   combine_attrs="drop_conflicts").sortby("f")
-    if np.unique(ds["f"]).size != ds["f"].size:
-        raise ValueError(f"sweep chunks {', '.join(map(str, args.chunks))} overlap in f")
     title = parts[0].attrs.get("title", "")
-    ds.attrs.pop("history", None)
     stamp(ds, title=title, source=SOURCE,
           history=f"contactlab receding liftoff-gather of {len(parts)} chunks")
     write_netcdf(ds, args.out)
