@@ -157,19 +157,7 @@ def register_published(commands: argparse._SubParsersAction) -> None:
                       help="write table_2.x_from_published_steps.csv here")
     summ.add_argument("--kt0-threshold", type=float, default=0.5,
                       help="relative Kt0 margin below which a step enters the means")
-    defaults = ErrorModel()
-    summ.add_argument("--piston-area-cm2", type=float, default=defaults.piston_area_cm2)
-    summ.add_argument("--pressure-uncertainty-MPa", type=float,
-                      default=defaults.pressure_uncertainty_MPa)
-    summ.add_argument("--piston-area-rel-uncertainty", type=float,
-                      default=defaults.piston_area_rel_uncertainty)
-    summ.add_argument("--tangential-pressure-rel-extra", type=float,
-                      default=defaults.tangential_pressure_rel_extra)
-    summ.add_argument("--qs-rel-extra", type=float, default=defaults.qs_rel_extra)
-    summ.add_argument("--tangential-pressure", choices=("divide", "multiply"),
-                      default="multiply",
-                      help="gauge pressure of the tangential-step load error: Pn/A (text) or "
-                           "Pn*A/10 (reproduces the published f margins; default)")
+    _error_model_options(summ)
     summ.add_argument("--out", type=Path, required=True,
                       help="results/stiffness/summary_from_published_steps.nc")
     summ.set_defaults(func=_summarize_published)
