@@ -57,6 +57,24 @@ def test_structured_tables_carry_the_wavelength(built) -> None:
     assert set(built["2.9"]["basis"]) == {"mean"}
 
 
+def test_seq_from_scans_sits_beside_the_published_seq(sheet, built) -> None:
+    """Tables 2.3/2.10 carry beta_n Seq from the published Sq and from the scans' Sq."""
+    inputs = published_inputs()
+    seq = pd.DataFrame({"Seq": 1.0, "Seq_scan": 2.0}, index=sheet.index)
+    tables = build_tables(inputs["steps"], inputs["normal"], sheet, seq, MODEL)
+    for number in ("2.3", "2.10"):
+        table = tables[number]
+        np.testing.assert_allclose(table["beta_n_Seq_scan"], 2 * table["beta_n_Seq"])
+        assert (table["Seq_scan"] == 2.0).all()
+        assert table.attrs["units"]["Seq_scan"] == "um"
+    ds = summary_dataset(tables, sheet, inputs["mean_row"])
+    assert ds["beta_n_Seq_scan"].attrs["units"] == "1"
+    with pytest.raises(ValueError, match=r"no value for test\(s\) \['RU1'\]"):
+        build_tables(inputs["steps"], inputs["normal"], sheet, seq.drop("RU1"), MODEL)
+    # without scans the columns are there, empty
+    assert built["2.3"]["Seq_scan"].isna().all()
+
+
 def test_covariance_changes_the_margins_as_expected(sheet) -> None:
     steps = published_inputs()["steps"]
     q0 = step_quantities(steps, sheet, MODEL)

@@ -41,8 +41,9 @@ build them from per-row Kt0/An values with :func:`mean_row_statistics`.
 Test sheet: ``config/tests.csv`` read with :func:`contactlab.testsheet.read_test_sheet`
 (index ``id``; columns ``max_normal_load_kN``, ``nominal_area_mm2``).
 
-Seq per test: a mapping or Series test -> Seq [um] (e.g. ``results/surfaces/seq.nc``
-variable ``Seq`` over coordinate ``test``, or :func:`contactlab.surfaces.seq.seq_dataset`).
+Seq per test: a mapping or Series test -> Seq [um], or a frame indexed by test with ``Seq``
+and optionally ``Seq_scan`` (``results/surfaces/seq.nc`` read by
+:func:`contactlab.stiffness.summary.read_seq`).
 
 Outputs
 =======
@@ -56,7 +57,8 @@ Outputs
   combined), Pn_An, Kt0_An, Kt0_An_moe, beta_t, beta_t_moe, f, f_moe, steps_used.
 - :func:`coupling` -> Table 2.4/2.9 layout: test, basis (mean, loading, unloading), Cc,
   Cc_moe.
-- :func:`beta_n_seq` -> Table 2.3/2.10 layout: test, Seq, beta_n_Seq.
+- :func:`beta_n_seq` -> Table 2.3/2.10 layout: test, Seq, beta_n_Seq (and Seq_scan,
+  beta_n_Seq_scan when the scans' Seq is given).
 - :func:`mean_row_statistics` (per-row values of one step -> mean, Student-t margin, row
   extremes) and :func:`mean_row_summary` (mean-row table beside the fit Kt0 of each step).
 
@@ -305,17 +307,29 @@ def coupling(means: pd.DataFrame, normal: pd.DataFrame,
     return pd.DataFrame(rows)
 
 
-def beta_n_seq(normal: pd.DataFrame, seq: Mapping[str, float] | pd.Series,
+def beta_n_seq(normal: pd.DataFrame, seq: Mapping[str, float] | pd.Series | pd.DataFrame,
                direction: str = "loading") -> pd.DataFrame:
-    """Tables 2.3/2.10: Seq [um] and the dimensionless beta_n Seq (loading beta_n)."""
-    seq = pd.Series(seq, dtype=float)
+    """Tables 2.3/2.10: Seq [um] and the dimensionless beta_n Seq (loading beta_n).
+
+    ``seq`` maps test -> Seq, or is a frame indexed by test with a ``Seq`` column and
+    optionally ``Seq_scan`` (Seq from the scans' Sq, issue 7); each Seq column gives its
+    own ``beta_n_<column>`` product, side by side.
+    """
+    frame = seq.copy() if isinstance(seq, pd.DataFrame) else pd.Series(
+        seq, dtype=float).to_frame("Seq")
+    columns = [c for c in ("Seq", "Seq_scan") if c in frame.columns]
+    if "Seq" not in columns:
+        raise ValueError("Seq: no column 'Seq'")
     rows = normal[normal["direction"] == direction]
-    missing = sorted(set(rows["test"]) - set(seq.index))
+    missing = sorted(set(rows["test"]) - set(frame.index))
     if missing:
         raise ValueError(f"Seq: no value for test(s) {missing}")
-    s = seq.loc[rows["test"].to_numpy()].to_numpy()
-    return pd.DataFrame({"test": rows["test"].to_numpy(), "Seq": s,
-                         "beta_n_Seq": rows["beta_n"].to_numpy() * s})
+    values = frame.loc[rows["test"].to_numpy(), columns].astype(float)
+    out = pd.DataFrame({"test": rows["test"].to_numpy()})
+    for col in columns:
+        out[col] = values[col].to_numpy()
+        out[f"beta_n_{col}"] = rows["beta_n"].to_numpy() * out[col].to_numpy()
+    return out
 
 
 def mean_row_statistics(values: np.ndarray | list[float],

@@ -50,7 +50,7 @@ def _collect(results: list[Path]) -> dict[str, pd.DataFrame]:
             for key, v in parts.items()}
 
 
-def raw_tables(results: list[Path], sheet: pd.DataFrame, seq: pd.Series | None = None,
+def raw_tables(results: list[Path], sheet: pd.DataFrame, seq: pd.DataFrame | None = None,
                threshold: float = 0.5, error_model: ErrorModel | None = None,
                texture_wavelength: pd.Series | None = None) -> dict[str, pd.DataFrame]:
     """The aggregated tables of the raw results (:func:`.tables.build_tables`) plus

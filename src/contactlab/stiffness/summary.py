@@ -137,11 +137,16 @@ def summary_dataset(tables: Mapping[str, pd.DataFrame], tests: pd.DataFrame,
                        _grid(mean_row, step_keys, step_coords, col), _describe(col))
     seq = tables.get("seq")
     if seq is not None and len(seq):
-        for col, attrs in (("Seq", {"long_name": "equivalent roughness Seq (eq. 2.1)",
-                                    "units": "um"}),
+        for col, attrs in (("Seq", {"long_name": "equivalent roughness Seq (eq. 2.1) from "
+                                            "the published Sq", "units": "um"}),
                            ("beta_n_Seq", {"long_name": "loading beta_n times Seq",
-                                           "units": "1"})):
-            ds[col] = ("test", _grid(seq, ("test",), (test_ids,), col), attrs)
+                                           "units": "1"}),
+                           ("Seq_scan", {"long_name": "equivalent roughness Seq (eq. 2.1) "
+                                                      "from the scans' Sq", "units": "um"}),
+                           ("beta_n_Seq_scan", {"long_name": "loading beta_n times Seq_scan",
+                                                "units": "1"})):
+            if col in seq.columns:
+                ds[col] = ("test", _grid(seq, ("test",), (test_ids,), col), attrs)
     sheet = tests.reindex(test_ids)
     ds["max_normal_load_kN"] = ("test", sheet["max_normal_load_kN"].to_numpy(dtype=float),
                                 {"long_name": "normal load -Pn of the tangential steps",
@@ -164,15 +169,16 @@ def published_inputs(published_dir: Path | None = None) -> dict[str, pd.DataFram
             "mean_row": mean_row_stiffness(published_dir), "texture_wavelength": wavelength}
 
 
-def read_seq(path: str | Path) -> pd.Series:
-    """Seq [um] per test from ``results/surfaces/seq.nc``."""
+def read_seq(path: str | Path) -> pd.DataFrame:
+    """Seq [um] per test from ``results/surfaces/seq.nc``: column ``Seq`` (published Sq)
+    and, when the file has it, ``Seq_scan`` (Sq computed from the scans), indexed by test."""
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"{path}: Seq file not found")
     with xr.open_dataset(path) as ds:
         if "Seq" not in ds:
             raise ValueError(f"{path}: no variable 'Seq'")
-        seq = ds["Seq"].to_series()
+        seq = ds[[c for c in ("Seq", "Seq_scan") if c in ds]].to_dataframe()
     seq.index = seq.index.astype(str)
     return seq
 

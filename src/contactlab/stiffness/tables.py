@@ -12,7 +12,8 @@ covariance-kept margins ``*_moe_cov`` (NaN when the per-step tables carry no cor
 - 2.2 / 2.8 (means over steps with Kt0 margin < 50%, sec. 2.5.3): test, direction (loading,
   unloading, combined), [texture_wavelength,] Pn_An, Kt0_An, Kt0_An_moe [kN/mm^3], beta_t,
   beta_t_moe [1/um], f, f_moe [1], steps_used ("3;4;5"), Kt0_An_moe_cov
-- 2.3 / 2.10: test, Seq [um], beta_n_Seq [1]
+- 2.3 / 2.10: test, Seq [um], beta_n_Seq [1] from the published Sq, and Seq_scan [um],
+  beta_n_Seq_scan [1] from the scans' Sq (NaN without scans)
 - 2.4 / 2.9 (Cc = Kt0/Kn): test, basis (mean, loading, unloading; 2.9 mean only),
   [texture_wavelength,] Cc, Cc_moe, Cc_moe_cov
 
@@ -42,7 +43,7 @@ _NORMAL = ["test", "direction", "gof", "Pn_An", "Kn_An", "Kn_An_moe", "beta_n", 
            "alpha_n", "alpha_n_moe", "P0", "P0_moe", "Kn_An_moe_cov"]
 _MEANS = ["test", "direction", "Pn_An", "Kt0_An", "Kt0_An_moe", "beta_t", "beta_t_moe", "f",
           "f_moe", "steps_used", "Kt0_An_moe_cov"]
-_SEQ = ["test", "Seq", "beta_n_Seq"]
+_SEQ = ["test", "Seq", "beta_n_Seq", "Seq_scan", "beta_n_Seq_scan"]
 _CC = ["test", "basis", "Cc", "Cc_moe", "Cc_moe_cov"]
 
 
@@ -62,12 +63,13 @@ _TABLE_UNITS: dict[str, str] = {
     "Kt0_An": "kN/mm3", "Kt0_An_moe": "kN/mm3", "Kt0_An_moe_cov": "kN/mm3",
     "beta_n": "1/um", "beta_n_moe": "1/um", "beta_t": "1/um", "beta_t_moe": "1/um",
     "alpha_n": "kN", "alpha_n_moe": "kN", "P0": "kN", "P0_moe": "kN", "Seq": "um",
+    "Seq_scan": "um",
     "texture_wavelength": "um",
 }
 
 
 def build_tables(steps: pd.DataFrame, normal: pd.DataFrame, tests: pd.DataFrame,
-                 seq: Mapping[str, float] | pd.Series | None = None,
+                 seq: Mapping[str, float] | pd.Series | pd.DataFrame | None = None,
                  model: ErrorModel | None = None, *, threshold: float = 0.5,
                  texture_wavelength: Mapping[str, float] | None = None
                  ) -> dict[str, pd.DataFrame]:
