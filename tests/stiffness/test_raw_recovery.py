@@ -1,9 +1,11 @@
 """Recovery: refitting the RECONSTRUCTED demo raw data gives back the thesis numbers.
 
 The demo data of the nine tests are generated from the published fits (Tables 2.1, 2.7,
-A.2-A.37) with noise calibrated to the published margins; the whole raw pipeline then has
-to recover each step's parameters within the published 95% margins for at least 90% of the
-steps, and the per-test summaries (Tables 2.1-2.4, 2.7-2.10) within their margins.
+A.2-A.37) with noise calibrated to the published margins and each step's realisation
+conditioned on the published fit (``contactlab.stiffness.demo``); the whole raw pipeline then
+has to recover each step's parameters within the published 95% margins for at least 90% of
+the steps, every per-test summary cell (Tables 2.1, 2.2, 2.4, 2.7, 2.8, 2.9) within its
+published margin, and the published selection of steps for the means.
 """
 
 from __future__ import annotations
@@ -18,6 +20,8 @@ import xarray as xr
 from contactlab.io import write_netcdf
 from contactlab.published import NORMAL_LOAD_KN, read_published
 from contactlab.report.stiffness_raw import recovery_table
+from contactlab.stiffness import demo
+from contactlab.stiffness.compare import THESIS_DISCREPANCIES
 from contactlab.stiffness.demo import DEMO_TESTS, generate_test, write_demo
 from contactlab.stiffness.process import load_inputs, process_test
 from contactlab.stiffness.raw_summary import summarize_raw
@@ -26,16 +30,18 @@ from contactlab.stiffness.raw_summary import summarize_raw
 @pytest.fixture(scope="module")
 def raw_run(tmp_path_factory: pytest.TempPathFactory, repo: Path) -> dict[str, object]:
     root = tmp_path_factory.mktemp("raw")
-    results = []
+    results, designs = [], []
     for test in DEMO_TESTS:
         paths = write_demo(test, root / "demo" / test)
+        designs.append(pd.read_csv(paths["design"], comment="#"))
         frames, rows, sources = load_inputs(paths["load_log"], paths["fields"])
         ds = process_test(test, frames, rows, max_normal_load_kN=NORMAL_LOAD_KN[test],
                           nominal_area_mm2=20.0, sources=sources)
         results.append(write_netcdf(ds, root / f"{test}.nc"))
     tables = summarize_raw(results, repo / "config" / "tests.csv", root / "summary.nc",
                            tables_dir=root / "tables")
-    return {"root": root, "results": results, "tables": tables}
+    return {"root": root, "results": results, "tables": tables,
+            "design": pd.concat(designs, ignore_index=True)}
 
 
 def test_demo_is_deterministic_and_labelled() -> None:
@@ -49,6 +55,26 @@ def test_demo_is_deterministic_and_labelled() -> None:
     assert "RECONSTRUCTED" in fields_a.attrs["source"]
     steps = log_a.groupby(["kind", "direction", "step"]).size()
     assert len(steps) == 2 + 5  # SU1: normal L/U, tangential loading 1-2, unloading 1-3
+
+
+def test_every_demo_step_is_conditioned(raw_run: dict[str, object]) -> None:
+    design = raw_run["design"]
+    assert len(design) == 85 + 18
+    assert (design["conditioned"] == 1).all(), design[design["conditioned"] == 0]
+    assert (design["draws"] <= demo.MAX_DRAWS).all()
+    assert (design["condition_score"] <= 1.0).all()
+
+
+def test_conditioning_falls_back_to_the_best_draw(monkeypatch: pytest.MonkeyPatch) -> None:
+    # an unreachable tolerance: every step uses all its draws and is flagged, not dropped
+    monkeypatch.setattr(demo, "SAFETY", 1e-6)
+    monkeypatch.setattr(demo, "MAX_DRAWS", 3)
+    log, fields, design = generate_test("SU1")
+    assert (design["draws"] == 3).all()
+    assert (design["conditioned"] == 0).all()
+    assert (design["condition_score"] > 1.0).all()
+    assert fields.attrs["steps_not_conditioned"] == len(design)
+    assert len(log) == design["frames"].sum()
 
 
 def test_every_fit_converges(raw_run: dict[str, object]) -> None:
@@ -69,37 +95,68 @@ def test_steps_recover_published_parameters(raw_run: dict[str, object]) -> None:
     assert 0.5 < float(ratio.median()) < 1.2
 
 
-def _within(ours: pd.DataFrame, published: pd.DataFrame, keys: list[str],
-            columns: list[str]) -> pd.Series:
-    merged = published.merge(ours, on=keys, suffixes=("", "_ours"))
-    ok = []
+def _cells(ours: pd.DataFrame, published: pd.DataFrame, table: str, keys: list[str],
+           columns: list[str]) -> pd.DataFrame:
+    """One row per published value with a margin: ours beside it and whether it is inside."""
+    merged = published.merge(ours, on=keys, how="left", suffixes=("", "_ours"))
+    parts = []
     for col in columns:
         rows = merged.dropna(subset=[col, f"{col}_moe"])
-        ok.append((rows[f"{col}_ours"] - rows[col]).abs() <= rows[f"{col}_moe"])
-    return pd.concat(ok)
+        parts.append(pd.DataFrame({
+            "table": table, "test": rows["test"], "key": rows[keys[1]], "quantity": col,
+            "published": rows[col], "moe": rows[f"{col}_moe"], "ours": rows[f"{col}_ours"],
+            "within": (rows[f"{col}_ours"] - rows[col]).abs() <= rows[f"{col}_moe"]}))
+    return pd.concat(parts, ignore_index=True)
 
 
 def test_summaries_recover_published_tables(raw_run: dict[str, object]) -> None:
     tables = raw_run["tables"]
-    normal = pd.concat([read_published("2.1"), read_published("2.7")])
-    ok_kn = _within(pd.concat([tables["table_2.1"], tables["table_2.7"]]), normal,
-                    ["test", "direction"], ["Kn_An", "beta_n"])
-    means = pd.concat([read_published("2.2"), read_published("2.8")])
-    ok_kt = _within(pd.concat([tables["table_2.2"], tables["table_2.8"]]), means,
-                    ["test", "direction"], ["Kt0_An", "f"])
-    cc = pd.concat([read_published("2.4"), read_published("2.9")])
-    ok_cc = _within(pd.concat([tables["table_2.4"], tables["table_2.9"]]), cc,
-                    ["test", "basis"], ["Cc"])
-    # SU1 unloading Kn (printed P0 typo) is the one normal cell the data cannot match
-    assert ok_kn.mean() >= 0.9
-    assert ok_kt.mean() >= 0.9
-    assert ok_cc.mean() >= 0.9
-    # the steps used for the means are the published ones for most tests and directions
+    cells = pd.concat([
+        _cells(pd.concat([tables["table_2.1"], tables["table_2.7"]]),
+               pd.concat([read_published("2.1"), read_published("2.7")]), "2.1",
+               ["test", "direction"], ["Kn_An", "beta_n"]),
+        _cells(pd.concat([tables["table_2.2"], tables["table_2.8"]]),
+               pd.concat([read_published("2.2"), read_published("2.8")]), "2.2",
+               ["test", "direction"], ["Kt0_An", "beta_t", "f"]),
+        _cells(pd.concat([tables["table_2.4"], tables["table_2.9"]]),
+               pd.concat([read_published("2.4"), read_published("2.9")]), "2.4",
+               ["test", "basis"], ["Cc"]),
+    ], ignore_index=True)
+    # every published cell is compared (nothing dropped by a failed merge or a NaN of ours)
+    counts = cells.groupby("quantity").size().to_dict()
+    assert counts == {"Kn_An": 27, "beta_n": 27, "Kt0_An": 25, "beta_t": 25, "f": 25,
+                      "Cc": 21}, counts
+    assert cells["ours"].notna().all(), cells[cells["ours"].isna()]
+    # No cell is excluded. The listed thesis discrepancies (contactlab.stiffness.compare)
+    # that fall on these values are SU1 unloading/mean Kn_An and SU1 mean/unloading Cc
+    # (printed with alpha_n = 1.120 used as P0) and RU1 unloading Kn_An (0.1% load): the demo
+    # is built with SU1's alpha_n and P0 swapped back, so its data reproduce the printed Kn
+    # 200.04 and the Cc derived from it, and the RU1 difference is far inside the margin.
+    # The other listed cells are margins, which are not compared here.
+    listed = {(t, k, q) for (tab, t, k, q) in THESIS_DISCREPANCIES if tab in ("2.1", "2.4")}
+    compared = set(zip(cells["test"], cells["key"], cells["quantity"], strict=True))
+    assert {("SU1", "unloading", "Kn_An"), ("RU1", "unloading", "Kn_An"),
+            ("SU1", "mean", "Cc")} <= listed & compared
+    outside = cells[~cells["within"]]
+    assert outside.empty, outside.to_string()
+
+
+def test_steps_used_are_the_published(raw_run: dict[str, object]) -> None:
+    tables = raw_run["tables"]
     ours = pd.concat([tables["table_2.2"], tables["table_2.8"]]).set_index(
-        ["test", "direction"])["steps_used"]
-    pub = means.set_index(["test", "direction"])["steps_used"]
-    same = [str(ours.get(k, "")) == str(v) for k, v in pub.dropna().items()]
-    assert np.mean(same) >= 0.6
+        ["test", "direction"])
+    pub = pd.concat([read_published("2.2"), read_published("2.8")]).set_index(
+        ["test", "direction"])
+    # the published selections are the 50% Kt0 margin rule applied to the printed
+    # Appendix A margins for every row (test_aggregate_published.py), so no exception
+    printed = pub.loc[pub.index.get_level_values("direction") != "combined", "steps_used"]
+    assert len(printed) == 18
+    for key, steps in printed.items():
+        if pd.isna(steps):  # SU1 loading, SU2 unloading: no step qualifies, no mean printed
+            assert str(ours.at[key, "steps_used"]) in ("", "nan"), key
+            assert np.isnan(ours.at[key, "Kt0_An"]), key
+        else:
+            assert str(ours.at[key, "steps_used"]) == str(steps), key
 
 
 def test_summary_netcdf_is_cf(raw_run: dict[str, object]) -> None:
