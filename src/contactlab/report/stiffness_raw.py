@@ -315,8 +315,8 @@ def build_section(results: list[Path], summary_path: Path, tests_path: Path, rep
     if demo:
         section.note(
             f"The raw data of {', '.join(demo)} are RECONSTRUCTED: synthetic DIC fields and "
-            "load logs generated from the published fit parameters (Tables 2.1, 2.7, "
-            "A.2-A.37) with calibrated noise (contactlab demo dataset, results/demo/). They "
+            "load logs generated from the published fits (Tables 2.1, 2.7, A.2-A.39) "
+            "with calibrated noise (contactlab demo dataset, results/demo/). They "
             "test that the pipeline recovers the thesis; they are not measurements."
         )
     section.paragraph(
