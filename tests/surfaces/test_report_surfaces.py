@@ -39,6 +39,7 @@ def test_section_has_every_table_and_picture(processed: pd.DataFrame, repo: Path
     assert len(profile) == 28 and (profile["Rq_diff_pct"].abs() < 1.0).all()
     structured = pd.read_csv(report / "tables" / "surfaces_100x.csv")
     assert list(structured["test"]) == ["S3", "S2", "S1"]
+    assert (structured["sampling_length_um"] == 160.0).all()
     table = pd.read_csv(report / "tables" / "seq.csv")
     assert table["difference_scan"].abs().max() < 0.01
     assert {"beta_n_Seq", "beta_n_Seq_scan", "beta_n_Seq_published"} <= set(table.columns)

@@ -126,6 +126,14 @@ def test_profile_texture_of_a_sine_scan(tmp_path: Path) -> None:
     assert v["Ra"] == pytest.approx(4 / np.pi, rel=1e-2)
     assert v["Rq"] == pytest.approx(2 / np.sqrt(2), rel=2e-3)
     assert v["Rz"] == pytest.approx(4.0, rel=2e-3)
+    assert result["arrays"]["sampling_length"] == 800.0  # default: lambda_c
+    # a stated sampling length (the sheet's sampling_length_um) sets how the 4 mm split
+    longer = profile_texture(scan, "x", 5000.0, 800.0, sampling_length=2000.0)
+    assert longer["arrays"]["n_sampling_lengths"] == 2
+    assert longer["arrays"]["sampling_length"] == 2000.0
+    assert longer["values"]["Rq"] == pytest.approx(v["Rq"], rel=2e-3)
+    with pytest.raises(ValueError, match=r"sine\.x3p.*shorter than the sampling length of 4001"):
+        profile_texture(scan, "x", 5000.0, 800.0, sampling_length=4001.0)
 
 
 def test_areal_texture_of_crossed_sines(tmp_path: Path) -> None:

@@ -10,7 +10,7 @@ from contactlab.surfaces.sheet import check_scan_files, read_surface_sheet, scan
 from contactlab.testsheet import read_test_sheet, surface_id
 
 HEADER = ("surface,objective,areal_scan,profile_scan,profile_axis,profile_direction,"
-          "profile_length_mm,lambda_c_um\n")
+          "profile_length_mm,lambda_c_um,sampling_length_um\n")
 
 
 def write(tmp_path: Path, *rows: str, header: str = HEADER) -> Path:
@@ -28,6 +28,11 @@ def test_default_sheet_follows_sec_2_3_4(repo: Path) -> None:
     assert specs["S2_specimen_parallel"].profile_axis == "y"
     assert specs["S3_specimen_100x"].lambda_c_um == 5.0
     assert all(s.lambda_c_um == 800.0 for s in specs.values() if s.objective == "20x")
+    # 100x: five sampling lengths over the 0.8 mm evaluation length; 20x: blank = lambda_c
+    assert specs["S3_specimen_100x"].sampling_length == 160.0
+    assert all(s.sampling_length == 160.0 for s in specs.values() if s.objective == "100x")
+    assert all(s.sampling_length_um is None and s.sampling_length == 800.0
+               for s in specs.values() if s.objective == "20x")
     assert len(scan_paths(list(specs.values()))) == 56
     # every surface of every test's interface has an areal scan
     tests = read_test_sheet(repo / "config" / "tests.csv")
@@ -39,18 +44,32 @@ def test_default_sheet_follows_sec_2_3_4(repo: Path) -> None:
 @pytest.mark.parametrize(
     ("rows", "header", "match"),
     [
-        (["a,20x,a.x3p,,,,,800"], HEADER.replace("lambda_c_um", "cutoff"),
+        (["a,20x,a.x3p,,,,,800,"], HEADER.replace("lambda_c_um", "cutoff"),
          r"unknown column\(s\) \['cutoff'\]"),
-        (["a,20x,a.x3p,,,,,800", "a,20x,b.x3p,,,,,800"], HEADER, r"line 3.*duplicate"),
-        (["a,20x,,,,,,800"], HEADER, r"line 2 \(a\): neither"),
-        (["a,20x,,p.x3p,z,lengthwise,4,800"], HEADER, r"line 2 \(a\), column 'profile_axis'"),
-        (["a,20x,,p.x3p,x,sideways,4,800"], HEADER, r"column 'profile_direction'"),
-        (["a,20x,,p.x3p,x,lengthwise,,800"], HEADER, r"column 'profile_length_mm'"),
-        (["a,20x,a.x3p,,,,,-5"], HEADER, r"column 'lambda_c_um'.*'-5'"),
-        (["seq,20x,a.x3p,,,,,800"], HEADER, r"'seq' is reserved"),
+        (["a,20x,a.x3p,,,,,800,", "a,20x,b.x3p,,,,,800,"], HEADER, r"line 3.*duplicate"),
+        (["a,20x,,,,,,800,"], HEADER, r"line 2 \(a\): neither"),
+        (["a,20x,,p.x3p,z,lengthwise,4,800,"], HEADER, r"line 2 \(a\), column 'profile_axis'"),
+        (["a,20x,,p.x3p,x,sideways,4,800,"], HEADER, r"column 'profile_direction'"),
+        (["a,20x,,p.x3p,x,lengthwise,,800,"], HEADER, r"column 'profile_length_mm'"),
+        (["a,20x,a.x3p,,,,,-5,"], HEADER, r"column 'lambda_c_um'.*'-5'"),
+        (["seq,20x,a.x3p,,,,,800,"], HEADER, r"'seq' is reserved"),
+        (["a,100x,,p.x3p,x,normal_to_pattern,1,5,0"], HEADER,
+         r"line 2 \(a\), column 'sampling_length_um'.*positive number, got '0'"),
+        (["a,100x,,p.x3p,x,normal_to_pattern,1,5,-160"], HEADER,
+         r"line 2 \(a\), column 'sampling_length_um'.*'-160'"),
+        (["a,100x,,p.x3p,x,normal_to_pattern,1,5,NaN"], HEADER,
+         r"line 2 \(a\), column 'sampling_length_um'.*'NaN'"),
+        (["a,100x,,p.x3p,x,normal_to_pattern,1,5,five"], HEADER,
+         r"line 2 \(a\), column 'sampling_length_um'.*'five'"),
+        (["a,100x,,p.x3p,x,normal_to_pattern,1,5,801"], HEADER,
+         r"line 2 \(a\), column 'sampling_length_um'.*longer than the evaluation length "
+         r"\(800 um"),
+        (["a,20x,a.x3p,,,,,800,800"], HEADER,
+         r"line 2 \(a\), column 'sampling_length_um'.*without a 'profile_scan'"),
     ],
     ids=["unknown-column", "duplicate", "no-scan", "axis", "direction", "length", "cutoff",
-         "reserved"],
+         "reserved", "sampling-zero", "sampling-negative", "sampling-nan", "sampling-text",
+         "sampling-too-long", "sampling-without-profile"],
 )
 def test_bad_sheets_are_refused_naming_line_and_column(tmp_path, rows, header, match) -> None:
     path = write(tmp_path, *rows, header=header)
@@ -59,8 +78,21 @@ def test_bad_sheets_are_refused_naming_line_and_column(tmp_path, rows, header, m
     assert str(path) in str(error.value)
 
 
+def test_sampling_length_is_optional(tmp_path: Path) -> None:
+    """Blank, or no such column at all, means sampling length = lambda_c (ISO 4288)."""
+    rows = ("a,100x,,p.x3p,x,normal_to_pattern,1,5,160", "b,100x,,p.x3p,x,normal_to_pattern,1,5,",
+            "c,100x,,p.x3p,x,normal_to_pattern,1,5,800")
+    a, b, c = read_surface_sheet(write(tmp_path, *rows))
+    assert (a.sampling_length_um, a.sampling_length) == (160.0, 160.0)
+    assert (b.sampling_length_um, b.sampling_length) == (None, 5.0)
+    assert c.sampling_length == 800.0  # the whole evaluation length is allowed
+    old = HEADER.replace(",sampling_length_um", "")
+    (d,) = read_surface_sheet(write(tmp_path, "d,20x,,p.x3p,x,lengthwise,4,800", header=old))
+    assert d.sampling_length_um is None and d.sampling_length == 800.0
+
+
 def test_missing_scan_names_sheet_surface_and_column(tmp_path: Path) -> None:
-    path = write(tmp_path, "a,20x,a.x3p,,,,,800", "b,20x,,made.x3p,x,lengthwise,4,800")
+    path = write(tmp_path, "a,20x,a.x3p,,,,,800,", "b,20x,,made.x3p,x,lengthwise,4,800,")
     specs = read_surface_sheet(path)
     with pytest.raises(FileNotFoundError, match=r"surface a, column 'areal_scan'.*a\.x3p"):
         check_scan_files(specs, path, root=tmp_path)

@@ -191,8 +191,9 @@ def profile_parameters(roughness: np.ndarray, spacing: float,
                        sampling_length: float) -> ProfileParameters:
     """Ra, Rq, Rz (ISO 4287) of one roughness profile, averaged over its sampling lengths.
 
-    ``roughness`` is the evaluation length of a profile already filtered with
-    lambda_c = ``sampling_length`` (ISO 4288: sampling length = cut-off). Rz of a
+    ``roughness`` is the evaluation length of a profile already filtered with the
+    cut-off lambda_c; ISO 4288 takes ``sampling_length`` = lambda_c unless stated
+    otherwise (the surface sheet's ``sampling_length_um``). Rz of a
     sampling length is its highest peak plus its deepest valley, both from the
     mean line. Trailing points that do not fill a sampling length are ignored.
     """

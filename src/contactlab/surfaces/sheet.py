@@ -20,6 +20,11 @@ Columns:
   ``normal_to_pattern`` or ``parallel_to_pattern`` (structured specimens).
 - ``profile_length_mm``: length of each profile line (traverse), mm.
 - ``lambda_c_um``: Gaussian cut-off wavelength, um (800 for the 20x scans).
+- ``sampling_length_um`` (optional column): sampling length of the profile parameters, um;
+  blank (or no such column) = lambda_c, as ISO 4288 pairs them. Ra, Rq, Rz are means over
+  the whole sampling lengths in the evaluation length (80 % of the profile length), so it
+  may not exceed that. The 100x rows of Table 2.6 use 160 um, a fifth of their 0.8 mm
+  evaluation length (see the comment in config/surfaces.csv).
 """
 
 from __future__ import annotations
@@ -31,10 +36,15 @@ from pathlib import Path
 import pandas as pd
 
 COLUMNS = ("surface", "objective", "areal_scan", "profile_scan", "profile_axis",
-           "profile_direction", "profile_length_mm", "lambda_c_um")
+           "profile_direction", "profile_length_mm", "lambda_c_um", "sampling_length_um")
+#: Columns a sheet may leave out (blank in every row).
+OPTIONAL = ("sampling_length_um",)
 DIRECTIONS = ("lengthwise", "normal_to_pattern", "parallel_to_pattern")
 #: Ids that would collide with other files in results/surfaces/.
 RESERVED = ("seq", "texture", "demo_scans")
+#: Fraction of each profile line discarded at each end (sec. 2.3.4, Alicona); the rest is
+#: the evaluation length.
+END_FRACTION = 0.1
 _ID = re.compile(r"^[A-Za-z][A-Za-z0-9_-]*$")
 
 
@@ -50,6 +60,12 @@ class SurfaceSpec:
     profile_direction: str | None
     profile_length_um: float | None
     lambda_c_um: float
+    sampling_length_um: float | None = None  # None: lambda_c (ISO 4288)
+
+    @property
+    def sampling_length(self) -> float:
+        """Sampling length of the profile parameters, um: the sheet's, else lambda_c."""
+        return self.lambda_c_um if self.sampling_length_um is None else self.sampling_length_um
 
 
 def _text(value: object) -> str | None:
@@ -69,12 +85,15 @@ def read_surface_sheet(path: str | Path) -> list[SurfaceSpec]:
     except (pd.errors.ParserError, UnicodeDecodeError) as exc:
         raise ValueError(f"{path}: cannot parse as CSV: {exc}") from exc
     unknown = [c for c in table.columns if c not in COLUMNS]
-    missing = [c for c in COLUMNS if c not in table.columns]
+    missing = [c for c in COLUMNS if c not in table.columns and c not in OPTIONAL]
     if unknown or missing:
         raise ValueError(f"{path}: unknown column(s) {unknown}, missing column(s) {missing}; "
                          f"expected {list(COLUMNS)}")
     specs: list[SurfaceSpec] = []
     seen: set[str] = set()
+    for column in OPTIONAL:
+        if column not in table.columns:
+            table[column] = ""
     for line, row in enumerate(table.to_dict("records"), start=2):
         where = f"{path}: line {line}"
         surface = _text(row["surface"]) or ""
@@ -101,6 +120,18 @@ def read_surface_sheet(path: str | Path) -> list[SurfaceSpec]:
         length_um = None
         if profile is not None:
             length_um = 1000.0 * _number(length, f"{where} ({surface}), column 'profile_length_mm'")
+        sampling = _text(row["sampling_length_um"])
+        sampling_um = None
+        if sampling is not None:
+            column = f"{where} ({surface}), column 'sampling_length_um'"
+            sampling_um = _number(sampling, column)
+            if length_um is None:
+                raise ValueError(f"{column}: a sampling length without a 'profile_scan'")
+            evaluation = (1.0 - 2 * END_FRACTION) * length_um
+            if sampling_um > evaluation:
+                raise ValueError(f"{column}: {sampling_um:g} um is longer than the evaluation "
+                                 f"length ({evaluation:g} um, {100 * (1 - 2 * END_FRACTION):g} "
+                                 f"% of the profile length)")
         specs.append(SurfaceSpec(
             surface=surface,
             objective=_text(row["objective"]) or "",
@@ -110,6 +141,7 @@ def read_surface_sheet(path: str | Path) -> list[SurfaceSpec]:
             profile_direction=direction,
             profile_length_um=length_um,
             lambda_c_um=lambda_c,
+            sampling_length_um=sampling_um,
         ))
     if not specs:
         raise ValueError(f"{path}: no surfaces")

@@ -7,8 +7,8 @@ height histogram and radially averaged power spectrum.
 Profile scan -> 5 lines along the stated direction, each of the stated profile
 length -> least-squares line removed -> Gaussian filter at lambda_c -> 10 % of
 the length discarded at each end (as the Alicona does, sec. 2.3.4) -> Ra, Rq, Rz
-per sampling length (= lambda_c, ISO 4288), averaged over the sampling lengths
-and over the lines.
+per sampling length (the sheet's ``sampling_length_um``, by default lambda_c as ISO
+4288 pairs them), averaged over the sampling lengths and over the lines.
 """
 
 from __future__ import annotations
@@ -27,12 +27,10 @@ from contactlab.surfaces.parameters import (
     texture_aspect_ratio,
 )
 from contactlab.surfaces.scans import Scan, read_scan
-from contactlab.surfaces.sheet import SurfaceSpec
+from contactlab.surfaces.sheet import END_FRACTION, SurfaceSpec
 
 #: Profile lines per surface (sec. 2.3.4: "the average of the values of 5 measurements").
 N_PROFILES = 5
-#: Fraction of each profile line discarded at each end (sec. 2.3.4, Alicona).
-END_FRACTION = 0.1
 #: Largest side of the stored height map used for the report picture (pixels).
 MAP_PIXELS = 256
 
@@ -48,6 +46,8 @@ ATTRS = {
     "Rq": ("root mean square deviation Rq (ISO 4287), mean of sampling lengths and lines", "um"),
     "Rz": ("maximum height Rz (ISO 4287), mean of sampling lengths and lines", "um"),
 }
+
+SAMPLING_LENGTH = {"long_name": "sampling length of Ra, Rq, Rz (ISO 4287/4288)", "units": "um"}
 
 
 @dataclass
@@ -126,21 +126,31 @@ def profile_lines(scan: Scan, axis: str, length_um: float,
     return heights[start:start + points, columns], spacing
 
 
-def profile_texture(scan: Scan, axis: str, length_um: float, lambda_c: float) -> dict:
-    """Ra, Rq, Rz of ``N_PROFILES`` lines (ISO 4287/4288 as in sec. 2.3.4) and their PSD."""
+def profile_texture(scan: Scan, axis: str, length_um: float, lambda_c: float,
+                    sampling_length: float | None = None) -> dict:
+    """Ra, Rq, Rz of ``N_PROFILES`` lines (ISO 4287/4288 as in sec. 2.3.4) and their PSD.
+
+    The parameters are means over sampling lengths of ``sampling_length`` um
+    (default lambda_c) in each line's evaluation length, then over the lines.
+    """
     from SurfaceTopography import Topography, UniformLineScan
 
+    sampling_length = lambda_c if sampling_length is None else sampling_length
     lines, spacing = profile_lines(scan, axis, length_um)
     points = lines.shape[0]
     trim = round(END_FRACTION * points)
-    _check_cut_off((points - 2 * trim) * spacing, lambda_c,
-                   "the evaluation length of a profile (80 % of the profile length)", scan)
+    evaluation_um = (points - 2 * trim) * spacing
+    what = f"the evaluation length of a profile ({100 * (1 - 2 * END_FRACTION):g} % of its length)"
+    _check_cut_off(evaluation_um, lambda_c, what, scan)
+    if evaluation_um < sampling_length:
+        raise ValueError(f"{scan.path}: {what} of {evaluation_um:.4g} um is shorter than the "
+                         f"sampling length of {sampling_length:.4g} um")
     results, rough_lines = [], []
     for k in range(lines.shape[1]):
         rough = roughness_profile(remove_line(lines[:, k]), lambda_c, spacing)
         evaluation = rough[trim:points - trim]
         rough_lines.append(evaluation)
-        results.append(profile_parameters(evaluation, spacing, lambda_c))
+        results.append(profile_parameters(evaluation, spacing, sampling_length))
     rough = np.stack(rough_lines, axis=1)
     if rough.shape[1] > 1:
         topography = Topography(rough, physical_sizes=(rough.shape[0] * spacing,
@@ -155,6 +165,7 @@ def profile_texture(scan: Scan, axis: str, length_um: float, lambda_c: float) ->
     arrays = {
         "q": q[ok], "psd": psd[ok], "lines": rough, "spacing": spacing,
         "n_lines": rough.shape[1], "n_sampling_lengths": results[0].n_sampling_lengths,
+        "sampling_length": sampling_length,
     }
     return {"values": values, "arrays": arrays}
 
@@ -173,7 +184,7 @@ def surface_texture(spec: SurfaceSpec, histogram_bins: int = 80) -> SurfaceTextu
         scan = read_scan(spec.profile_scan)
         texture.synthetic |= scan.synthetic
         result = profile_texture(scan, spec.profile_axis, spec.profile_length_um,
-                                 spec.lambda_c_um)
+                                 spec.lambda_c_um, spec.sampling_length)
         texture.values.update(result["values"])
         texture.profile = result["arrays"]
     return texture
@@ -232,6 +243,7 @@ def surface_dataset(texture: SurfaceTexture) -> xr.Dataset:
             "long_name": "number of profile lines averaged", "units": "1"})
         data["n_sampling_lengths"] = xr.Variable((), p["n_sampling_lengths"], {
             "long_name": "sampling lengths per profile", "units": "1"})
+        data["sampling_length"] = xr.Variable((), p["sampling_length"], SAMPLING_LENGTH)
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(
         surface=spec.surface,
@@ -255,6 +267,9 @@ def summary_dataset(textures: list[SurfaceTexture]) -> xr.Dataset:
     }
     data["lambda_c"] = xr.Variable("surface", [t.spec.lambda_c_um for t in textures], {
         "long_name": "Gaussian cut-off wavelength", "units": "um"})
+    data["sampling_length"] = xr.Variable(
+        "surface", [t.spec.sampling_length if t.spec.profile_scan is not None else np.nan
+                    for t in textures], SAMPLING_LENGTH)
     data["profile_length"] = xr.Variable(
         "surface", [(t.spec.profile_length_um or np.nan) / 1000.0 for t in textures],
         {"long_name": "profile line length", "units": "mm"})
