@@ -19,7 +19,7 @@ import xarray as xr
 
 from contactlab.io import write_netcdf
 from contactlab.published import NORMAL_LOAD_KN, read_published
-from contactlab.report.stiffness_raw import recovery_table
+from contactlab.report.stiffness_raw import recovery_table, summary_within_margins
 from contactlab.stiffness import demo
 from contactlab.stiffness.compare import THESIS_DISCREPANCIES
 from contactlab.stiffness.demo import DEMO_TESTS, generate_test, write_demo
@@ -95,33 +95,10 @@ def test_steps_recover_published_parameters(raw_run: dict[str, object]) -> None:
     assert 0.5 < float(ratio.median()) < 1.2
 
 
-def _cells(ours: pd.DataFrame, published: pd.DataFrame, table: str, keys: list[str],
-           columns: list[str]) -> pd.DataFrame:
-    """One row per published value with a margin: ours beside it and whether it is inside."""
-    merged = published.merge(ours, on=keys, how="left", suffixes=("", "_ours"))
-    parts = []
-    for col in columns:
-        rows = merged.dropna(subset=[col, f"{col}_moe"])
-        parts.append(pd.DataFrame({
-            "table": table, "test": rows["test"], "key": rows[keys[1]], "quantity": col,
-            "published": rows[col], "moe": rows[f"{col}_moe"], "ours": rows[f"{col}_ours"],
-            "within": (rows[f"{col}_ours"] - rows[col]).abs() <= rows[f"{col}_moe"]}))
-    return pd.concat(parts, ignore_index=True)
-
-
 def test_summaries_recover_published_tables(raw_run: dict[str, object]) -> None:
     tables = raw_run["tables"]
-    cells = pd.concat([
-        _cells(pd.concat([tables["table_2.1"], tables["table_2.7"]]),
-               pd.concat([read_published("2.1"), read_published("2.7")]), "2.1",
-               ["test", "direction"], ["Kn_An", "beta_n"]),
-        _cells(pd.concat([tables["table_2.2"], tables["table_2.8"]]),
-               pd.concat([read_published("2.2"), read_published("2.8")]), "2.2",
-               ["test", "direction"], ["Kt0_An", "beta_t", "f"]),
-        _cells(pd.concat([tables["table_2.4"], tables["table_2.9"]]),
-               pd.concat([read_published("2.4"), read_published("2.9")]), "2.4",
-               ["test", "basis"], ["Cc"]),
-    ], ignore_index=True)
+    cells = summary_within_margins(
+        {n: tables[f"table_{n}"] for n in ("2.1", "2.2", "2.4", "2.7", "2.8", "2.9")})
     # every published cell is compared (nothing dropped by a failed merge or a NaN of ours)
     counts = cells.groupby("quantity").size().to_dict()
     assert counts == {"Kn_An": 27, "beta_n": 27, "Kt0_An": 25, "beta_t": 25, "f": 25,
@@ -165,3 +142,18 @@ def test_summary_netcdf_is_cf(raw_run: dict[str, object]) -> None:
         assert set(ds["test"].values) == set(DEMO_TESTS)
         assert "RECONSTRUCTED" in ds.attrs["note"]
         assert int(ds["reconstructed"].sum()) == len(DEMO_TESTS)
+
+
+def test_margin_check_flags_a_value_outside_and_a_missing_one() -> None:
+    published = read_published("2.2")
+    ours = published.copy()
+    cells = summary_within_margins({"2.2": ours})
+    assert len(cells) == cells["within"].sum() > 0
+    assert set(cells["table"]) == {"2.2"}  # tables not given are skipped
+    row = (ours["test"] == "RU2") & (ours["direction"] == "loading")
+    ours.loc[row, "f"] += 2 * ours.loc[row, "f_moe"]
+    ours = ours[~((ours["test"] == "RU3") & (ours["direction"] == "unloading"))]
+    outside = summary_within_margins({"2.2": ours}).query("~within")
+    assert set(zip(outside["test"], outside["key"], outside["quantity"], strict=True)) == {
+        ("RU2", "loading", "f"), ("RU3", "unloading", "Kt0_An"),
+        ("RU3", "unloading", "beta_t"), ("RU3", "unloading", "f")}

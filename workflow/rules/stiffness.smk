@@ -147,6 +147,7 @@ rule report_stiffness_raw:
         section="results/report/sections/21_stiffness_raw.html",
         comparison="results/report/tables/stiffness_raw_vs_published.csv",
         recovery="results/report/tables/stiffness_raw_recovery.csv",
+        margins="results/report/tables/stiffness_raw_summary_margins.csv",
         flags="results/report/tables/stiffness_raw_flagged_fits.csv",
         figure=report(
             "results/report/figures/stiffness_raw_summary.png",

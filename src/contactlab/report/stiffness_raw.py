@@ -23,7 +23,7 @@ from contactlab.stiffness.compare import compare_with_published, printed_decimal
 from contactlab.stiffness.process import flagged_steps
 from contactlab.testsheet import read_test_sheet
 
-__all__ = ["build_section", "recovery_table", "test_figures"]
+__all__ = ["build_section", "recovery_table", "summary_within_margins", "test_figures"]
 
 _KEYS = {"2.1": ["test", "direction"], "2.2": ["test", "direction"], "2.3": ["test"],
          "2.4": ["test", "basis"], "2.7": ["test", "direction"], "2.8": ["test", "direction"],
@@ -251,6 +251,40 @@ def recovery_table(results: list[Path], published_dir: Path | None = None) -> pd
     return pd.DataFrame(rows)
 
 
+#: Summary values the thesis prints with a 95% margin: table -> (row key, quantities).
+_MARGIN_CHECKS: dict[str, tuple[str, tuple[str, ...]]] = {
+    "2.1": ("direction", ("Kn_An", "beta_n")), "2.7": ("direction", ("Kn_An", "beta_n")),
+    "2.2": ("direction", ("Kt0_An", "beta_t", "f")),
+    "2.8": ("direction", ("Kt0_An", "beta_t", "f")),
+    "2.4": ("basis", ("Cc",)), "2.9": ("basis", ("Cc",)),
+}
+
+
+def summary_within_margins(ours: dict[str, pd.DataFrame],
+                           published_dir: Path | None = None) -> pd.DataFrame:
+    """Every published summary value with a margin (Tables 2.1, 2.2, 2.4, 2.7-2.9) beside ours.
+
+    ``ours`` maps table number -> our table (missing tables are skipped). One row per
+    published cell: table, test, key (direction or basis), quantity, published, moe, ours,
+    within (|ours - published| <= moe; False where ours is missing).
+    """
+    parts = []
+    for table, (key, quantities) in _MARGIN_CHECKS.items():
+        if table not in ours:
+            continue
+        published = read_published(table, published_dir)
+        merged = published.merge(ours[table], on=["test", key], how="left",
+                                 suffixes=("", "_ours"))
+        for q in quantities:
+            rows = merged.dropna(subset=[q, f"{q}_moe"])
+            parts.append(pd.DataFrame({
+                "table": table, "test": rows["test"], "key": rows[key], "quantity": q,
+                "published": rows[q], "moe": rows[f"{q}_moe"], "ours": rows[f"{q}_ours"],
+                "within": (rows[f"{q}_ours"] - rows[q]).abs() <= rows[f"{q}_moe"]}))
+    columns = ["table", "test", "key", "quantity", "published", "moe", "ours", "within"]
+    return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=columns)
+
+
 def _ours_for(table: str, tables_dir: Path) -> pd.DataFrame | None:
     path = tables_dir / f"table_{table}.csv"
     if not path.is_file():
@@ -350,6 +384,25 @@ def build_section(results: list[Path], summary_path: Path, tests_path: Path, rep
         section.table(per_test, "Recovery per test: steps whose fitted parameters lie within "
                       "the published margins", tables_dir / "stiffness_raw_recovery_by_test.csv")
         write_table(recovery, tables_dir / "stiffness_raw_recovery.csv")
+
+    ours = {t: table for t in _MARGIN_CHECKS
+            if (table := _ours_for(t, tables_dir)) is not None}
+    cells = summary_within_margins(ours, published_dir)
+    if len(cells):
+        section.paragraph(
+            f"Per-test summaries from raw data within the published 95% margins: "
+            f"{int(cells['within'].sum())} of {len(cells)} values (Tables 2.1, 2.2, 2.4, "
+            "2.7-2.9).")
+        by_quantity = cells.groupby("quantity", sort=False)["within"].agg(
+            ["sum", "count"]).reset_index().rename(columns={"sum": "within", "count": "cells"})
+        section.table(by_quantity, "Summary values within the published margins, by quantity",
+                      tables_dir / "stiffness_raw_summary_margins_by_quantity.csv")
+        write_table(cells, tables_dir / "stiffness_raw_summary_margins.csv")
+        outside = cells[~cells["within"]]
+        if len(outside):
+            section.note("Outside the published margin: " + "; ".join(
+                f"Table {r.table} {r.test} {r.key} {r.quantity}"
+                for r in outside.itertuples()))
 
     comparisons = []
     for table, keys in _KEYS.items():
