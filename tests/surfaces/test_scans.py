@@ -182,3 +182,22 @@ def test_cli_refuses_a_corrupt_scan_in_one_line(tmp_path: Path) -> None:
 def test_spec_defaults_are_plain() -> None:
     spec = SurfaceSpec("s", "20x", None, Path("p.x3p"), "x", "lengthwise", 4000.0, 800.0)
     assert spec.profile_length_um == 4000.0
+
+
+def test_demo_scan_files_are_byte_identical_for_equal_heights(tmp_path: Path,
+                                                               monkeypatch) -> None:
+    """The X3P writer stamps the date and zip times; the demo fixes both, so rerunning
+    the demo rule rewrites the same bytes (Snakemake's checksums then see no change)."""
+    import time
+
+    from contactlab.surfaces.demo import write_demo_scan
+
+    heights = np.random.default_rng(1).normal(size=(32, 24))
+    write_demo_scan(heights, 2.0, 2.0, tmp_path / "a.x3p")
+    later = time.time() + 3600
+    monkeypatch.setattr(time, "time", lambda: later)
+    write_demo_scan(heights, 2.0, 2.0, tmp_path / "b.x3p")
+    assert (tmp_path / "a.x3p").read_bytes() == (tmp_path / "b.x3p").read_bytes()
+    scan = read_scan(tmp_path / "b.x3p")
+    assert scan.synthetic
+    np.testing.assert_allclose(scan.heights, heights, rtol=1e-6, atol=1e-6)

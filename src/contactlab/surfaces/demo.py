@@ -36,7 +36,10 @@ Every file says SYNTHETIC in its instrument (manufacturer) field.
 from __future__ import annotations
 
 import hashlib
+import io
+import zipfile
 from dataclasses import dataclass
+from datetime import datetime
 from pathlib import Path
 
 import numpy as np
@@ -437,9 +440,26 @@ def write_demo_scan(heights_um: np.ndarray, dx: float, dy: float, path: Path) ->
 
     nx, ny = heights_um.shape
     topography = Topography(heights_um, physical_sizes=(nx * dx, ny * dy), unit="um",
-                            periodic=False)
+                            periodic=False, info={"acquisition_time": _FIXED_TIME})
+    buffer = io.BytesIO()
+    topography.to_x3p(buffer, dtype="F", manufacturer=LABEL, model="synthetic")
     with atomic_path(path) as tmp:
-        topography.to_x3p(str(tmp), dtype="F", manufacturer=LABEL, model="synthetic")
+        tmp.write_bytes(_with_fixed_zip_times(buffer.getvalue()))
+
+
+#: Date written into the synthetic scans, so that equal heights give equal files.
+_FIXED_TIME = datetime(2018, 1, 1)
+
+
+def _with_fixed_zip_times(archive: bytes) -> bytes:
+    """The X3P (zip) archive with every member dated ``_FIXED_TIME`` (the writer uses now)."""
+    out = io.BytesIO()
+    with zipfile.ZipFile(io.BytesIO(archive)) as source, zipfile.ZipFile(out, "w") as target:
+        for member in source.infolist():
+            info = zipfile.ZipInfo(member.filename, date_time=_FIXED_TIME.timetuple()[:6])
+            info.compress_type = member.compress_type
+            target.writestr(info, source.read(member))
+    return out.getvalue()
 
 
 def demo_scans(specs: list[SurfaceSpec], out_dir: Path, seed: int,
