@@ -186,8 +186,8 @@ def test_spec_defaults_are_plain() -> None:
 
 def test_demo_scan_files_are_byte_identical_for_equal_heights(tmp_path: Path,
                                                                monkeypatch) -> None:
-    """The X3P writer stamps the date and zip times; the demo fixes both, so rerunning
-    the demo rule rewrites the same bytes (Snakemake's checksums then see no change)."""
+    """The X3P writer stamps the date and zip times; the demo fixes both, so a seed
+    always gives the same bytes."""
     import time
 
     from contactlab.surfaces.demo import write_demo_scan
