@@ -82,15 +82,6 @@ def solve_frictionless(load: Load, n: int, lam_a: float, lam_b: float, e: float,
                           a=0.0, b=b, nfev=root.nfev, message="; ".join(root.history))
     with single_thread():
         sysm, glide, climb = assemble_frictionless(load, n, b, lam_a, lam_b, e, preformed)
-    sol.glide, sol.climb = glide, climb
-    if root.phi.size == sysm.matrix.shape[1]:
-        sol.phi_x, sol.phi_y = root.phi[:n], root.phi[n:2 * n]
-        sol.K_T = float(root.phi[2 * n]) if preformed else np.nan
-        sol.residual = float(np.max(np.abs(sysm.matrix @ root.phi - sysm.rhs)))
-    sol.leftover = root.residual
-    sol.converged = root.converged
-    if not sol.converged:
-        sol.regime = "failed"
-    sol.evaluate_checks()
+    sol.record(root, sysm, glide, climb)
     sol.seconds = time.perf_counter() - start
     return sol

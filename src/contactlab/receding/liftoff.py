@@ -71,7 +71,7 @@ from contactlab.receding.dislocations import DensityInterval
 from contactlab.receding.loading import Load
 from contactlab.receding.preformed import Preformed
 from contactlab.receding.quadrature import interpolation_matrix, legendre
-from contactlab.receding.solve import LinearSystem, find_transitions
+from contactlab.receding.solve import LinearSystem, RootResult, find_transitions
 
 #: tolerance (units of T) of the contact checks between the nodes
 CHECK_TOL = 5e-3
@@ -234,6 +234,21 @@ class LiftoffSolution:
     def admissible(self) -> bool:
         return bool(self.checks) and all(
             v <= CHECK_TOL for k, v in self.checks.items() if k.startswith("max_"))
+
+    def record(self, root: RootResult, system: LinearSystem, glide: DensityInterval,
+               climb: DensityInterval) -> None:
+        """Store the densities of the converged (or last) root, its residuals and checks."""
+        n = self.n
+        self.glide, self.climb = glide, climb
+        if root.phi.size == system.matrix.shape[1]:
+            self.phi_x, self.phi_y = root.phi[:n], root.phi[n:2 * n]
+            self.K_T = float(root.phi[2 * n]) if self.preformed_used else np.nan
+            self.residual = float(np.max(np.abs(system.matrix @ root.phi - system.rhs)))
+        self.leftover = root.residual
+        self.converged = root.converged
+        if not root.converged:
+            self.regime = "failed"
+        self.evaluate_checks()
 
     def evaluate_checks(self, points: int = 600) -> dict[str, float]:
         """Contact conditions on 0 <= x <= b + 8 (symmetry), in units of T.
@@ -405,17 +420,7 @@ def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: f
         sol.evaluate_checks()
         sol.seconds = time.perf_counter() - start
         return sol
-    sol.glide, sol.climb = glide, climb
-    phi = root.phi
-    if phi.size == sysm.matrix.shape[1]:
-        sol.phi_x, sol.phi_y = phi[:n], phi[n:2 * n]
-        sol.K_T = float(phi[2 * n]) if preformed else np.nan
-        sol.residual = float(np.max(np.abs(sysm.matrix @ phi - sysm.rhs)))
-    sol.leftover = root.residual
-    sol.converged = root.converged
-    if not root.converged:
-        sol.regime = "failed"
-    sol.evaluate_checks()
+    sol.record(root, sysm, glide, climb)
     sol.seconds = time.perf_counter() - start
     return sol
 
