@@ -48,6 +48,16 @@ def grid_gap(n: int, cells_per_spacing: int) -> tuple[Array, float, Array]:
     return gap, h, owner
 
 
+def _grid_problem(n: int, pt_over_pd: ArrayLike, cells_per_spacing: int
+                  ) -> tuple[Array, Array, float, Array, HalfSpaceOperator]:
+    """Checked loads, the grid's gap, cell size, owners and its half-space operator."""
+    loads = np.atleast_1d(np.asarray(pt_over_pd, float))
+    if np.any(loads <= 0):
+        raise ValueError("Pt/Pd must be positive")
+    gap, h, owner = grid_gap(n, cells_per_spacing)
+    return loads, gap, h, owner, HalfSpaceOperator(gap.shape[0], h)
+
+
 def solve_grid_equal_loads(n: int, pt_over_pd: ArrayLike, cells_per_spacing: int = 32,
                            tol: float = 1e-10, rel_step: float = 1e-3) -> dict[str, Array]:
     """BEM of the grid with the thesis's load assumption: each asperity carries ``P_t/N^2``.
@@ -61,11 +71,7 @@ def solve_grid_equal_loads(n: int, pt_over_pd: ArrayLike, cells_per_spacing: int
     asperity (diagnostic).
     """
     n = hertz_grid.check_n(n)
-    loads = np.atleast_1d(np.asarray(pt_over_pd, float))
-    if np.any(loads <= 0):
-        raise ValueError("Pt/Pd must be positive")
-    gap, h, owner = grid_gap(n, cells_per_spacing)
-    op = HalfSpaceOperator(gap.shape[0], h)
+    loads, gap, h, owner, op = _grid_problem(n, pt_over_pd, cells_per_spacing)
     keys = ("u_cen", "stiffness", "area_ratio", "iterations", "load_error", "converged",
             "seconds")
     out = {k: np.zeros(loads.size) for k in keys}
@@ -105,11 +111,7 @@ def solve_grid(n: int, pt_over_pd: ArrayLike, cells_per_spacing: int = 32,
     ``iterations``, ``residual``, ``converged``, ``seconds``.
     """
     n = hertz_grid.check_n(n)
-    loads = np.atleast_1d(np.asarray(pt_over_pd, float))
-    if np.any(loads <= 0):
-        raise ValueError("Pt/Pd must be positive")
-    gap, h, owner = grid_gap(n, cells_per_spacing)
-    op = HalfSpaceOperator(gap.shape[0], h)
+    loads, gap, h, owner, op = _grid_problem(n, pt_over_pd, cells_per_spacing)
     keys = ("u_cen", "stiffness", "area_ratio", "centre_load_share", "corner_load_share",
             "iterations", "residual", "converged", "seconds")
     out = {k: np.zeros(loads.size) for k in keys}
