@@ -88,6 +88,16 @@ class Geometry:
         return {key: value for key, value in asdict(self).items()}
 
 
+def _read_csv(path: Path, what: str) -> pd.DataFrame:
+    """A CSV with ``#`` comment lines; missing or unparsable files named in the error."""
+    if not path.is_file():
+        raise FileNotFoundError(f"{path}: {what} not found")
+    try:
+        return pd.read_csv(path, comment="#", skipinitialspace=True)
+    except (pd.errors.ParserError, UnicodeDecodeError, pd.errors.EmptyDataError) as exc:
+        raise ValueError(f"{path}: cannot parse {what} as CSV: {exc}") from None
+
+
 def geometry_of(ds: xr.Dataset, source: str = "fields") -> Geometry:
     """The :class:`Geometry` stored in the attributes of ``ds`` or of its ``x``/``y``."""
     attrs: dict[str, object] = {**ds.attrs}
@@ -123,12 +133,7 @@ def read_load_log(path: str | Path, *, monotonic_tolerance: float = 0.05) -> pd.
     falling when unloading) within ``monotonic_tolerance`` times the step's load range.
     """
     path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"{path}: load log not found")
-    try:
-        log = pd.read_csv(path, comment="#", skipinitialspace=True)
-    except (pd.errors.ParserError, UnicodeDecodeError, pd.errors.EmptyDataError) as exc:
-        raise ValueError(f"{path}: cannot parse load log as CSV: {exc}") from None
+    log = _read_csv(path, "load log")
     log.columns = [str(c).strip() for c in log.columns]
     missing = [c for c in LOAD_LOG_COLUMNS if c not in log.columns]
     if missing:
@@ -290,13 +295,8 @@ def read_fields_csv(path: str | Path) -> xr.Dataset:
     masked vectors. Every frame must carry the same (x, y) grid.
     """
     path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"{path}: fields file not found")
+    table = _read_csv(path, "fields file")
     header = _csv_header(path)
-    try:
-        table = pd.read_csv(path, comment="#", skipinitialspace=True)
-    except (pd.errors.ParserError, UnicodeDecodeError, pd.errors.EmptyDataError) as exc:
-        raise ValueError(f"{path}: cannot parse fields CSV: {exc}") from None
     missing = [c for c in ("frame", "x", "y", "u", "v") if c not in table.columns]
     if missing:
         raise ValueError(f"{path}: fields CSV lacks column(s) {missing}")
@@ -421,12 +421,7 @@ def read_contact_displacement(path: str | Path, log: pd.DataFrame,
     empty. Returns the load log with ``uc``, ``vc`` columns added.
     """
     path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"{path}: contact displacement file not found")
-    try:
-        table = pd.read_csv(path, comment="#", skipinitialspace=True)
-    except (pd.errors.ParserError, UnicodeDecodeError, pd.errors.EmptyDataError) as exc:
-        raise ValueError(f"{path}: cannot parse contact displacement CSV: {exc}") from None
+    table = _read_csv(path, "contact displacement file")
     missing = [c for c in ("frame", "uc", "vc") if c not in table.columns]
     if missing:
         raise ValueError(f"{path}: contact displacement CSV lacks column(s) {missing}")
