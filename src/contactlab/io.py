@@ -16,6 +16,7 @@ from pathlib import Path
 import xarray as xr
 
 from contactlab import __version__
+from contactlab.study import provenance
 
 CONVENTIONS = "CF-1.10"
 
@@ -42,13 +43,19 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
 
 
 def stamp(ds: xr.Dataset, *, title: str, source: str, history: str) -> xr.Dataset:
-    """Add the global CF attributes every contactlab result carries."""
+    """Add the global CF attributes every contactlab result carries.
+
+    Inside a workflow run these include the study name, the hash of the effective config
+    and the git commit (:func:`contactlab.study.provenance`).
+    """
     ds.attrs.update(
         Conventions=CONVENTIONS,
         title=title,
         institution="contactlab",
         source=source,
         history=f"{dt.date.today().isoformat()}: contactlab {__version__}: {history}",
+        contactlab_version=__version__,
+        **provenance(),
     )
     return ds
 
