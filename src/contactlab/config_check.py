@@ -65,10 +65,10 @@ def _lookup(data: Mapping[str, Any], keys: Sequence[Any]) -> bool:
 def source_of(keys: Sequence[Any], sources: Sequence[Source]) -> str:
     """The last source that sets the key path (later sources override earlier ones)."""
     for name, data in reversed(sources):
-        if _lookup(data, keys):
+        if data and _lookup(data, keys):
             return name
     for name, data in reversed(sources):  # a missing key: blame the parent's source
-        if keys and _lookup(data, keys[:-1]):
+        if data and keys and _lookup(data, keys[:-1]):
             return name
     return sources[-1][0] if sources else "the configuration"
 

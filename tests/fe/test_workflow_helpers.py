@@ -11,7 +11,12 @@ from contactlab.fe import workflow as fe_wf
 
 
 def _config(repo: Path, name: str) -> dict:
-    return yaml.safe_load((repo / name).read_text())
+    """A config file with the schema's defaults filled in, as the workflow sees it."""
+    from snakemake.utils import validate
+
+    config = yaml.safe_load((repo / name).read_text())
+    validate(config, str(repo / "workflow/schemas/config.schema.yaml"))
+    return config
 
 
 def test_configs_validate_and_name_existing_levels(repo: Path) -> None:

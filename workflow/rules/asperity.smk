@@ -88,7 +88,7 @@ rule asperity_multi:
         laws=ASPERITY["multi"]["laws"],
         m=ASPERITY["multi"]["m"],
         ptpm=ASPERITY["multi"]["Pt_over_Pm"],
-        tables=json.dumps(ASPERITY["multi"].get("tables", {})),
+        tables=json.dumps(ASPERITY["multi"]["tables"]),
         s_max=ASPERITY["multi"]["scaled_displacement_max"],
         points=ASPERITY["multi"]["points"],
     log:

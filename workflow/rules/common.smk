@@ -43,7 +43,7 @@ except ConfigError as exc:
     raise WorkflowError(str(exc)) from None
 validate(config, "../schemas/config.schema.yaml")  # fills in the schema's defaults
 
-STUDY = config.get("study", "")
+STUDY = config.get("study")  # absent: the default study
 RESULTS = results_dir(STUDY)
 LOGS = logs_dir(STUDY)
 

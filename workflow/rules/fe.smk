@@ -5,9 +5,9 @@
 
 from contactlab.fe import workflow as fe_wf
 
-FE = config.get("fe", {"enabled": False})
-FE_ON = FE.get("enabled", False)
-FE_PROBLEMS = list(FE.get("problems", {})) if FE_ON else []
+FE = config["fe"]
+FE_ON = FE["enabled"]
+FE_PROBLEMS = list(FE["problems"]) if FE_ON else []
 FE_ASPERITY = fe_wf.asperity_runs(FE, RESULTS)
 FE_CONVERGENCE = fe_wf.convergence_files(FE, RESULTS)
 
@@ -41,7 +41,7 @@ rule fe_compare:
     wildcard_constraints:
         problem="gap|line|uniform",
     params:
-        n=FE.get("ddt_n", 100),
+        n=FE["ddt_n"],
         ddt=lambda wc: fe_wf.ddt_file_arg(FE, wc.problem),
     log:
         logs("fe/compare_{problem}.log"),

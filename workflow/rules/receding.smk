@@ -240,7 +240,7 @@ rule receding_patch_gather:
         "contactlab receding liftoff-gather {input:q} --out {output:q} 2> {log:q}"
 
 
-PATCH_TABLES = PATCHES.get("tables", {})
+PATCH_TABLES = PATCHES["tables"]
 
 
 rule receding_table_chunk:

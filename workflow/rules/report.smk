@@ -11,7 +11,7 @@ rule report_index:
     output:
         result("report/index.html"),
     params:
-        title=config["report"].get("title", "contactlab report"),
+        title=config["report"]["title"],
         changes=json.dumps(STUDY_CHANGES, sort_keys=True),
     log:
         logs("report/index.log"),

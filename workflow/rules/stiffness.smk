@@ -10,7 +10,7 @@ from contactlab.stiffness.raw_summary import CHAPTER_TABLES
 from contactlab.stiffness.workflow import raw_data_option, raw_inputs, raw_tests
 
 _RAW = config["stiffness"]["raw"]
-_ERR = config["stiffness"].get("errors", {})
+_ERR = config["stiffness"]["errors"]
 # the sec. 2.5.2 error model, shared with the published-steps aggregation
 _ERROR_OPTIONS = [
     word
@@ -21,7 +21,6 @@ _ERROR_OPTIONS = [
         ("tangential_pressure_rel_extra", "tangential-pressure-rel-extra"),
         ("qs_rel_extra", "qs-rel-extra"),
     )
-    if key in _ERR
     for word in (f"--{flag}", str(_ERR[key]))
 ] + ["--tangential-pressure", _RAW["tangential_pressure"]]
 

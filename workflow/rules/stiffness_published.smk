@@ -8,8 +8,8 @@ STIFFNESS_PUBLISHED_NUMBERS = ["2.1", "2.2", "2.3", "2.4", "2.7", "2.8", "2.9", 
 STIFFNESS_PUBLISHED_TABLES = expand(
     result("report/tables/table_{n}_from_published_steps.csv"), n=STIFFNESS_PUBLISHED_NUMBERS
 )
-_SP_ERRORS = config.get("stiffness", {}).get("errors", {})
-_SP = config.get("stiffness", {}).get("published_steps", {})
+_SP_ERRORS = config["stiffness"]["errors"]
+_SP = config["stiffness"]["published_steps"]
 
 # inputs: per-step fit and mean-row tables (A.2-A.39) and the normal fits (2.1, 2.7)
 STIFFNESS_PUBLISHED_INPUTS = [
@@ -30,13 +30,13 @@ rule stiffness_summary_from_published_steps:
     params:
         published=PUBLISHED,
         tables_dir=lambda wildcards, output: Path(output.tables[0]).parent,
-        threshold=_SP.get("kt0_margin_threshold", 0.5),
-        pressure=_SP.get("tangential_pressure", "multiply"),
-        area=_SP_ERRORS.get("piston_area_cm2", 6.5),
-        dp=_SP_ERRORS.get("pressure_uncertainty_MPa", 0.135),
-        u_area=_SP_ERRORS.get("piston_area_rel_uncertainty", 0.01),
-        u_tan=_SP_ERRORS.get("tangential_pressure_rel_extra", 0.01),
-        u_qs=_SP_ERRORS.get("qs_rel_extra", 0.01),
+        threshold=_SP["kt0_margin_threshold"],
+        pressure=_SP["tangential_pressure"],
+        area=_SP_ERRORS["piston_area_cm2"],
+        dp=_SP_ERRORS["pressure_uncertainty_MPa"],
+        u_area=_SP_ERRORS["piston_area_rel_uncertainty"],
+        u_tan=_SP_ERRORS["tangential_pressure_rel_extra"],
+        u_qs=_SP_ERRORS["qs_rel_extra"],
     log:
         logs("stiffness/summary_from_published_steps.log"),
     shell:

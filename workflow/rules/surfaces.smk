@@ -3,8 +3,8 @@
 
 from contactlab.surfaces.sheet import check_scan_files, read_surface_sheet, scan_paths
 
-SURFACES_CONFIG = config.get("surfaces", {})
-SURFACE_SHEET = SURFACES_CONFIG.get("sheet", "config/surfaces.csv")
+SURFACES_CONFIG = config["surfaces"]
+SURFACE_SHEET = SURFACES_CONFIG["sheet"]
 DEMO_SCAN_DIR = Path("results/surfaces/demo_scans")  # shared by all studies
 try:
     SURFACE_SPECS = read_surface_sheet(SURFACE_SHEET)
@@ -26,7 +26,7 @@ if DEMO_SCANS:
         output:
             DEMO_SCANS,
         params:
-            seed=SURFACES_CONFIG.get("demo_seed", 0),
+            seed=SURFACES_CONFIG["demo_seed"],
             out_dir=lambda wildcards, output: Path(output[0]).parent,
             published=PUBLISHED,
         log:
@@ -45,7 +45,7 @@ rule surface_texture:
         summary=result("surfaces/texture.nc"),
         surfaces=expand(result("surfaces/{surface}.nc"), surface=SURFACE_IDS),
     params:
-        bins=SURFACES_CONFIG.get("histogram_bins", 80),
+        bins=SURFACES_CONFIG["histogram_bins"],
         out_dir=lambda wildcards, output: Path(output.summary).parent,
     log:
         logs("surfaces/texture.log"),

@@ -22,7 +22,7 @@ def receding_args(fe: dict, problem: str, level: str) -> list[str]:
         "x-fine": spec["x_fine"],
         "edges": spec["edges"],
         "young": spec["young"],
-        "increments": fe.get("increments", 1),
+        "increments": fe["increments"],
         "level": level,
     }
     return [word for key, value in options.items() for word in (f"--{key}", str(value))]
