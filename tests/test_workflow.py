@@ -9,6 +9,8 @@ from pathlib import Path
 
 import pytest
 import xarray as xr
+import yaml
+from config_walk import check_all
 
 
 def planned_rules(result: subprocess.CompletedProcess[str]) -> set[str]:
@@ -36,6 +38,13 @@ def test_workflow_end_to_end(workflow_copy: Path, snakemake) -> None:
     again = snakemake(workflow_copy, "-n", "all")
     assert again.returncode == 0, again.stderr
     assert "Nothing to be done" in again.stdout + again.stderr
+
+    # every parameter reaches the jobs that depend on it, and only those (tests/config_walk.py)
+    config = yaml.safe_load((workflow_copy / "config" / "e2e.yaml").read_text())
+    schema = yaml.safe_load((workflow_copy / "workflow/schemas/config.schema.yaml").read_text())
+    failures = check_all(config, schema, lambda override: snakemake(
+        workflow_copy, "-n", "-p", "--config", override, "--", "all"))
+    assert not failures, "\n".join(failures)
 
     # Snakemake 9 compares checksums of small inputs, so the edit must change content.
     edited = workflow_copy / "resources" / "published" / "table_2.3.csv"

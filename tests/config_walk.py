@@ -1,0 +1,156 @@
+"""The config walk: change each parameter of a finished study and see what Snakemake replans.
+
+Used by the end-to-end test on its finished workspace. For every leaf of the receding,
+asperity, surfaces and stiffness sections, the value is changed within the schema's limits,
+the whole section is passed back with ``--config`` (so the nested-override coercion is
+exercised too) and a dry run lists the jobs that would rerun and their commands. The
+parameter passes when some job of its own branch reruns, no job of another branch does, and
+the new value is on a rerun job's command line (so it lands in that result's ``history``).
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import re
+import subprocess
+from collections.abc import Callable, Iterator, Mapping
+from concurrent.futures import ThreadPoolExecutor
+from typing import Any
+
+#: Rules a parameter of each branch may rerun (prefixes), besides the report page.
+BRANCH_RULES = {
+    "surfaces": ("surface_texture", "seq", "report_surfaces", "demo_scans", "stiffness_summary",
+                 "report_stiffness"),
+    "stiffness": ("stiffness_", "report_stiffness"),
+    "asperity": ("asperity_", "fe_asperity"),
+    "receding": ("receding_", "report_receding"),
+}
+ALWAYS = ("report_index", "all")
+#: Leaves that name files or the shared demo inputs, not parameters of a computation.
+SKIP = {"surfaces.sheet"}
+
+
+def _schema_node(schema: Mapping[str, Any], keys: list[str]) -> Mapping[str, Any]:
+    node: Mapping[str, Any] = schema
+    for key in keys:
+        props = node.get("properties", {})
+        extra = node.get("additionalProperties")
+        node = props.get(key, extra if isinstance(extra, Mapping) else {})
+    return node
+
+
+def _bump_number(value: float, node: Mapping[str, Any], integer: bool) -> float:
+    """A different value inside the node's limits."""
+    step = node.get("multipleOf", 1) if integer else None
+    up = value + step if integer else (value * 1.25 if value else 0.1)
+    high = node.get("maximum", node.get("exclusiveMaximum"))
+    if high is not None and up >= high:
+        up = value - step if integer else value * 0.8
+    return int(up) if integer else round(up, 10)
+
+
+def changed(value: Any, node: Mapping[str, Any]) -> tuple[Any, str] | None:
+    """(new value, text expected on a command line) or None when the leaf is not walked."""
+    kind = node.get("type")
+    if isinstance(value, bool):
+        return (not value), ""
+    if "enum" in node and isinstance(value, str):
+        other = [v for v in node["enum"] if v != value]
+        return (other[0], other[0]) if other else None
+    if isinstance(value, int) and kind == "integer":
+        new = _bump_number(value, node, integer=True)
+        return new, str(new)
+    if isinstance(value, float | int):
+        new = _bump_number(float(value), node, integer=False)
+        return new, str(new)
+    if isinstance(value, list) and value and not isinstance(value[0], Mapping):
+        items = node.get("items", {})
+        if "enum" in items:  # a list of laws: drop one (its aggregate reruns without it)
+            return (value[:-1], "") if len(value) > 1 else None
+        integer = items.get("type") == "integer"
+        new = _bump_number(value[-1], items, integer=integer)
+        if items.get("not", {}).get("multipleOf") == 2 and new % 2 == 0:
+            new += 1  # odd grid sizes
+        return [*value[:-1], new], str(new)
+    if isinstance(value, list) and value and isinstance(value[0], Mapping):
+        first = dict(value[0])
+        key = next((k for k, v in first.items() if isinstance(v, float | int)
+                    and not isinstance(v, bool)), None)
+        if key is None:
+            return None
+        first[key] = round(first[key] * 1.25, 10)
+        return [first, *value[1:]], f"{first[key]:g}"
+    if isinstance(value, Mapping) and {"start", "stop", "step"} <= set(value):
+        new = dict(value, stop=round(value["stop"] + value["step"], 10))
+        return new, str(new["stop"])
+    return None
+
+
+def walk(config: Mapping[str, Any], schema: Mapping[str, Any]
+         ) -> Iterator[tuple[str, list[str], Any, str]]:
+    """(branch, key path, new value, expected text) of every walked leaf."""
+    def visit(node: Any, keys: list[str]) -> Iterator[tuple[list[str], Any]]:
+        sub = _schema_node(schema, keys)
+        if isinstance(node, Mapping) and "properties" in sub and not (
+                {"start", "stop", "step"} <= set(node)):
+            for key, value in node.items():
+                yield from visit(value, [*keys, key])
+        else:
+            yield keys, node
+
+    for branch in BRANCH_RULES:
+        for keys, value in visit(config.get(branch, {}), [branch]):
+            if ".".join(keys) in SKIP:
+                continue
+            change = changed(value, _schema_node(schema, keys))
+            if keys[-1] == "chunks":  # job layout, capped by the number of values: split less
+                change = (value - 1, "") if value > 1 else (value + 1, "")
+            elif keys[-1] == "equal_loads_N":  # a subset of grid_bem.N: drop one
+                change = (value[:-1], "") if value else None
+            if change is not None:
+                yield branch, keys, *change
+
+
+def _set(config: dict, keys: list[str], value: Any) -> dict:
+    out = copy.deepcopy(config)
+    node = out
+    for key in keys[:-1]:
+        node = node[key]
+    node[keys[-1]] = value
+    return out
+
+
+def planned(output: str) -> tuple[set[str], str]:
+    """Rule names of the jobs a dry run with -p would execute, and its shell commands."""
+    rules = set(re.findall(r"^(?:local)?rule (\w+):$", output, re.M))
+    return rules, output
+
+
+def check_all(config: dict, schema: Mapping[str, Any],
+              dry_run: Callable[[str], subprocess.CompletedProcess[str]]) -> list[str]:
+    """Walk every parameter; return one line per parameter that fails its check."""
+    cases = list(walk(config, schema))
+
+    def one(case: tuple[str, list[str], Any, str]) -> str | None:
+        branch, keys, value, text = case
+        section = _set(config, keys, value)[branch]
+        run = dry_run(f"{branch}={json.dumps(section)}")
+        name = ".".join(keys)
+        if run.returncode != 0:
+            return f"{name}: dry run failed: {(run.stdout + run.stderr)[-300:]}"
+        rules, commands = planned(run.stdout)
+        own = {r for r in rules if r.startswith(BRANCH_RULES[branch])}
+        other = rules - own - set(ALWAYS)
+        if not own:
+            return f"{name} = {value!r}: no job reruns (is it passed to a rule?)"
+        if other:
+            return f"{name}: reruns jobs of other branches: {sorted(other)}"
+        if text and text not in commands:
+            return f"{name} = {value!r}: '{text}' on no rerun command line"
+        return None
+
+    with ThreadPoolExecutor(max_workers=2) as pool:
+        results = list(pool.map(one, cases))
+    assert len(cases) > 40, f"only {len(cases)} parameters walked"
+    return [r for r in results if r]
