@@ -1,7 +1,12 @@
 # Surfaces branch (thesis sec. 2.3.4): texture parameters of every surface from its scans,
 # and Seq of each test's interface from the computed and from the published Sq.
 
-from contactlab.surfaces.sheet import check_scan_files, read_surface_sheet, scan_paths
+from contactlab.surfaces.sheet import (
+    check_scan_files,
+    read_surface_sheet,
+    scan_paths,
+    surface_scans,
+)
 
 SURFACES_CONFIG = config.get("surfaces", {})
 SURFACE_SHEET = SURFACES_CONFIG.get("sheet", "config/surfaces.csv")
@@ -37,21 +42,39 @@ if DEMO_SCANS:
 
 
 rule surface_texture:
-    """Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz of every surface from its scans."""
+    """Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz of one surface from its scans.
+
+    One job per surface: a refused scan fails only its own job (see --keep-going).
+    """
     input:
         sheet=SURFACE_SHEET,
-        scans=SCANS,
+        scans=lambda wildcards: surface_scans(SURFACE_SPECS, wildcards.surface),
     output:
-        summary="results/surfaces/texture.nc",
-        surfaces=expand("results/surfaces/{surface}.nc", surface=SURFACE_IDS),
+        "results/surfaces/{surface}.nc",
+    wildcard_constraints:
+        surface="|".join(SURFACE_IDS),
     params:
-        bins=SURFACES_CONFIG.get("histogram_bins", 80),
-        out_dir=lambda wildcards, output: Path(output.summary).parent,
+        bins=SURFACES_CONFIG["histogram_bins"],
+        max_undefined=SURFACES_CONFIG["max_undefined_fraction"],
+        out_dir=lambda wildcards, output: Path(output[0]).parent,
     log:
-        "logs/surfaces/texture.log",
+        "logs/surfaces/texture/{surface}.log",
     shell:
-        "contactlab surfaces texture --sheet {input.sheet} --out-dir {params.out_dir}"
-        " --summary {output.summary} --bins {params.bins} > {log} 2>&1"
+        "contactlab surfaces texture --sheet {input.sheet:q} --surface {wildcards.surface:q}"
+        " --out-dir {params.out_dir:q} --bins {params.bins:q}"
+        " --max-undefined-fraction {params.max_undefined:q} > {log:q} 2>&1"
+
+
+rule surface_texture_summary:
+    """Parameters, filled fractions and reasons for undefined parameters of every surface."""
+    input:
+        expand("results/surfaces/{surface}.nc", surface=SURFACE_IDS),
+    output:
+        "results/surfaces/texture.nc",
+    log:
+        "logs/surfaces/texture_summary.log",
+    shell:
+        "contactlab surfaces texture-summary {input:q} --out {output:q} > {log:q} 2>&1"
 
 
 rule seq:
