@@ -5,7 +5,6 @@ from contactlab.surfaces.sheet import (
     check_scan_files,
     read_surface_sheet,
     scan_paths,
-    surface_scans,
 )
 
 SURFACES_CONFIG = config.get("surfaces", {})
@@ -19,6 +18,7 @@ try:
 except (ValueError, FileNotFoundError) as exc:
     raise WorkflowError(str(exc)) from None
 SURFACE_IDS = [spec.surface for spec in SURFACE_SPECS]
+SURFACE_ROWS = {spec.surface: spec for spec in SURFACE_SPECS}
 
 
 if DEMO_SCANS:
@@ -44,23 +44,25 @@ if DEMO_SCANS:
 rule surface_texture:
     """Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz of one surface from its scans.
 
-    One job per surface: a refused scan fails only its own job (see --keep-going).
+    One job per surface: a refused scan fails only its own job (see --keep-going). The
+    sheet row is a param, not the sheet an input, so editing one row reruns one surface.
     """
     input:
-        sheet=SURFACE_SHEET,
-        scans=lambda wildcards: surface_scans(SURFACE_SPECS, wildcards.surface),
+        scans=lambda wildcards: SURFACE_ROWS[wildcards.surface].scans,
     output:
         "results/surfaces/{surface}.nc",
     wildcard_constraints:
         surface="|".join(SURFACE_IDS),
     params:
+        sheet=SURFACE_SHEET,
+        row=lambda wildcards: repr(SURFACE_ROWS[wildcards.surface]),
         bins=SURFACES_CONFIG["histogram_bins"],
         max_undefined=SURFACES_CONFIG["max_undefined_fraction"],
         out_dir=lambda wildcards, output: Path(output[0]).parent,
     log:
         "logs/surfaces/texture/{surface}.log",
     shell:
-        "contactlab surfaces texture --sheet {input.sheet:q} --surface {wildcards.surface:q}"
+        "contactlab surfaces texture --sheet {params.sheet:q} --surface {wildcards.surface:q}"
         " --out-dir {params.out_dir:q} --bins {params.bins:q}"
         " --max-undefined-fraction {params.max_undefined:q} > {log:q} 2>&1"
 

@@ -67,6 +67,11 @@ class SurfaceSpec:
     sampling_length_um: float | None = None  # None: lambda_c (ISO 4288)
 
     @property
+    def scans(self) -> list[Path]:
+        """The surface's scan files, areal first."""
+        return [p for p in (self.areal_scan, self.profile_scan) if p is not None]
+
+    @property
     def sampling_length(self) -> float:
         """Sampling length of the profile parameters, um: the sheet's, else lambda_c."""
         return self.lambda_c_um if self.sampling_length_um is None else self.sampling_length_um
@@ -199,13 +204,6 @@ def scan_paths(specs: list[SurfaceSpec]) -> list[Path]:
     """Every scan file the sheet names, in sheet order, without repeats."""
     paths: list[Path] = []
     for spec in specs:
-        for path in (spec.areal_scan, spec.profile_scan):
-            if path is not None and path not in paths:
-                paths.append(path)
+        paths.extend(path for path in spec.scans if path not in paths)
     return paths
 
-
-def surface_scans(specs: list[SurfaceSpec], surface: str) -> list[Path]:
-    """The scan files of one surface (areal first), for the rule of that surface."""
-    (spec,) = [s for s in specs if s.surface == surface]
-    return [p for p in (spec.areal_scan, spec.profile_scan) if p is not None]
