@@ -87,7 +87,7 @@ def test_unknown_objective_is_refused_at_the_real_line(tmp_path: Path) -> None:
                                          r"'50x' is not one of \['20x', '100x', 'other'\]"):
         read_surface_sheet(path)
     path.write_text(path.read_text().replace("c,50x,c.x3p,,,,,800,", "c,,c.x3p,,,,,800,"))
-    with pytest.raises(ValueError, match=r"line 8 \(c\), column 'objective': None"):
+    with pytest.raises(ValueError, match=r"line 8 \(c\), column 'objective': '' is not one"):
         read_surface_sheet(path)
     path.write_text(path.read_text().replace("b,other,b.opd,,,,,20,", "b,other,b.opd,,,,,-1,"))
     with pytest.raises(ValueError, match=r"line 7 \(b\), column 'lambda_c_um'"):

@@ -117,9 +117,9 @@ def read_surface_sheet(path: str | Path) -> list[SurfaceSpec]:
         seen.add(surface)
         objective = _text(row["objective"])
         if objective not in OBJECTIVES:
-            raise ValueError(f"{where} ({surface}), column 'objective': {objective!r} is not one "
-                             f"of {list(OBJECTIVES)} ('other' for an instrument or lens the "
-                             "thesis did not use)")
+            raise ValueError(f"{where} ({surface}), column 'objective': {(objective or '')!r} is "
+                             f"not one of {list(OBJECTIVES)} ('other' for an instrument or lens "
+                             "the thesis did not use)")
         areal, profile = _text(row["areal_scan"]), _text(row["profile_scan"])
         if areal is None and profile is None:
             raise ValueError(f"{where} ({surface}): neither 'areal_scan' nor 'profile_scan' given")
