@@ -1,11 +1,7 @@
 # Surfaces branch (thesis sec. 2.3.4): texture parameters of every surface from its scans,
 # and Seq of each test's interface from the computed and from the published Sq.
 
-from contactlab.surfaces.sheet import (
-    check_scan_files,
-    read_surface_sheet,
-    scan_paths,
-)
+from contactlab.surfaces.sheet import check_scan_files, read_surface_sheet, scan_paths
 
 SURFACES_CONFIG = config.get("surfaces", {})
 SURFACE_SHEET = SURFACES_CONFIG.get("sheet", "config/surfaces.csv")
