@@ -1,7 +1,8 @@
-"""Benchmark: write all SYNTHETIC demo scans, then process them (issue 7: "takes seconds").
+"""Benchmark: write all SYNTHETIC demo scans, then process them (issue 7: "takes seconds"),
+and fill the undefined points of a real optical scan (issue 22).
 
 Run from the repository root: ``.venv/bin/python benchmarks/surfaces_scans.py``.
-Prints wall-clock and CPU seconds for generation, reading and processing.
+Prints wall-clock and CPU seconds for generation, reading, filling and processing.
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ from contactlab.surfaces.texture import surface_texture
 
 T = TypeVar("T")
 SHEET = Path(__file__).resolve().parents[1] / "config" / "surfaces.csv"
+OPD = Path(__file__).resolve().parents[1] / "tests" / "data" / "scans" / "opd-1-crop.opd"
 
 
 def timed(label: str, func: Callable[[], T]) -> T:
@@ -32,6 +34,9 @@ def timed(label: str, func: Callable[[], T]) -> T:
 
 def main() -> None:
     specs = read_surface_sheet(SHEET)
+    read_scan(OPD, 0.05)  # import the readers before timing
+    scan = timed("read and fill a Wyko OPD (256 x 192, 95 holes)", lambda: read_scan(OPD, 0.05))
+    print(f"  filled {100 * scan.filled_fraction:.3g} % of the points")
     with tempfile.TemporaryDirectory() as work:
         os.chdir(work)
         written = timed("generate demo scans (X3P)",

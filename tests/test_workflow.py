@@ -91,7 +91,8 @@ def test_single_target_builds_only_its_ancestors(workflow_copy: Path, snakemake)
     run = snakemake(workflow_copy, "-n", "results/surfaces/seq.nc")
     assert run.returncode == 0, run.stderr
     # Seq starts from the scans: texture parameters of the (demo) scans come first.
-    assert planned_rules(run) == {"seq", "surface_texture", "demo_scans"}
+    assert planned_rules(run) == {"seq", "surface_texture_summary", "surface_texture",
+                                  "demo_scans"}
 
 
 @pytest.mark.parametrize(

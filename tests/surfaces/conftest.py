@@ -28,10 +28,12 @@ def processed(repo: Path, tmp_path_factory: pytest.TempPathFactory) -> pd.DataFr
         textures = [surface_texture(spec) for spec in specs]
     finally:
         os.chdir(cwd)
-    for texture in textures:
-        write_netcdf(surface_dataset(texture), work / f"{texture.spec.surface}.nc")
-    summary = stamp(summary_dataset(textures), title="t", source="s", history="h")
+    datasets = [surface_dataset(texture) for texture in textures]
+    for ds in datasets:
+        write_netcdf(ds, work / f"{ds.attrs['surface']}.nc")
+    summary = stamp(summary_dataset(datasets), title="t", source="s", history="h")
     write_netcdf(summary, work / "texture.nc")
-    table = summary.to_dataframe()
+    table = summary.drop_vars(["undefined_reason", "parameter"]).to_dataframe()
+    table.attrs["undefined"] = summary["undefined_reason"].to_pandas()
     table.attrs["work"] = work
     return table

@@ -13,6 +13,7 @@ agreement checks the analysis chain.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -74,6 +75,8 @@ def test_areal_parameters_match_tables_a1_a27(processed: pd.DataFrame) -> None:
         assert 1000 * o["Sq"] == pytest.approx(p["Sq"], rel=0.01), surface
         assert 1000 * o["Sa"] == pytest.approx(p["Sa"], rel=0.03), surface
         assert o["Sp"] == pytest.approx(p["Sp"], rel=0.02), surface
+        if surface == "S1_specimen":  # grooves: the ACF does not decay along them
+            continue
         assert abs(o["Str"] - p["Str"]) <= 0.1 * p["Str"] + 0.02, surface
         # The thesis does not state its method; ours (cube counting) and the published are
         # both just above 2 for these surfaces, so only an absolute 0.08 is asserted
@@ -110,9 +113,19 @@ def test_structured_100x_profiles_match_table_2_6(processed: pd.DataFrame) -> No
 
 
 def test_grooves_set_the_str_of_the_10um_specimen(processed: pd.DataFrame) -> None:
-    """S1's 10 um grooves survive the 20x objective and make the texture directional."""
-    assert processed.loc["S1_specimen", "Str"] < 0.02
+    """S1's 10 um grooves survive the 20x objective and make the texture directional: the ACF
+    does not decay along them within the scan, so ISO leaves Str undefined; the bound the
+    reason states is consistent with the published 0.002 (Table A.27)."""
+    assert np.isnan(processed.loc["S1_specimen", "Str"])
+    reason = processed.attrs["undefined"].loc["S1_specimen", "Str"]
+    assert "stays above s = 0.2" in reason
+    bound = float(re.search(r"Str < ([0-9.]+)", reason).group(1))
+    assert 0.002 < bound < 0.02
     assert processed.loc["S2_specimen", "Str"] > 0.5
+    # every other surface has all its parameters
+    undefined = processed.attrs["undefined"]
+    assert [(s, p) for s in undefined.index for p in undefined.columns
+            if undefined.loc[s, p]] == [("S1_specimen", "Str")]
 
 
 def test_seq_from_scans_beside_the_published(processed: pd.DataFrame, repo: Path) -> None:

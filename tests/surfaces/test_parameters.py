@@ -15,6 +15,8 @@ from contactlab.surfaces.filters import (
     roughness_profile,
 )
 from contactlab.surfaces.parameters import (
+    MIN_POINTS_RZ,
+    UndefinedParameter,
     autocorrelation,
     box_counting_dimension,
     decay_lengths,
@@ -44,6 +46,21 @@ def test_rq_agrees_with_surfacetopography_on_a_zero_mean_line() -> None:
     z -= z.mean()
     line = UniformLineScan(z, physical_sizes=4000 * 2.0, unit="um")
     assert profile_parameters(z, 2.0, 8000.0).Rq == pytest.approx(line.Rq(), rel=1e-12)
+
+
+def test_rz_needs_enough_points_per_sampling_length() -> None:
+    """Below MIN_POINTS_RZ points a sampling length, Rz is NaN with the reason; Ra, Rq stay."""
+    _, z = sine_profile(1.0, 40.0, 4000.0, 0.5)
+    short = profile_parameters(z, 0.5, 0.5 * (MIN_POINTS_RZ - 1))
+    assert np.isnan(short.Rz) and "29 points, fewer than 30" in short.undefined["Rz"]
+    assert short.Rq == pytest.approx(1 / np.sqrt(2), rel=0.05)
+    enough = profile_parameters(z, 0.5, 0.5 * MIN_POINTS_RZ)
+    assert np.isfinite(enough.Rz) and enough.undefined == {}
+
+
+def test_box_counting_of_a_tiny_scan_is_undefined() -> None:
+    with pytest.raises(UndefinedParameter, match="7 x 4 pixels is too small"):
+        box_counting_dimension(np.zeros((7, 4)), 1.0)
 
 
 def test_profile_shorter_than_a_sampling_length_is_refused() -> None:
@@ -121,10 +138,20 @@ def test_str_of_crossed_unequal_sines_matches_a_brute_force_search() -> None:
     assert texture_aspect_ratio(z, spacing, spacing) == pytest.approx(expected, rel=0.02)
 
 
-def test_str_of_grooves_tends_to_zero_and_of_isotropic_texture_to_one() -> None:
+def test_str_of_grooves_is_undefined_and_of_isotropic_texture_one() -> None:
+    """Along straight grooves the ACF never decays: ISO 25178-2 leaves Str undefined, and the
+    reason names the direction and the bound (fastest decay / half the scan)."""
     x = np.arange(500) * 2.0
     grooves = np.repeat(np.sin(2 * np.pi * x / 10.0)[:, None], 500, axis=1)
-    assert texture_aspect_ratio(grooves, 2.0, 2.0) < 0.01
+    with pytest.raises(UndefinedParameter, match=r"up to 500 um \(half the scan\) at 90 deg "
+                                                 r"from x.*Str < 0\.00"):
+        texture_aspect_ratio(grooves, 2.0, 2.0)
+    # grooves along x = y (45 deg), 40 um apart: only rays within about a degree of the
+    # groove direction stay above 0.2 over the 200 um search (sampled every degree)
+    s = np.arange(400) * 1.0
+    diagonal = np.sin(2 * np.pi * (s[:, None] - s[None, :]) / (40.0 * np.sqrt(2)))
+    with pytest.raises(UndefinedParameter, match=r"up to 200 um .* at 5 directions, 43-47 deg"):
+        texture_aspect_ratio(diagonal, 1.0, 1.0)
     rng = np.random.default_rng(3)
     qx = np.fft.fftfreq(512)[:, None]
     qy = np.fft.fftfreq(512)[None, :]

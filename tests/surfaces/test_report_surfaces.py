@@ -40,6 +40,13 @@ def test_section_has_every_table_and_picture(processed: pd.DataFrame, repo: Path
     structured = pd.read_csv(report / "tables" / "surfaces_100x.csv")
     assert list(structured["test"]) == ["S3", "S2", "S1"]
     assert (structured["sampling_length_um"] == 160.0).all()
+    undefined = pd.read_csv(report / "tables" / "surfaces_undefined.csv")
+    assert list(zip(undefined["surface"], undefined["parameter"], strict=True)) == [
+        ("S1_specimen", "Str")]
+    assert "stays above s = 0.2" in undefined["reason"].iloc[0]
+    assert "stays above s = 0.2" in page and "No scan had undefined points" in page
+    assert len(pd.read_csv(report / "tables" / "surfaces_filled.csv")) == 0
+    assert len(pd.read_csv(report / "tables" / "surfaces_other.csv")) == 0
     table = pd.read_csv(report / "tables" / "seq.csv")
     assert table["difference_scan"].abs().max() < 0.01
     assert {"beta_n_Seq", "beta_n_Seq_scan", "beta_n_Seq_published"} <= set(table.columns)

@@ -79,11 +79,27 @@ def test_unknown_unit_from_reader_is_refused() -> None:
         scans._conversion_to_um(None, Path("x.nc"))
 
 
-def test_undefined_points_are_refused(tmp_path: Path) -> None:
-    heights = np.zeros((20, 20))
-    heights[3, 4] = np.nan
-    with pytest.raises(ValueError, match=r"holes\.x3p.*1 undefined points"):
-        read_scan(write_x3p(tmp_path / "holes.x3p", heights, 1.0))
+def test_undefined_points_are_filled_up_to_the_limit(tmp_path: Path) -> None:
+    """Harmonic filling reproduces a plane exactly (a plane solves Laplace's equation);
+    above the limit the refusal names the file, the count, the fraction and the setting."""
+    x, y = np.meshgrid(np.arange(40.0), np.arange(30.0), indexing="ij")
+    plane = 0.3 * x - 0.2 * y + 1.0
+    holey = plane.copy()
+    holey[10:13, 5:8] = np.nan  # 9 of 1200 points: 0.75 %
+    holey[0, 29] = np.nan  # a corner point: two neighbours
+    path = write_x3p(tmp_path / "holes.x3p", holey, 1.0)
+    scan = read_scan(path, max_undefined_fraction=0.01)
+    assert scan.filled_fraction == pytest.approx(10 / 1200)
+    np.testing.assert_allclose(scan.heights[:, :29], plane[:, :29], atol=1e-9)
+    # at the edge the stencil drops the missing neighbours: the mean of the two it has
+    assert scan.heights[0, 29] == pytest.approx(0.5 * (plane[1, 29] + plane[0, 28]))
+    with pytest.raises(ValueError, match=r"holes\.x3p: 10 of 1200 points \(0\.833 %\) are "
+                                         r"undefined, more than the 0\.5 % that are filled "
+                                         r"\(my setting\)"):
+        read_scan(path, max_undefined_fraction=0.005, setting="my setting")
+    with pytest.raises(ValueError, match=r"holes\.x3p.*more than the 0 % that are filled"):
+        read_scan(path)  # by default nothing is filled
+    assert read_scan(write_x3p(tmp_path / "full.x3p", plane, 1.0)).filled_fraction == 0.0
 
 
 def test_scan_smaller_than_the_cut_off_is_refused(tmp_path: Path) -> None:
@@ -172,7 +188,7 @@ def test_cli_refuses_a_corrupt_scan_in_one_line(tmp_path: Path) -> None:
     )
     run = subprocess.run(
         [sys.executable, "-m", "contactlab", "surfaces", "texture", "--sheet", str(sheet),
-         "--out-dir", str(tmp_path / "out")],
+         "--out-dir", str(tmp_path / "out"), "--max-undefined-fraction", "0.05"],
         capture_output=True, text=True, check=False,
     )
     assert run.returncode == 2

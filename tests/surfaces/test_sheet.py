@@ -78,6 +78,22 @@ def test_bad_sheets_are_refused_naming_line_and_column(tmp_path, rows, header, m
     assert str(path) in str(error.value)
 
 
+def test_unknown_objective_is_refused_at_the_real_line(tmp_path: Path) -> None:
+    """Line numbers count the comment and blank lines pandas skips; 'other' is allowed."""
+    path = tmp_path / "surfaces.csv"
+    path.write_text("# a comment\n# another\n" + HEADER + "a,20x,a.x3p,,,,,800,\n\n"
+                    "# note on b\nb,other,b.opd,,,,,20,\nc,50x,c.x3p,,,,,800,\n")
+    with pytest.raises(ValueError, match=r"surfaces\.csv: line 8 \(c\), column 'objective': "
+                                         r"'50x' is not one of \['20x', '100x', 'other'\]"):
+        read_surface_sheet(path)
+    path.write_text(path.read_text().replace("c,50x,c.x3p,,,,,800,", "c,,c.x3p,,,,,800,"))
+    with pytest.raises(ValueError, match=r"line 8 \(c\), column 'objective': '' is not one"):
+        read_surface_sheet(path)
+    path.write_text(path.read_text().replace("b,other,b.opd,,,,,20,", "b,other,b.opd,,,,,-1,"))
+    with pytest.raises(ValueError, match=r"line 7 \(b\), column 'lambda_c_um'"):
+        read_surface_sheet(path)
+
+
 def test_sampling_length_is_optional(tmp_path: Path) -> None:
     """Blank, or no such column at all, means sampling length = lambda_c (ISO 4288)."""
     rows = ("a,100x,,p.x3p,x,normal_to_pattern,1,5,160", "b,100x,,p.x3p,x,normal_to_pattern,1,5,",

@@ -14,6 +14,7 @@ try:
 except (ValueError, FileNotFoundError) as exc:
     raise WorkflowError(str(exc)) from None
 SURFACE_IDS = [spec.surface for spec in SURFACE_SPECS]
+SURFACE_ROWS = {spec.surface: spec for spec in SURFACE_SPECS}
 
 
 if DEMO_SCANS:
@@ -37,21 +38,41 @@ if DEMO_SCANS:
 
 
 rule surface_texture:
-    """Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz of every surface from its scans."""
+    """Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz of one surface from its scans.
+
+    One job per surface: a refused scan fails only its own job (see --keep-going). The
+    sheet row is a param, not the sheet an input, so editing one row reruns one surface.
+    """
     input:
-        sheet=SURFACE_SHEET,
-        scans=SCANS,
+        scans=lambda wildcards: SURFACE_ROWS[wildcards.surface].scans,
     output:
-        summary=result("surfaces/texture.nc"),
-        surfaces=expand(result("surfaces/{surface}.nc"), surface=SURFACE_IDS),
+        result("surfaces/{surface}.nc"),
+    wildcard_constraints:
+        surface="|".join(SURFACE_IDS),
     params:
+        sheet=SURFACE_SHEET,
+        row=lambda wildcards: repr(SURFACE_ROWS[wildcards.surface]),
         bins=SURFACES_CONFIG["histogram_bins"],
-        out_dir=lambda wildcards, output: Path(output.summary).parent,
+        max_undefined=SURFACES_CONFIG["max_undefined_fraction"],
+        out_dir=lambda wildcards, output: Path(output[0]).parent,
     log:
-        logs("surfaces/texture.log"),
+        logs("surfaces/texture/{surface}.log"),
     shell:
-        "contactlab surfaces texture --sheet {input.sheet:q} --out-dir {params.out_dir:q}"
-        " --summary {output.summary:q} --bins {params.bins:q} > {log:q} 2>&1"
+        "contactlab surfaces texture --sheet {params.sheet:q} --surface {wildcards.surface:q}"
+        " --out-dir {params.out_dir:q} --bins {params.bins:q}"
+        " --max-undefined-fraction {params.max_undefined:q} > {log:q} 2>&1"
+
+
+rule surface_texture_summary:
+    """Parameters, filled fractions and reasons for undefined parameters of every surface."""
+    input:
+        expand(result("surfaces/{surface}.nc"), surface=SURFACE_IDS),
+    output:
+        result("surfaces/texture.nc"),
+    log:
+        logs("surfaces/texture_summary.log"),
+    shell:
+        "contactlab surfaces texture-summary {input:q} --out {output:q} > {log:q} 2>&1"
 
 
 rule seq:

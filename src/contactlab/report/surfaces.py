@@ -16,6 +16,7 @@ import xarray as xr
 
 from contactlab.published import read_published
 from contactlab.report.section import Section
+from contactlab.surfaces.texture import AREAL, PROFILE
 
 #: Thesis tables that print Seq per test (ground and structured tests).
 SEQ_TABLES = ("2.3", "2.10")
@@ -112,6 +113,36 @@ def structured_comparison(texture: xr.Dataset, directory: Path | None = None) ->
     return pd.DataFrame(rows)
 
 
+def undefined_table(texture: xr.Dataset) -> pd.DataFrame:
+    """One row per parameter left NaN for a surface, with the reason."""
+    reasons = texture["undefined_reason"]
+    rows = [{"surface": str(surface), "parameter": str(parameter),
+             "reason": str(reasons.sel(surface=surface, parameter=parameter).item())}
+            for surface in texture["surface"].values for parameter in texture["parameter"].values
+            if reasons.sel(surface=surface, parameter=parameter).item()]
+    return pd.DataFrame(rows, columns=["surface", "parameter", "reason"])
+
+
+def filled_table(texture: xr.Dataset) -> pd.DataFrame:
+    """Surfaces whose scans had undefined points filled: the filled percentage per scan."""
+    table = pd.DataFrame({
+        "surface": texture["surface"].values.astype(str),
+        "areal_filled_pct": 100 * texture["filled_fraction_areal"].values,
+        "profile_filled_pct": 100 * texture["filled_fraction_profile"].values,
+    })
+    return table[(table[["areal_filled_pct", "profile_filled_pct"]] > 0).any(axis=1)]
+
+
+def other_surfaces(texture: xr.Dataset, directory: Path | None = None) -> pd.DataFrame:
+    """Parameters of the surfaces the thesis's tables do not list (a user's own scans)."""
+    published = pd.concat([read_published(t, directory) for t in ("A.1", "A.26", "A.27")])
+    listed = set(published["surface"])
+    listed |= {f"{test}_specimen_100x" for test in read_published("2.6", directory)["test"]}
+    ours = texture[[*AREAL, *PROFILE, "objective", "lambda_c"]].to_dataframe()
+    ours = ours[~ours.index.isin(listed)]
+    return ours.reset_index().rename(columns={"lambda_c": "lambda_c_um"})
+
+
 def _maps_figure(datasets: dict[str, xr.Dataset]) -> plt.Figure:
     areal = {k: v for k, v in datasets.items() if "roughness_map" in v}
     n = max(len(areal), 1)
@@ -183,6 +214,8 @@ def build_section(seq_path: Path, report_dir: Path, published_dir: Path | None,
     if texture_path is not None:
         with xr.open_dataset(texture_path) as texture:
             texture = texture.load()
+        undefined = undefined_table(texture)
+        texture = texture.drop_vars(["undefined_reason", "parameter"])
         synthetic = [str(s) for s, flag in zip(texture["surface"].values,
                                                texture["synthetic"].values, strict=True) if flag]
         section.paragraph(
@@ -228,6 +261,25 @@ def build_section(seq_path: Path, report_dir: Path, published_dir: Path | None,
             "thesis does not state how its fractal dimension was computed; ours is cube "
             "counting in physical units, which also gives values just above 2."
         )
+        section.table(other_surfaces(texture, published_dir),
+                      "Surfaces not in the thesis's tables (own scans): Sa, Sq, Sp, Ra, Rq, Rz "
+                      "in um", report_dir / "tables" / "surfaces_other.csv")
+        limit = 100 * float(texture.attrs["max_undefined_fraction"])
+        filled = filled_table(texture)
+        section.paragraph(
+            "Undefined (not measured) scan points are filled by harmonic interpolation (each "
+            "filled height the mean of its four neighbours, SurfaceTopography), as instrument "
+            "software fills non-measured points, when they are at most "
+            f"{limit:g} % of a scan (setting surfaces: max_undefined_fraction); a scan with more "
+            "is refused. "
+            + (f"{len(filled)} surface(s) had points filled (table below)." if len(filled)
+               else "No scan had undefined points.")
+        )
+        section.table(filled, "Scans with filled undefined points (% of the scan's points)",
+                      report_dir / "tables" / "surfaces_filled.csv")
+        section.table(undefined, "Parameters that ISO leaves undefined for a scan (NaN, not "
+                      "a number, in the results and tables above), and why",
+                      report_dir / "tables" / "surfaces_undefined.csv")
         if surface_dir is not None:
             datasets = {}
             for surface in texture["surface"].values:

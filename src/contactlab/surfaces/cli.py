@@ -20,8 +20,11 @@ def _demo_scans(args: argparse.Namespace) -> None:
 
 def _texture(args: argparse.Namespace) -> None:
     from contactlab.surfaces.sheet import read_surface_sheet
-    from contactlab.surfaces.texture import summary_dataset, surface_dataset, surface_texture
+    from contactlab.surfaces.texture import surface_dataset, surface_texture
 
+    if not 0.0 <= args.max_undefined_fraction < 1.0:
+        raise ValueError(f"--max-undefined-fraction: {args.max_undefined_fraction} is not in "
+                         "[0, 1)")
     specs = read_surface_sheet(args.sheet)
     if args.surface:
         known = {s.surface for s in specs}
@@ -30,23 +33,41 @@ def _texture(args: argparse.Namespace) -> None:
             raise KeyError(f"{args.sheet}: no surface(s) {unknown} in the sheet")
         specs = [s for s in specs if s.surface in args.surface]
     started = time.perf_counter()
-    textures = [surface_texture(spec, args.bins) for spec in specs]
-    elapsed = time.perf_counter() - started
-    history = f"contactlab surfaces texture --sheet {args.sheet}"
-    for texture in textures:
+    history = (f"contactlab surfaces texture --sheet {args.sheet} "
+               f"--max-undefined-fraction {args.max_undefined_fraction}")
+    for spec in specs:
+        texture = surface_texture(spec, args.bins, args.max_undefined_fraction)
         ds = surface_dataset(texture)
-        stamp(ds, title=f"Surface texture of {texture.spec.surface}",
-              source="scans named in the surface sheet; form removal, Gaussian filter "
-                     "(ISO 16610-21/61), ISO 25178-2 and ISO 4287/4288 parameters (sec. 2.3.4)",
-              history=history)
-        write_netcdf(ds, Path(args.out_dir) / f"{texture.spec.surface}.nc")
-    if args.summary is not None:
-        ds = summary_dataset(textures)
-        ds.attrs["processing_seconds"] = round(elapsed, 3)
-        stamp(ds, title="Texture parameters of every surface (Tables A.1, A.26, A.27, 2.6)",
-              source="scans named in the surface sheet, sec. 2.3.4", history=history)
-        write_netcdf(ds, args.summary)
-    print(f"processed {len(textures)} surfaces in {elapsed:.2f} s")
+        stamp(ds, title=f"Surface texture of {spec.surface}",
+              source="scans named in the surface sheet; undefined points filled by harmonic "
+                     "interpolation; form removal, Gaussian filter (ISO 16610-21/61), "
+                     "ISO 25178-2 and ISO 4287/4288 parameters (sec. 2.3.4)",
+              history=f"{history} --surface {spec.surface}")
+        write_netcdf(ds, Path(args.out_dir) / f"{spec.surface}.nc")
+        for kind, fraction in texture.filled.items():
+            if fraction > 0:
+                print(f"{spec.surface}: filled {100 * fraction:.3g} % of the {kind} scan")
+        for name, reason in texture.undefined.items():
+            print(f"{spec.surface}: {name} undefined: {reason}")
+    print(f"processed {len(specs)} surface(s) in {time.perf_counter() - started:.2f} s")
+
+
+def _texture_summary(args: argparse.Namespace) -> None:
+    import xarray as xr
+
+    from contactlab.surfaces.texture import summary_dataset
+
+    datasets = []
+    for path in args.surfaces:
+        if not Path(path).is_file():
+            raise FileNotFoundError(f"{path}: surface result not found")
+        with xr.open_dataset(path) as ds:
+            datasets.append(ds.load())
+    summary = summary_dataset(datasets)
+    stamp(summary, title="Texture parameters of every surface (Tables A.1, A.26, A.27, 2.6)",
+          source="results/surfaces/<surface>.nc of the surfaces in the surface sheet, sec. 2.3.4",
+          history=f"contactlab surfaces texture-summary ({len(datasets)} surfaces)")
+    write_netcdf(summary, args.out)
 
 
 def _seq(args: argparse.Namespace) -> None:
@@ -97,16 +118,24 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     demo.add_argument("--published-dir", type=Path, default=None, help="published tables")
     demo.set_defaults(func=_demo_scans)
 
-    texture = commands.add_parser("texture", help="texture parameters of each surface's scans")
+    texture = commands.add_parser(
+        "texture", help="texture parameters of each surface's scans (<surface>.nc)")
     texture.add_argument("--sheet", type=Path, required=True, help="surface sheet (CSV)")
     texture.add_argument("--out-dir", type=Path, required=True,
                          help="directory for <surface>.nc")
-    texture.add_argument("--summary", type=Path, default=None,
-                         help="netCDF with the parameters of all surfaces")
     texture.add_argument("--surface", action="append", default=None,
-                         help="only this surface (repeatable)")
+                         help="only this surface (repeatable; default: every surface)")
     texture.add_argument("--bins", type=int, default=80, help="height histogram bins")
+    texture.add_argument("--max-undefined-fraction", type=float, required=True,
+                         help="largest fraction of undefined points of a scan that is filled "
+                              "(harmonic interpolation); more is refused")
     texture.set_defaults(func=_texture)
+
+    summary = commands.add_parser(
+        "texture-summary", help="gather <surface>.nc files into one table (texture.nc)")
+    summary.add_argument("surfaces", type=Path, nargs="+", help="<surface>.nc files")
+    summary.add_argument("--out", type=Path, required=True, help="netCDF output")
+    summary.set_defaults(func=_texture_summary)
 
     seq = commands.add_parser("seq", help="Seq of each test's interface")
     seq.add_argument("--tests", type=Path, required=True, help="test sheet (config/tests.csv)")

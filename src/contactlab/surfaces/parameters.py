@@ -8,11 +8,16 @@ so heights are measured from the mean line or plane.
   box-counting fractal dimension.
 - Profile (ISO 4287, evaluated as ISO 4288 prescribes): Ra, Rq, Rz per sampling
   length, averaged over the sampling lengths of the evaluation length.
+
+A parameter the standard leaves undefined for the data at hand (Str when the ACF
+does not decay to the threshold within the evaluation area, Rz on too few points
+per sampling length, a fractal dimension of too small a scan) is not a number:
+:class:`UndefinedParameter` says why, and the caller records NaN with that reason.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.fft import irfft2, next_fast_len, rfft2
@@ -20,6 +25,15 @@ from scipy.ndimage import map_coordinates
 
 #: Threshold s of the autocorrelation used for Sal and Str (ISO 25178-2 default).
 ACF_THRESHOLD = 0.2
+#: Fewest points per sampling length for Rz: ISO 3274's narrowest bandwidth is
+#: lambda_c/lambda_s = 30, so with fewer points per sampling length (= lambda_c by default)
+#: the spacing is coarser than lambda_s, the shortest wavelength that bounds the peaks and
+#: valleys of Rz, and the peak-to-valley height depends on where the samples fall.
+MIN_POINTS_RZ = 30
+
+
+class UndefinedParameter(ValueError):
+    """A parameter that the standard leaves undefined for these data; the message says why."""
 
 
 def arithmetic_mean_height(heights: np.ndarray) -> float:
@@ -75,8 +89,14 @@ class AutocorrelationLengths:
 
     @property
     def str_(self) -> float:
-        """Str: shortest over longest decay length (1)."""
+        """Str: shortest over longest decay length (1); an upper bound if some direction
+        has not decayed (:attr:`undecayed`)."""
         return float(np.min(self.lengths_um) / np.max(self.lengths_um))
+
+    @property
+    def undecayed(self) -> np.ndarray:
+        """Directions in which the ACF stays above the threshold up to ``limit_um``."""
+        return self.lengths_um >= self.limit_um
 
 
 def decay_lengths(acf: np.ndarray, dx: float, dy: float, threshold: float = ACF_THRESHOLD,
@@ -122,12 +142,24 @@ def texture_aspect_ratio(heights: np.ndarray, dx: float, dy: float,
     """Str (ISO 25178-2): fastest over slowest decay length of the ACF to ``threshold``.
 
     Decay lengths are searched up to half the scan size (see :func:`decay_lengths`).
+    If the ACF does not fall to ``threshold`` within that in some direction, the
+    slowest decay length, and with it Str, is undefined (ISO 25178-2):
+    :class:`UndefinedParameter` is raised with the upper bound Str would have.
     """
     nx, ny = np.shape(heights)
     limit = 0.5 * min(nx * dx, ny * dy)
     max_lag = (int(np.ceil(limit / dx)) + 1, int(np.ceil(limit / dy)) + 1)
     acf = autocorrelation(heights, max_lag)
-    return decay_lengths(acf, dx, dy, threshold, limit_um=limit).str_
+    lengths = decay_lengths(acf, dx, dy, threshold, limit_um=limit)
+    if lengths.undecayed.any():
+        angles = lengths.angles_deg[lengths.undecayed]
+        where = (f"{angles[0]:g} deg" if angles.size == 1
+                 else f"{angles.size} directions, {angles.min():g}-{angles.max():g} deg")
+        raise UndefinedParameter(
+            f"the autocorrelation stays above s = {threshold:g} up to {limit:.4g} um (half the "
+            f"scan) at {where} from x, so the slowest decay length is undefined "
+            f"(Str < {lengths.str_:.2g})")
+    return lengths.str_
 
 
 def box_counting_dimension(heights: np.ndarray, spacing: float, max_box_pixels: int = 64,
@@ -165,7 +197,8 @@ def box_counting_dimension(heights: np.ndarray, spacing: float, max_box_pixels: 
         top, bottom = _pool(top, np.maximum), _pool(bottom, np.minimum)
         n *= 2
     if len(sizes) < 3:
-        raise ValueError("scan too small for a box-counting dimension (needs >= 16 pixels a side)")
+        raise UndefinedParameter(f"a scan of {nx} x {ny} pixels is too small for three box "
+                                 "sizes of the cube counting (needs 17 pixels a side)")
     slope = np.polyfit(np.log(sizes), np.log(counts), 1)[0]
     return float(-slope)
 
@@ -179,12 +212,16 @@ def _pool(cells: np.ndarray, op: np.ufunc) -> np.ndarray:
 
 @dataclass(frozen=True)
 class ProfileParameters:
-    """Ra, Rq, Rz (um) averaged over sampling lengths, and how many were used."""
+    """Ra, Rq, Rz (um) averaged over sampling lengths, and how many were used.
+
+    ``undefined`` maps a parameter left NaN to the reason (Rz on too few points).
+    """
 
     Ra: float
     Rq: float
     Rz: float
     n_sampling_lengths: int
+    undefined: dict[str, str] = field(default_factory=dict)
 
 
 def profile_parameters(roughness: np.ndarray, spacing: float,
@@ -195,7 +232,8 @@ def profile_parameters(roughness: np.ndarray, spacing: float,
     cut-off lambda_c; ISO 4288 takes ``sampling_length`` = lambda_c unless stated
     otherwise (the surface sheet's ``sampling_length_um``). Rz of a
     sampling length is its highest peak plus its deepest valley, both from the
-    mean line. Trailing points that do not fill a sampling length are ignored.
+    mean line; it is NaN (reason in ``undefined``) below ``MIN_POINTS_RZ`` points
+    per sampling length. Trailing points that do not fill a sampling length are ignored.
     """
     z = np.asarray(roughness, dtype=float)
     per_length = round(sampling_length / spacing)
@@ -208,5 +246,11 @@ def profile_parameters(roughness: np.ndarray, spacing: float,
     segments = z[: count * per_length].reshape(count, per_length)
     ra = np.mean(np.abs(segments), axis=1)
     rq = np.sqrt(np.mean(segments**2, axis=1))
+    if per_length < MIN_POINTS_RZ:
+        reason = (f"a sampling length of {sampling_length:.4g} um has {per_length} points, fewer "
+                  f"than {MIN_POINTS_RZ} (ISO 3274's narrowest bandwidth lambda_c/lambda_s): "
+                  "the spacing does not resolve lambda_s")
+        return ProfileParameters(float(ra.mean()), float(rq.mean()), float("nan"), count,
+                                 {"Rz": reason})
     rz = np.max(segments, axis=1) - np.min(segments, axis=1)
     return ProfileParameters(float(ra.mean()), float(rq.mean()), float(rz.mean()), count)

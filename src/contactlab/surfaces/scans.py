@@ -3,8 +3,15 @@
 SurfaceTopography detects the format from the file contents (Alicona AL3D,
 ISO 25178-71 SDF, ISO 5436-2 X3P, and many more). Every scan is returned as
 heights in um on a uniform grid, axis 0 along x. A scan that cannot be read,
-has no physical size, an unknown height unit or undefined points is refused with
-a message naming the file.
+has no physical size or an unknown height unit is refused with a message naming
+the file.
+
+Undefined (not measured) points, common in optical scans, are filled with
+SurfaceTopography's harmonic interpolation (each filled height is the mean of its
+four neighbours, i.e. the discrete Laplace equation with the measured points as
+boundary values), as instrument software such as MountainsMap fills non-measured
+points before ISO 25178 parameters are evaluated. The filled fraction is kept with
+the scan; above ``max_undefined_fraction`` the scan is refused.
 """
 
 from __future__ import annotations
@@ -16,6 +23,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 if TYPE_CHECKING:
+    from SurfaceTopography import Topography, UniformLineScan
     from SurfaceTopography.IO.Reader import ReaderBase
 
 
@@ -28,6 +36,7 @@ class Scan:
     dx: float
     dy: float
     instrument: str
+    filled_fraction: float = 0.0  # undefined points filled by harmonic interpolation
 
     @property
     def synthetic(self) -> bool:
@@ -87,12 +96,46 @@ def _open(path: Path) -> ReaderBase:
                          "recognises the file (unknown format, corrupt or truncated)") from exc
 
 
-def read_scan(path: str | Path) -> Scan:
+def fill_undefined(topography: Topography | UniformLineScan, path: Path, max_fraction: float,
+                   setting: str) -> tuple[np.ndarray, float]:
+    """Heights with undefined (masked or NaN) points filled, and the filled fraction.
+
+    Filling is SurfaceTopography's harmonic interpolation. More than
+    ``max_fraction`` undefined points, or only undefined points, is refused
+    naming the file, the fraction and ``setting`` (what changes the limit).
+    """
+    from SurfaceTopography import Topography, UniformLineScan
+
+    raw = topography.heights()
+    heights = np.ma.getdata(raw).astype(float)
+    mask = np.ma.getmaskarray(raw) | ~np.isfinite(heights)
+    fraction = float(mask.mean())
+    if not mask.any():
+        return heights, 0.0
+    if fraction > max_fraction or mask.all():
+        raise ValueError(
+            f"{path}: {int(mask.sum())} of {mask.size} points ({100 * fraction:.3g} %) are "
+            f"undefined, more than the {100 * max_fraction:.3g} % that are filled "
+            f"({setting}); crop the scan or raise the limit")
+    masked = np.ma.masked_array(np.where(mask, 0.0, heights), mask=mask)
+    sizes = topography.physical_sizes
+    if topography.dim == 1:
+        holey = UniformLineScan(masked, sizes, periodic=False)
+    else:
+        holey = Topography(masked, sizes, periodic=False)
+    return np.asarray(holey.interpolate_undefined_data("harmonic").heights(), float), fraction
+
+
+def read_scan(path: str | Path, max_undefined_fraction: float = 0.0,
+              setting: str = "max_undefined_fraction") -> Scan:
     """Read one scan file (any SurfaceTopography format) as heights in um.
 
-    Raises FileNotFoundError for a missing file and ValueError, naming the file,
-    for an unreadable or corrupt file, a missing physical size or unit, a
-    non-uniform grid or undefined (masked, NaN) points.
+    Undefined points are filled (:func:`fill_undefined`) when they are at most
+    ``max_undefined_fraction`` of the scan (default 0: none allowed); ``setting``
+    names the option that changes the limit in the refusal. Raises
+    FileNotFoundError for a missing file and ValueError, naming the file, for an
+    unreadable or corrupt file, a missing physical size or unit, a non-uniform
+    grid or too many undefined points.
     """
     path = Path(path)
     if not path.is_file():
@@ -115,11 +158,7 @@ def read_scan(path: str | Path) -> Scan:
         raise ValueError(f"{path}: cannot read scan ({_first_line(exc)})") from exc
     if not topography.is_uniform:
         raise ValueError(f"{path}: scan is not on a uniform grid")
-    heights = np.ma.getdata(topography.heights()).astype(float)
-    mask = np.ma.getmaskarray(topography.heights()) | ~np.isfinite(heights)
-    if mask.any():
-        raise ValueError(f"{path}: scan has {int(mask.sum())} undefined points; "
-                         "fill or crop them before the texture analysis")
+    heights, filled = fill_undefined(topography, path, max_undefined_fraction, setting)
     heights = heights * factor
     if topography.dim == 1:
         heights = heights[:, None]
@@ -133,4 +172,5 @@ def read_scan(path: str | Path) -> Scan:
     info = topography.info.get("instrument", {}) if hasattr(topography, "info") else {}
     instrument = (f"{info.get('vendor', '')} {info.get('name', '')}".strip()
                   if isinstance(info, dict) else "")
-    return Scan(path=path, heights=heights, dx=dx, dy=dy, instrument=instrument)
+    return Scan(path=path, heights=heights, dx=dx, dy=dy, instrument=instrument,
+                filled_fraction=filled)

@@ -10,7 +10,9 @@ three tests) without repeating its scans.
 Columns:
 
 - ``surface``: surface id (``rough_specimen_B``, ``RU1_pad_B``, ``S1_specimen_normal``...).
-- ``objective``: ``20x`` or ``100x`` (informational; the scan file gives the pixel size).
+- ``objective``: one of :data:`OBJECTIVES`: ``20x`` or ``100x`` (the Alicona objectives of
+  sec. 2.3.4), or ``other`` for any other instrument or lens (informational; the scan
+  file gives the pixel size). Anything else is refused, so a typo cannot pass.
 - ``areal_scan``: scan for the areal parameters (Sa, Sq, Sp, Str, fractal dimension),
   or empty.
 - ``profile_scan``: scan whose lines give Ra, Rq, Rz, or empty.
@@ -40,6 +42,8 @@ COLUMNS = ("surface", "objective", "areal_scan", "profile_scan", "profile_axis",
 #: Columns a sheet may leave out (blank in every row).
 OPTIONAL = ("sampling_length_um",)
 DIRECTIONS = ("lengthwise", "normal_to_pattern", "parallel_to_pattern")
+#: Values of the ``objective`` column (README, Surface texture).
+OBJECTIVES = ("20x", "100x", "other")
 #: Ids that would collide with other files in results/surfaces/.
 RESERVED = ("seq", "texture", "demo_scans")
 #: Fraction of each profile line discarded at each end (sec. 2.3.4, Alicona); the rest is
@@ -61,6 +65,11 @@ class SurfaceSpec:
     profile_length_um: float | None
     lambda_c_um: float
     sampling_length_um: float | None = None  # None: lambda_c (ISO 4288)
+
+    @property
+    def scans(self) -> list[Path]:
+        """The surface's scan files, areal first."""
+        return [p for p in (self.areal_scan, self.profile_scan) if p is not None]
 
     @property
     def sampling_length(self) -> float:
@@ -94,7 +103,8 @@ def read_surface_sheet(path: str | Path) -> list[SurfaceSpec]:
     for column in OPTIONAL:
         if column not in table.columns:
             table[column] = ""
-    for line, row in enumerate(table.to_dict("records"), start=2):
+    lines = _data_lines(path)
+    for line, row in zip(lines[1:], table.to_dict("records"), strict=True):
         where = f"{path}: line {line}"
         surface = _text(row["surface"]) or ""
         if not _ID.match(surface):
@@ -105,6 +115,11 @@ def read_surface_sheet(path: str | Path) -> list[SurfaceSpec]:
         if surface in seen:
             raise ValueError(f"{where}, column 'surface': duplicate surface id {surface!r}")
         seen.add(surface)
+        objective = _text(row["objective"])
+        if objective not in OBJECTIVES:
+            raise ValueError(f"{where} ({surface}), column 'objective': {(objective or '')!r} is "
+                             f"not one of {list(OBJECTIVES)} ('other' for an instrument or lens "
+                             "the thesis did not use)")
         areal, profile = _text(row["areal_scan"]), _text(row["profile_scan"])
         if areal is None and profile is None:
             raise ValueError(f"{where} ({surface}): neither 'areal_scan' nor 'profile_scan' given")
@@ -134,7 +149,7 @@ def read_surface_sheet(path: str | Path) -> list[SurfaceSpec]:
                                  f"% of the profile length)")
         specs.append(SurfaceSpec(
             surface=surface,
-            objective=_text(row["objective"]) or "",
+            objective=objective,
             areal_scan=Path(areal) if areal else None,
             profile_scan=Path(profile) if profile else None,
             profile_axis=axis,
@@ -146,6 +161,14 @@ def read_surface_sheet(path: str | Path) -> list[SurfaceSpec]:
     if not specs:
         raise ValueError(f"{path}: no surfaces")
     return specs
+
+
+def _data_lines(path: Path) -> list[int]:
+    """Line numbers (from 1) of the header and rows, as pandas reads them with
+    ``comment="#"``: blank lines and lines that are only a comment are skipped."""
+    with path.open(encoding="utf-8", errors="replace") as handle:
+        return [number for number, text in enumerate(handle, start=1)
+                if text.split("#", 1)[0].strip()]
 
 
 def _number(value: object, where: str) -> float:
@@ -181,7 +204,6 @@ def scan_paths(specs: list[SurfaceSpec]) -> list[Path]:
     """Every scan file the sheet names, in sheet order, without repeats."""
     paths: list[Path] = []
     for spec in specs:
-        for path in (spec.areal_scan, spec.profile_scan):
-            if path is not None and path not in paths:
-                paths.append(path)
+        paths.extend(path for path in spec.scans if path not in paths)
     return paths
+

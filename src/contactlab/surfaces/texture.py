@@ -9,10 +9,15 @@ length -> least-squares line removed -> Gaussian filter at lambda_c -> 10 % of
 the length discarded at each end (as the Alicona does, sec. 2.3.4) -> Ra, Rq, Rz
 per sampling length (the sheet's ``sampling_length_um``, by default lambda_c as ISO
 4288 pairs them), averaged over the sampling lengths and over the lines.
+
+Undefined scan points are filled when reading (:mod:`contactlab.surfaces.scans`),
+and the filled fraction is recorded. A parameter the standard leaves undefined for
+a scan is NaN with an ``undefined_reason`` attribute, never a number.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -20,6 +25,7 @@ import xarray as xr
 
 from contactlab.surfaces.filters import mean_surface, remove_line, remove_plane, roughness_profile
 from contactlab.surfaces.parameters import (
+    UndefinedParameter,
     arithmetic_mean_height,
     box_counting_dimension,
     maximum_peak_height,
@@ -48,17 +54,30 @@ ATTRS = {
 }
 
 SAMPLING_LENGTH = {"long_name": "sampling length of Ra, Rq, Rz (ISO 4287/4288)", "units": "um"}
+#: What changes the limit of undefined points, named in a refusal.
+FILL_SETTING = ("surfaces: max_undefined_fraction in the workflow config, "
+                "--max-undefined-fraction of contactlab surfaces texture")
+FILLED = {kind: {"long_name": f"fraction of the {kind} scan's points that were undefined and "
+                              "filled by harmonic interpolation", "units": "1"}
+          for kind in ("areal", "profile")}
 
 
 @dataclass
 class SurfaceTexture:
-    """Parameters and spectra of one surface (NaN where a scan is absent)."""
+    """Parameters and spectra of one surface (NaN where a scan is absent).
+
+    ``undefined`` maps a parameter left NaN for a scan to the reason; ``filled``
+    maps ``areal``/``profile`` to the fraction of that scan's points filled.
+    """
 
     spec: SurfaceSpec
     values: dict[str, float] = field(default_factory=dict)
     areal: dict[str, np.ndarray] = field(default_factory=dict)
     profile: dict[str, np.ndarray] = field(default_factory=dict)
     synthetic: bool = False
+    undefined: dict[str, str] = field(default_factory=dict)
+    filled: dict[str, float] = field(default_factory=dict)
+    max_undefined_fraction: float = 0.0
 
 
 def _check_cut_off(extent_um: float, lambda_c: float, what: str, scan: Scan) -> None:
@@ -69,8 +88,31 @@ def _check_cut_off(extent_um: float, lambda_c: float, what: str, scan: Scan) -> 
         )
 
 
+def _defined_spectrum(q: np.ndarray, psd: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The bins of a (masked) spectrum with a finite, positive q and a finite PSD.
+
+    CF forbids missing values in a coordinate, so empty bins are dropped, not kept as NaN.
+    """
+    q_data, psd_data = np.ma.getdata(q).astype(float), np.ma.getdata(psd).astype(float)
+    ok = ~(np.ma.getmaskarray(q) | np.ma.getmaskarray(psd))
+    ok &= np.isfinite(q_data) & np.isfinite(psd_data) & (q_data > 0)
+    return q_data[ok], psd_data[ok]
+
+
+def _maybe(undefined: dict[str, str], name: str, compute: Callable[[], float]) -> float:
+    """``compute()``, or NaN with the reason stored in ``undefined[name]``."""
+    try:
+        return compute()
+    except UndefinedParameter as exc:
+        undefined[name] = str(exc)
+        return float("nan")
+
+
 def areal_texture(scan: Scan, lambda_c: float, histogram_bins: int = 80) -> dict:
-    """Areal parameters of a scan after plane removal and the lambda_c Gaussian filter."""
+    """Areal parameters of a scan after plane removal and the lambda_c Gaussian filter.
+
+    Returns ``values`` (NaN where undefined), ``undefined`` (reasons) and ``arrays``.
+    """
     from SurfaceTopography import Topography
 
     sx, sy = scan.size_um
@@ -81,24 +123,25 @@ def areal_texture(scan: Scan, lambda_c: float, histogram_bins: int = 80) -> dict
     rough = form_removed - mean_surface(form_removed, lambda_c, scan.dx, scan.dy)
     rough -= rough.mean()
     topography = Topography(rough, physical_sizes=(sx, sy), unit="um", periodic=False)
-    q, psd = topography.power_spectrum_from_area(nb_points_per_decade=10)
-    ok = np.isfinite(psd) & (q > 0)
+    q, psd = _defined_spectrum(*topography.power_spectrum_from_area(nb_points_per_decade=10))
     counts, edges = np.histogram(rough, bins=histogram_bins, density=True)
     step_x = max(1, int(np.ceil(rough.shape[0] / MAP_PIXELS)))
     step_y = max(1, int(np.ceil(rough.shape[1] / MAP_PIXELS)))
+    undefined: dict[str, str] = {}
     values = {
         "Sa": arithmetic_mean_height(rough),
         "Sq": float(topography.Sq()),
         "Sp": maximum_peak_height(rough),
-        "Str": texture_aspect_ratio(rough, scan.dx, scan.dy),
-        "fractal_dimension": box_counting_dimension(rough, 0.5 * (scan.dx + scan.dy)),
+        "Str": _maybe(undefined, "Str", lambda: texture_aspect_ratio(rough, scan.dx, scan.dy)),
+        "fractal_dimension": _maybe(undefined, "fractal_dimension", lambda: box_counting_dimension(
+            rough, 0.5 * (scan.dx + scan.dy))),
     }
     arrays = {
-        "q": q[ok], "psd": psd[ok], "density": counts, "edges": edges,
+        "q": q, "psd": psd, "density": counts, "edges": edges,
         "map": rough[::step_x, ::step_y], "map_dx": scan.dx * step_x, "map_dy": scan.dy * step_y,
         "dx": scan.dx, "dy": scan.dy, "size_x": sx, "size_y": sy,
     }
-    return {"values": values, "arrays": arrays}
+    return {"values": values, "undefined": undefined, "arrays": arrays}
 
 
 def profile_lines(scan: Scan, axis: str, length_um: float,
@@ -131,7 +174,8 @@ def profile_texture(scan: Scan, axis: str, length_um: float, lambda_c: float,
     """Ra, Rq, Rz of ``N_PROFILES`` lines (ISO 4287/4288 as in sec. 2.3.4) and their PSD.
 
     The parameters are means over sampling lengths of ``sampling_length`` um
-    (default lambda_c) in each line's evaluation length, then over the lines.
+    (default lambda_c) in each line's evaluation length, then over the lines;
+    ``undefined`` gives the reason for a NaN (all lines share the sampling).
     """
     from SurfaceTopography import Topography, UniformLineScan
 
@@ -159,33 +203,42 @@ def profile_texture(scan: Scan, axis: str, length_um: float, lambda_c: float,
     else:
         topography = UniformLineScan(rough[:, 0], physical_sizes=rough.shape[0] * spacing,
                                      unit="um", periodic=False)
-    q, psd = topography.power_spectrum_from_profile(nb_points_per_decade=10)
-    ok = np.isfinite(psd) & (q > 0)
+    q, psd = _defined_spectrum(*topography.power_spectrum_from_profile(nb_points_per_decade=10))
     values = {name: float(np.mean([getattr(r, name) for r in results])) for name in PROFILE}
     arrays = {
-        "q": q[ok], "psd": psd[ok], "lines": rough, "spacing": spacing,
+        "q": q, "psd": psd, "lines": rough, "spacing": spacing,
         "n_lines": rough.shape[1], "n_sampling_lengths": results[0].n_sampling_lengths,
         "sampling_length": sampling_length,
     }
-    return {"values": values, "arrays": arrays}
+    return {"values": values, "undefined": dict(results[0].undefined), "arrays": arrays}
 
 
-def surface_texture(spec: SurfaceSpec, histogram_bins: int = 80) -> SurfaceTexture:
-    """Everything the sheet asks for one surface."""
-    texture = SurfaceTexture(spec, dict.fromkeys(AREAL + PROFILE, np.nan))
+def surface_texture(spec: SurfaceSpec, histogram_bins: int = 80,
+                    max_undefined_fraction: float = 0.0) -> SurfaceTexture:
+    """Everything the sheet asks for one surface.
+
+    Scans with at most ``max_undefined_fraction`` undefined points are filled
+    (:func:`contactlab.surfaces.scans.read_scan`); more is refused.
+    """
+    texture = SurfaceTexture(spec, dict.fromkeys(AREAL + PROFILE, np.nan),
+                             max_undefined_fraction=max_undefined_fraction)
     if spec.areal_scan is not None:
-        scan = read_scan(spec.areal_scan)
+        scan = read_scan(spec.areal_scan, max_undefined_fraction, FILL_SETTING)
         texture.synthetic |= scan.synthetic
+        texture.filled["areal"] = scan.filled_fraction
         result = areal_texture(scan, spec.lambda_c_um, histogram_bins)
         texture.values.update(result["values"])
+        texture.undefined.update(result["undefined"])
         texture.areal = result["arrays"]
     if spec.profile_scan is not None:
         assert spec.profile_length_um is not None
-        scan = read_scan(spec.profile_scan)
+        scan = read_scan(spec.profile_scan, max_undefined_fraction, FILL_SETTING)
         texture.synthetic |= scan.synthetic
+        texture.filled["profile"] = scan.filled_fraction
         result = profile_texture(scan, spec.profile_axis, spec.profile_length_um,
                                  spec.lambda_c_um, spec.sampling_length)
         texture.values.update(result["values"])
+        texture.undefined.update(result["undefined"])
         texture.profile = result["arrays"]
     return texture
 
@@ -198,9 +251,13 @@ def _var(name: str, dims, data, **extra) -> xr.Variable:
 def surface_dataset(texture: SurfaceTexture) -> xr.Dataset:
     """The CF-style dataset of ``results/surfaces/<surface>.nc``."""
     spec = texture.spec
-    data: dict[str, xr.Variable] = {
-        name: _var(name, (), texture.values[name]) for name in AREAL + PROFILE
-    }
+    data: dict[str, xr.Variable] = {}
+    for name in AREAL + PROFILE:
+        reason = texture.undefined.get(name)
+        data[name] = _var(name, (), texture.values[name],
+                          **({"undefined_reason": reason} if reason else {}))
+    for kind, fraction in texture.filled.items():
+        data[f"filled_fraction_{kind}"] = xr.Variable((), fraction, FILLED[kind])
     data["lambda_c"] = xr.Variable((), spec.lambda_c_um,
                                    {"long_name": "Gaussian cut-off wavelength", "units": "um"})
     coords: dict[str, xr.Variable] = {}
@@ -254,33 +311,61 @@ def surface_dataset(texture: SurfaceTexture) -> xr.Dataset:
         profile_direction=spec.profile_direction or "",
         profile_length_mm=(spec.profile_length_um or 0.0) / 1000.0,
         synthetic_scans=int(texture.synthetic),
+        max_undefined_fraction=texture.max_undefined_fraction,
     )
     return ds
 
 
-def summary_dataset(textures: list[SurfaceTexture]) -> xr.Dataset:
-    """Parameters of every surface, one row per surface (``results/surfaces/texture.nc``)."""
-    surfaces = np.array([t.spec.surface for t in textures], dtype=object)
+def _scalar(ds: xr.Dataset, name: str) -> float:
+    return float(ds[name]) if name in ds else np.nan
+
+
+def summary_dataset(datasets: list[xr.Dataset]) -> xr.Dataset:
+    """Parameters of every surface, one row per surface (``results/surfaces/texture.nc``).
+
+    Built from the ``<surface>.nc`` datasets of :func:`surface_dataset`;
+    ``undefined_reason`` (surface, parameter) is empty where a parameter is defined.
+    """
+    if not datasets:
+        raise ValueError("no surface results to summarise")
+    limits = {ds.attrs["max_undefined_fraction"] for ds in datasets}
+    if len(limits) > 1:
+        raise ValueError(f"surface results made with different max_undefined_fraction {limits}; "
+                         "rerun them with one setting")
+    surfaces = np.array([ds.attrs["surface"] for ds in datasets], dtype=object)
     data = {
-        name: _var(name, "surface", np.array([t.values[name] for t in textures]))
+        name: _var(name, "surface", np.array([float(ds[name]) for ds in datasets]))
         for name in AREAL + PROFILE
     }
-    data["lambda_c"] = xr.Variable("surface", [t.spec.lambda_c_um for t in textures], {
+    data["undefined_reason"] = xr.Variable(
+        ("surface", "parameter"),
+        np.array([[ds[name].attrs.get("undefined_reason", "") for name in AREAL + PROFILE]
+                  for ds in datasets], dtype=object),
+        {"long_name": "why the parameter is NaN (ISO leaves it undefined for the scan); "
+                      "empty if defined"})
+    for kind in ("areal", "profile"):
+        data[f"filled_fraction_{kind}"] = xr.Variable(
+            "surface", [_scalar(ds, f"filled_fraction_{kind}") for ds in datasets], FILLED[kind])
+    data["lambda_c"] = xr.Variable("surface", [float(ds["lambda_c"]) for ds in datasets], {
         "long_name": "Gaussian cut-off wavelength", "units": "um"})
     data["sampling_length"] = xr.Variable(
-        "surface", [t.spec.sampling_length if t.spec.profile_scan is not None else np.nan
-                    for t in textures], SAMPLING_LENGTH)
+        "surface", [_scalar(ds, "sampling_length") for ds in datasets], SAMPLING_LENGTH)
     data["profile_length"] = xr.Variable(
-        "surface", [(t.spec.profile_length_um or np.nan) / 1000.0 for t in textures],
+        "surface", [ds.attrs["profile_length_mm"] or np.nan for ds in datasets],
         {"long_name": "profile line length", "units": "mm"})
     data["profile_direction"] = xr.Variable(
-        "surface", np.array([t.spec.profile_direction or "" for t in textures], dtype=object),
+        "surface", np.array([ds.attrs["profile_direction"] for ds in datasets], dtype=object),
         {"long_name": "profile direction relative to the lay or pattern"})
     data["synthetic"] = xr.Variable(
-        "surface", np.array([int(t.synthetic) for t in textures], dtype=np.int8),
+        "surface", np.array([ds.attrs["synthetic_scans"] for ds in datasets], dtype=np.int8),
         {"long_name": "1 if a scan of the surface is labelled SYNTHETIC", "units": "1"})
     data["objective"] = xr.Variable(
-        "surface", np.array([t.spec.objective for t in textures], dtype=object),
+        "surface", np.array([ds.attrs["objective"] for ds in datasets], dtype=object),
         {"long_name": "profilometer objective"})
-    return xr.Dataset(data, coords={"surface": ("surface", surfaces,
-                                                {"long_name": "surface id"})})
+    summary = xr.Dataset(data, coords={
+        "surface": ("surface", surfaces, {"long_name": "surface id"}),
+        "parameter": ("parameter", np.array(AREAL + PROFILE, dtype=object),
+                      {"long_name": "texture parameter"}),
+    })
+    summary.attrs["max_undefined_fraction"] = limits.pop()
+    return summary
