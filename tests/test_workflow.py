@@ -11,6 +11,7 @@ import pytest
 import xarray as xr
 import yaml
 from config_walk import check_all
+from snakemake.utils import validate
 
 
 def planned_rules(result: subprocess.CompletedProcess[str]) -> set[str]:
@@ -41,6 +42,7 @@ def test_workflow_end_to_end(workflow_copy: Path, snakemake) -> None:
 
     # every parameter reaches the jobs that depend on it, and only those (tests/config_walk.py)
     config = yaml.safe_load((workflow_copy / "config" / "e2e.yaml").read_text())
+    validate(config, str(workflow_copy / "workflow/schemas/config.schema.yaml"))  # + defaults
     schema = yaml.safe_load((workflow_copy / "workflow/schemas/config.schema.yaml").read_text())
     failures = check_all(config, schema, lambda override: snakemake(
         workflow_copy, "-n", "-p", "--config", override, "--", "all"))
