@@ -78,5 +78,5 @@ def test_history_has_the_full_command_and_gathers_keep_the_chunks(
         "2023-11-14T22:13:20Z: gather of 2 chunks",
     ]
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "yesterday")
-    with pytest.raises(ValueError, match="SOURCE_DATE_EPOCH.*'yesterday'"):
+    with pytest.raises(ValueError, match=r"SOURCE_DATE_EPOCH.*'yesterday'"):
         stamp(joined, title="gather", source="test", history="again")

@@ -119,11 +119,21 @@ def check_cf(ds: xr.Dataset) -> None:
             raise ValueError(f"variable {name!r} lacks CF attribute(s) {missing}")
 
 
-def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
-    """Check CF attributes, then write ``ds`` to ``path`` atomically (netCDF4)."""
+def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str],
+                 encoding: dict[str, dict[str, object]] | None = None) -> Path:
+    """Check CF attributes, then write ``ds`` to ``path`` atomically (netCDF4).
+
+    Coordinate variables get no ``_FillValue`` (CF sec. 2.5.1 forbids one there; xarray
+    adds it to float variables by default). ``encoding`` (e.g. compression of data
+    variables) goes to :meth:`xarray.Dataset.to_netcdf`.
+    """
     check_cf(ds)
+    ds = ds.copy(deep=False)
+    for name in ds.dims:
+        if name in ds.variables and ds.variables[name].dtype.kind == "f":
+            ds.variables[name].encoding["_FillValue"] = None
     with atomic_path(path) as tmp:
-        ds.to_netcdf(tmp, engine="netcdf4")
+        ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
     return Path(path)
 
 
