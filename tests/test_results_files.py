@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import filecmp
 import os
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -17,7 +18,6 @@ import pytest
 import xarray as xr
 from compliance_checker.base import BaseCheck
 from compliance_checker.runner import CheckSuite
-from conftest import copy_workflow, run_snakemake
 
 from contactlab.io import stamp, write_netcdf
 
@@ -90,15 +90,15 @@ def test_cf_checker_finds_a_fill_value_on_a_coordinate(tmp_path: Path) -> None:
 
 
 @pytest.mark.slow
-def test_small_targets_rerun_byte_identical_and_pass_the_cf_checker(tmp_path: Path) -> None:
-    (tmp_path / "first").mkdir()
-    (tmp_path / "second").mkdir()
-    first = copy_workflow(tmp_path / "first")
-    run = run_snakemake(first, "-j2", *TARGETS)
+def test_small_targets_rerun_byte_identical_and_pass_the_cf_checker(
+        workflow_copy: Path, snakemake, tmp_path_factory: pytest.TempPathFactory) -> None:
+    first = workflow_copy
+    again = tmp_path_factory.mktemp("rerun") / "workflow"
+    shutil.copytree(first, again)  # the same clean inputs, in another directory
+    run = snakemake(first, "-j2", *TARGETS)
     assert run.returncode == 0, run.stderr[-3000:]
 
-    again = copy_workflow(tmp_path / "second")
-    run = run_snakemake(again, "-j2", *RERUN_TARGETS)
+    run = snakemake(again, "-j2", *RERUN_TARGETS)
     assert run.returncode == 0, run.stderr[-3000:]
     files = _files(again)
     assert "results/surfaces/texture.nc" in files and len(files) > 50

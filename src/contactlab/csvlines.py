@@ -66,9 +66,9 @@ def numeric_cells(table: pd.DataFrame, column: str, where: str, *, row_id: str |
     """Column ``column`` of a :func:`read_csv_lines` table as numbers, checked per cell.
 
     Raises :class:`ValueError` naming ``where`` (the file), the line, the row's id (the value
-    of column ``row_id``, called ``row_label``, default the column's name), the column and
-    the first bad cell: not a number, not an integer (``integer``), or empty/NaN/inf
-    (``finite``).
+    of column ``row_id``, shown as ``row_label`` or else ``row_id``), the column and the
+    first bad cell: not a number, not an integer (``integer``), or empty/NaN/inf
+    (``finite``). Returns integers, or the dtype pandas infers for a clean column.
     """
     raw = table[column]
     text = raw if pd.api.types.is_numeric_dtype(raw) else raw.astype(str).str.strip()
@@ -90,7 +90,6 @@ def numeric_cells(table: pd.DataFrame, column: str, where: str, *, row_id: str |
                          f"{kind}")
     if integer:
         return values.astype(int)
-    # the same dtype pandas infers for a clean column (int64 if every cell is an integer)
     if pd.api.types.is_numeric_dtype(raw):
         return raw
     return pd.to_numeric(raw.astype(str).str.strip())

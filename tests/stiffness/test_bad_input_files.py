@@ -32,11 +32,17 @@ def load_log(edit: Callable[[list[str]], list[str]] = lambda rows: rows) -> str:
     return COMMENTS + HEADER + "\n".join(edit(log_rows())) + "\n"
 
 
+def contact_displacement() -> np.ndarray:
+    """uc of each frame from eq. 2.2 (beta_n = 0.503 1/um, P0 = 0.225 kN, alpha_n = 0.048 kN)."""
+    load = 0.5 * np.arange(1, FRAMES + 1)
+    return -np.log((load - 0.225) / 0.048) / 0.503
+
+
 def fields_dataset() -> xr.Dataset:
     """Pad at low x, specimen at high x, the contact step growing with the load."""
     x = 16.0 + 32.0 * np.arange(23)
     y = 16.0 + 32.0 * np.arange(4)
-    uc = -0.2 * np.arange(1, FRAMES + 1)
+    uc = contact_displacement()
     spec = x >= GEOM["specimen_x_min"]
     u = 1e-3 * x[None, None, :] + np.where(spec, uc[:, None, None], 0.0) + 0 * y[None, :, None]
     v = 5e-4 * x[None, None, :] + 0 * u
@@ -168,5 +174,5 @@ def test_good_files_pass(tmp_path: Path, monkeypatch) -> None:
                      "--fields", fields, "--max-normal-load-kN", "4",
                      "--nominal-area-mm2", "20", "--out", out]) == 0
         with xr.open_dataset(out) as ds:
-            np.testing.assert_allclose(ds["uc"].values, -0.2 * np.arange(1, FRAMES + 1),
-                                       atol=1e-5)
+            np.testing.assert_allclose(ds["uc"].values, contact_displacement(), atol=1e-5)
+            assert float(ds["beta"][0]) == pytest.approx(0.503, rel=1e-3)
