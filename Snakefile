@@ -1,9 +1,19 @@
 # contactlab workflow: surfaces, contact stiffness, asperity models, receding contacts, report.
 # Run `snakemake -j2 all`; see README.md for the DAG, single targets and parameter studies.
 
+from snakemake.exceptions import WorkflowError
 from snakemake.utils import min_version
 
-min_version("9.0")
+from contactlab.config_check import ConfigError, load_yaml_file
+
+min_version("9.14.8")  # 9.5.1-9.14.7 skipped validation in remote jobs (#3614)
+
+
+# read the default study first, so that a broken file is named with its YAML line
+try:
+    load_yaml_file("config/config.yaml")
+except ConfigError as exc:
+    raise WorkflowError(str(exc)) from None
 
 
 configfile: "config/config.yaml"
@@ -27,4 +37,4 @@ rule all:
     default_target: True
     input:
         ALL_TARGETS,
-        "results/report/index.html",
+        result("report/index.html"),

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import re
 import subprocess
 from pathlib import Path
@@ -48,6 +49,34 @@ def test_workflow_end_to_end(workflow_copy: Path, snakemake) -> None:
     assert report.returncode == 0, report.stderr[-3000:]
     assert (results / "report" / "snakemake-report.zip").stat().st_size > 0
 
+    check_named_study_beside_default(workflow_copy, snakemake)
+
+
+def _checksums(root: Path, skip: str) -> dict[str, str]:
+    return {str(p.relative_to(root)): hashlib.sha256(p.read_bytes()).hexdigest()
+            for p in sorted(root.rglob("*")) if p.is_file() and skip not in p.parts}
+
+
+def check_named_study_beside_default(work: Path, snakemake) -> None:
+    """A named study writes under results/studies/<name>/ and leaves the default untouched."""
+    before = {**_checksums(work / "results", "studies"), **_checksums(work / "logs", "-")}
+    (work / "config" / "study.yaml").write_text(
+        "study: e2e_study\nreceding:\n  line: {lambda: 4.0}\n  patches:\n    tables:\n"
+        "      ramp: {x: [0, 1], p: [1, 0.5]}\n")
+    study = "results/studies/e2e_study/"
+    targets = [f"{study}receding/line.nc", f"{study}receding/profiles/line_f0.5.nc",
+               f"{study}receding/table_ramp.nc", f"{study}stiffness/RU1.nc",
+               f"{study}report/sections/51_receding_line_patch.html"]
+    run = snakemake(work, "config/study.yaml", "-j2", "--", *targets)
+    assert run.returncode == 0, run.stderr[-3000:]
+    after = {**_checksums(work / "results", "studies"), **_checksums(work / "logs", "-")}
+    assert after == before  # nothing of the default study rewritten, nothing added
+    assert (work / study / "logs" / "receding").is_dir()
+    with xr.open_dataset(work / study / "receding" / "line.nc") as line:
+        assert line.attrs["study"] == "e2e_study" and len(line.attrs["config_sha256"]) == 16
+        assert float(line.attrs["lambda"]) == 4.0
+    assert "ramp" in (work / study / "report" / "tables" / "receding_user_shapes.csv").read_text()
+
 
 def test_single_target_builds_only_its_ancestors(workflow_copy: Path, snakemake) -> None:
     run = snakemake(workflow_copy, "-n", "results/surfaces/seq.nc")
@@ -69,8 +98,17 @@ def test_single_target_builds_only_its_ancestors(workflow_copy: Path, snakemake)
           "RU2,ground,rough_specimen,B,RU2_pad,B,-8,20"),
          ["config/tests.csv", "max_normal_load_kN", "-8"]),
         (("config/tests.csv", "id,group", "id,grup"), ["config/tests.csv", "grup"]),
+        (("config/config.yaml", None, ""), ["config/config.yaml", "empty"]),
+        (("config/config.yaml", "tests: config/tests.csv", "tests: [config/tests.csv"),
+         ["config/config.yaml", "line 5", "YAML"]),
+        (("config/e2e.yaml", "w: [1.0, 2.5]", "w: {start: 5.0, stop: 1.0, step: 0.25}"),
+         ["config/e2e.yaml", "receding.gap.w", "empty range"]),
+        (("config/e2e.yaml", "level: coarse, convergence: [coarse, medium]",
+          "level: ultra, convergence: [coarse, medium]"),
+         ["config/e2e.yaml", "fe.problems.gap.level", "ultra", "coarse, medium"]),
     ],
-    ids=["unknown-key", "wrong-type", "missing-file", "negative-load", "unknown-column"],
+    ids=["unknown-key", "wrong-type", "missing-file", "negative-load", "unknown-column",
+         "empty-config", "yaml-syntax", "empty-range", "unknown-mesh-level"],
 )
 def test_malformed_config_fails_fast_and_writes_nothing(
     workflow_copy: Path, snakemake, edit: tuple[str, str, str], expected: list[str]
@@ -78,10 +116,47 @@ def test_malformed_config_fails_fast_and_writes_nothing(
     path, old, new = edit
     target = workflow_copy / path
     text = target.read_text()
-    assert old in text
-    target.write_text(text.replace(old, new, 1))
+    assert old is None or old in text
+    target.write_text(new if old is None else text.replace(old, new, 1))
     run = snakemake(workflow_copy, "-j2", "all")
     assert run.returncode != 0
+    message = run.stdout + run.stderr
     for word in expected:
-        assert word in run.stderr, (word, run.stderr[-2000:])
+        assert word in message, (word, message[-2000:])
+    assert "Traceback" not in message
     assert not (workflow_copy / "results").exists()
+
+
+def test_nested_command_line_overrides_take_the_schema_types(workflow_copy: Path,
+                                                             snakemake) -> None:
+    """--config values inside dicts/lists arrive as strings; the schema's types are restored."""
+    override = ('receding={"line": {"lambda": 4.0, "chaise": false, "f": [0.25, 0.75]},'
+                ' "gap": {"chunks": 1}}')
+    run = snakemake(workflow_copy, "-n", "-p", "--config", override, "--",
+                    "results/receding/line.nc", "results/receding/gap.nc")
+    assert run.returncode == 0, run.stderr[-3000:]
+    line_jobs = [c for c in run.stdout.splitlines() if "receding line-sweep" in c]
+    assert line_jobs and all("--lam 4.0" in c and "--no-chaise" in c for c in line_jobs)
+    assert sorted(w for c in line_jobs for w in re.findall(r"--f ([\d. ]+?) --n", c)) == \
+        ["0.25", "0.75"]  # one value per chunk (the list, coerced to numbers)
+    assert len([c for c in run.stdout.splitlines() if "receding gap-sweep" in c]) == 1
+
+    bad = snakemake(workflow_copy, "-n", "--config", 'receding={"line": {"lambda": "abc"}}')
+    assert bad.returncode != 0
+    message = bad.stdout + bad.stderr
+    assert "--config: receding.line.lambda: 'abc' is not of type 'number'" in message
+
+
+def test_study_files_validate_and_plan_under_their_folder(workflow_copy: Path, repo: Path,
+                                                          snakemake) -> None:
+    """Every shipped example study is valid and plans its jobs under results/studies/<name>/."""
+    studies = sorted((repo / "config" / "studies").glob("*.yaml"))
+    assert len(studies) >= 2
+    for path in studies:
+        name = path.stem
+        run = snakemake(workflow_copy, f"config/studies/{path.name}", "-n", "all")
+        assert run.returncode == 0, (name, run.stderr[-3000:])
+        outputs = re.findall(r"^\s+output: (.+)$", run.stdout, re.M)
+        files = [f for line in outputs for f in line.split(", ")]
+        shared = ("results/demo/", "results/surfaces/demo_scans/")
+        assert files and all(f.startswith((f"results/studies/{name}/", *shared)) for f in files)

@@ -18,6 +18,7 @@ from pathlib import Path
 import xarray as xr
 
 from contactlab import __version__
+from contactlab.study import provenance
 
 CONVENTIONS = "CF-1.10"
 
@@ -92,7 +93,8 @@ def stamp(ds: xr.Dataset, *, title: str, source: str, history: str,
     ``history`` outside the command line), dated only by ``SOURCE_DATE_EPOCH``
     (:func:`history_time`). The wall-clock time and the command go to stderr, the job's log.
     ``source`` names the method and the contactlab version; no ``institution``, which is
-    the user's to say.
+    the user's to say. Inside a workflow run the attributes include the study name, the
+    hash of the effective config and the git commit (:func:`contactlab.study.provenance`).
     """
     command = command_line(history)
     when = history_time()
@@ -105,6 +107,8 @@ def stamp(ds: xr.Dataset, *, title: str, source: str, history: str,
         title=title,
         source=f"{source} (contactlab {__version__})",
         history="\n".join([*history_lines(*inputs, ds), line]),
+        contactlab_version=__version__,
+        **provenance(),
     )
     return ds
 

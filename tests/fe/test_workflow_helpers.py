@@ -11,7 +11,12 @@ from contactlab.fe import workflow as fe_wf
 
 
 def _config(repo: Path, name: str) -> dict:
-    return yaml.safe_load((repo / name).read_text())
+    """A config file with the schema's defaults filled in, as the workflow sees it."""
+    from snakemake.utils import validate
+
+    config = yaml.safe_load((repo / name).read_text())
+    validate(config, str(repo / "workflow/schemas/config.schema.yaml"))
+    return config
 
 
 def test_configs_validate_and_name_existing_levels(repo: Path) -> None:
@@ -28,13 +33,16 @@ def test_configs_validate_and_name_existing_levels(repo: Path) -> None:
 def test_arguments_and_file_lists(repo: Path) -> None:
     fe = _config(repo, "config/config.yaml")["fe"]
     args = fe_wf.receding_args(fe, "gap", "coarse")
-    assert "--problem gap" in args and f"--h {fe['levels']['coarse']}" in args
+    assert " --problem gap " in f" {' '.join(args)} "
+    assert f" --h {fe['levels']['coarse']} " in f" {' '.join(args)} "
     assert fe_wf.comparison_run(fe, "line").startswith("results/fe/runs/line_")
+    assert fe_wf.comparison_run(fe, "line", "results/studies/x/").startswith(
+        "results/studies/x/fe/runs/line_")
     path = "results/receding/line.nc"
     with_file = {**fe, "problems": {"line": {**fe["problems"]["line"], "ddt_file": path}}}
     assert fe_wf.ddt_inputs(with_file, "line", []) == []  # no rule makes it: not an input
     assert fe_wf.ddt_inputs(with_file, "line", [path]) == [path]
-    assert fe_wf.ddt_file_arg(with_file, "line") == f"--ddt-file {path}"
+    assert fe_wf.ddt_file_arg(with_file, "line") == ["--ddt-file", path]
     assert fe_wf.ddt_sources("gap") == ["src/contactlab/receding/gap.py"]
     assert fe_wf.asperity_runs({**fe, "asperity": {**fe["asperity"], "enabled": False}}) == []
     runs = fe_wf.asperity_runs({**fe, "asperity": {**fe["asperity"], "enabled": True}})

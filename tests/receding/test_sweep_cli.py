@@ -136,7 +136,7 @@ def test_workflow_helpers() -> None:
     values = sweep_values({"start": 0.25, "stop": 5.0, "step": 0.25})
     assert len(values) == 20 and values[0] == 0.25 and values[-1] == 5.0
     assert sweep_values([1, 2.5]) == [1.0, 2.5]
-    chunks = [chunk_values(values, c, 6).split() for c in range(6)]
+    chunks = [chunk_values(values, c, 6) for c in range(6)]
     assert sorted(float(v) for chunk in chunks for v in chunk) == values
     points = [{"w": 2.5, "f": 0.5}, {"w": 1.0, "f": 0.3}]
     assert profile_name(points[1]) == "w1_f0.3"

@@ -1,25 +1,74 @@
-# Start-up: validate the config and the test sheet, define the shared target lists.
-# Every branch's rule file appends its final outputs to ALL_TARGETS and its report
-# fragment to REPORT_SECTIONS; `rule all` and the report index take them from here.
+# Start-up: coerce and validate the config, place the study's files, validate the test
+# sheet, define the shared target lists. Every branch's rule file appends its final outputs
+# to ALL_TARGETS and its report fragment to REPORT_SECTIONS; `rule all` and the report
+# index take them from here. Every path a rule writes starts with RESULTS (or LOGS), so a
+# named study (config key `study`) lives under results/studies/<name>/ beside the others.
 
 from pathlib import Path
 
+import yaml
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
+from contactlab.config_check import ConfigError, check_config, load_yaml_file
 from contactlab.stiffness.demo import demo_data_files
+from contactlab.study import changes, coerce, export_provenance, logs_dir, results_dir
 from contactlab.testsheet import TestSheetError, check_data_files, read_test_sheet
 
 
 def _config_files():
-    files = [str(f) for f in workflow.configfiles]
-    return ", ".join(files) if files else "the --config values"
+    return ", ".join(str(f) for f in workflow.configfiles) or "the --config values"
 
 
+def _load_yaml(path):
+    with open(Path(workflow.basedir) / path, encoding="utf-8") as stream:
+        return yaml.safe_load(stream)
+
+
+
+CONFIG_SCHEMA = _load_yaml("workflow/schemas/config.schema.yaml")
+# nested --config values arrive as strings (snakemake#2374): give them the schema's types
+config.update(coerce(dict(config), CONFIG_SCHEMA))
+# each problem on one line, blamed on the file or the --config that set the key
+_CLI_FILES = [str(f) for f in workflow.config_settings.configfiles]
+_SOURCES = [
+    (str(Path(f).relative_to(Path.cwd())) if Path(f).is_relative_to(Path.cwd()) else str(f),
+     load_yaml_file(f))
+    for f in [f for f in map(str, workflow.configfiles) if f not in _CLI_FILES] + _CLI_FILES
+]
+_SOURCES.append(("--config", coerce(dict(workflow.config_settings.config), CONFIG_SCHEMA)))
 try:
-    validate(config, "../schemas/config.schema.yaml")
-except WorkflowError as exc:
-    raise WorkflowError(f"invalid configuration in {_config_files()}:\n{exc}") from None
+    check_config(config, CONFIG_SCHEMA, _SOURCES)
+except ConfigError as exc:
+    raise WorkflowError(str(exc)) from None
+validate(config, "../schemas/config.schema.yaml")  # fills in the schema's defaults
+
+STUDY = config.get("study")  # absent: the default study
+RESULTS = results_dir(STUDY)
+LOGS = logs_dir(STUDY)
+
+
+def result(path):
+    """``path`` inside the running study's results folder."""
+    return RESULTS + path
+
+
+def logs(path):
+    """``path`` inside the running study's log folder."""
+    return LOGS + path
+
+
+BASE_CONFIG = _load_yaml("config/config.yaml") or {}
+STUDY_CHANGES = changes(config, BASE_CONFIG) if STUDY else {}
+# the demo data under results/demo/ and results/surfaces/demo_scans/ are shared by all
+# studies: a study that changed their seeds would rewrite the default study's inputs
+_SHARED = sorted(k for k in STUDY_CHANGES if k in ("stiffness.raw.demo_seed", "surfaces.demo_seed"))
+if _SHARED:
+    raise WorkflowError(
+        f"invalid configuration in {_config_files()}: study {STUDY!r} changes {', '.join(_SHARED)}; "
+        "the demo data are shared by all studies, so their seeds are set in config/config.yaml only"
+    )
+PROVENANCE = export_provenance(STUDY, config, workflow.basedir)
 
 try:
     TESTS = read_test_sheet(config["tests"])
@@ -35,3 +84,14 @@ PUBLISHED = Path(config["published_dir"])
 
 ALL_TARGETS = []
 REPORT_SECTIONS = []
+
+
+wildcard_constraints:
+    # no wildcard spans folders: results/{x}.nc must not swallow results/studies/<name>/...
+    test=r"[^/]+",
+    surface=r"[^/]+",
+    law=r"[^/]+",
+    name=r"[^/]+",
+    point=r"[^/]+",
+    problem=r"[^/]+",
+    level=r"[^/]+",

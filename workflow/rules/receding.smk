@@ -16,142 +16,143 @@ RECEDING_F = sweep_values(RECEDING["f"])
 RECEDING_CHUNKS = list(range(min(RECEDING["chunks"], len(RECEDING_W))))
 RECEDING_PROFILES = [profile_name(p) for p in RECEDING["profiles"]]
 RECEDING_COMPARE = [n for n in RECEDING["compare_n"] if n != RECEDING["n"]]
-RECEDING_ENV = "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
 
 
 rule receding_gap_chunk:
     """Transition points on (f, w/c) for one chunk of w/c at N points (f_stick/f_sep too)."""
     output:
-        temp("results/receding/chunks/gap_N{n}_{chunk}.nc"),
+        temp(result("receding/chunks/gap_N{n}_{chunk}.nc")),
     wildcard_constraints:
         chunk=r"\d+",
         n=r"\d+",
     params:
         w=lambda wc: chunk_values(RECEDING_W, wc.chunk, len(RECEDING_CHUNKS)),
-        f=" ".join(str(f) for f in RECEDING_F),
+        f=RECEDING_F,
         # f_stick/f_sep only at the main N (the comparison sweeps show the zones)
-        thresholds=lambda wc: "" if int(wc.n) == RECEDING["n"] else "--no-thresholds",
-        env=RECEDING_ENV,
+        thresholds=lambda wc: [] if int(wc.n) == RECEDING["n"] else ["--no-thresholds"],
     log:
-        "logs/receding/gap_N{n}_{chunk}.log",
+        logs("receding/gap_N{n}_{chunk}.log"),
     shell:
-        "{params.env} contactlab receding gap-sweep --w-hat {params.w} --f {params.f}"
-        " --n {wildcards.n} {params.thresholds} --out {output} 2> {log}"
+        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
+        " contactlab receding gap-sweep --w-hat {params.w:q} --f {params.f:q}"
+        " --n {wildcards.n:q} {params.thresholds:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_gap_gather:
     """results/receding/gap.nc: the sweep chunks at the main N joined along w/c."""
     input:
-        expand("results/receding/chunks/gap_N{n}_{chunk}.nc", n=RECEDING["n"],
+        expand(result("receding/chunks/gap_N{n}_{chunk}.nc"), n=RECEDING["n"],
                chunk=RECEDING_CHUNKS),
     output:
-        "results/receding/gap.nc",
+        result("receding/gap.nc"),
     log:
-        "logs/receding/gap_gather.log",
+        logs("receding/gap_gather.log"),
     shell:
-        "contactlab receding gap-gather {input} --out {output} 2> {log}"
+        "contactlab receding gap-gather {input:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_gap_gather_compare:
     """results/receding/gap_N<n>.nc: the same sweep at a comparison N (Fig. 5.5)."""
     input:
-        lambda wc: expand("results/receding/chunks/gap_N{n}_{chunk}.nc", n=wc.n,
+        lambda wc: expand(result("receding/chunks/gap_N{n}_{chunk}.nc"), n=wc.n,
                           chunk=RECEDING_CHUNKS),
     output:
-        "results/receding/gap_N{n}.nc",
+        result("receding/gap_N{n}.nc"),
     wildcard_constraints:
         n=r"\d+",
     log:
-        "logs/receding/gap_gather_N{n}.log",
+        logs("receding/gap_gather_N{n}.log"),
     shell:
-        "contactlab receding gap-gather {input} --out {output} 2> {log}"
+        "contactlab receding gap-gather {input:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_gap_regimes:
     """Regime map (Fig. 5.4): f_stick(w), f_sep(w) and the w/c of separation onset."""
     input:
-        "results/receding/gap.nc",
+        result("receding/gap.nc"),
     output:
-        "results/receding/gap_regimes.nc",
+        result("receding/gap_regimes.nc"),
     log:
-        "logs/receding/gap_regimes.log",
+        logs("receding/gap_regimes.log"),
     shell:
-        "contactlab receding gap-regimes --sweep {input} --out {output} 2> {log}"
+        "contactlab receding gap-regimes --sweep {input:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_gap_profile:
     """Tractions, densities, slip and separation along the interface at one (w, f)."""
     output:
-        "results/receding/profiles/gap_{point}.nc",
+        result("receding/profiles/gap_{point}.nc"),
     params:
         w=lambda wc: profile_point(RECEDING["profiles"], wc.point)["w"],
         f=lambda wc: profile_point(RECEDING["profiles"], wc.point)["f"],
         n=RECEDING["profile_n"],
         x_max=RECEDING["profile_x_max"],
-        env=RECEDING_ENV,
     log:
-        "logs/receding/gap_profile_{point}.log",
+        logs("receding/gap_profile_{point}.log"),
     shell:
-        "{params.env} contactlab receding gap-profile --w-hat {params.w} --f {params.f}"
-        " --n {params.n} --x-max {params.x_max} --out {output} 2> {log}"
+        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
+        " contactlab receding gap-profile --w-hat {params.w:q} --f {params.f:q}"
+        " --n {params.n:q} --x-max {params.x_max:q} --out {output:q} 2> {log:q}"
 
 
 rule report_receding_gap:
     """Report section: Figs 5.4-5.8 and tables of the gap problem."""
     input:
-        sweep="results/receding/gap.nc",
-        compare=expand("results/receding/gap_N{n}.nc", n=RECEDING_COMPARE),
-        regimes="results/receding/gap_regimes.nc",
-        profiles=expand("results/receding/profiles/gap_{point}.nc", point=RECEDING_PROFILES),
+        sweep=result("receding/gap.nc"),
+        compare=expand(result("receding/gap_N{n}.nc"), n=RECEDING_COMPARE),
+        regimes=result("receding/gap_regimes.nc"),
+        profiles=expand(result("receding/profiles/gap_{point}.nc"), point=RECEDING_PROFILES),
     output:
-        section="results/report/sections/50_receding_gap.html",
+        section=result("report/sections/50_receding_gap.html"),
         tables=[
-            "results/report/tables/receding_gap_points.csv",
-            "results/report/tables/receding_gap_thresholds.csv",
+            result("report/tables/receding_gap_points.csv"),
+            result("report/tables/receding_gap_thresholds.csv"),
         ],
         regimes=report(
-            "results/report/figures/receding_gap_regimes.png",
+            result("report/figures/receding_gap_regimes.png"),
             caption="../report/receding_regimes.rst",
             category="Receding contacts",
         ),
         zones=report(
-            "results/report/figures/receding_gap_zones.png",
+            result("report/figures/receding_gap_zones.png"),
             caption="../report/receding_zones.rst",
             category="Receding contacts",
         ),
         densities=report(
-            "results/report/figures/receding_gap_densities.png",
+            result("report/figures/receding_gap_densities.png"),
             caption="../report/receding_profiles.rst",
             category="Receding contacts",
         ),
         tractions=report(
-            "results/report/figures/receding_gap_tractions.png",
+            result("report/figures/receding_gap_tractions.png"),
             caption="../report/receding_profiles.rst",
             category="Receding contacts",
         ),
         displacements=report(
-            "results/report/figures/receding_gap_displacements.png",
+            result("report/figures/receding_gap_displacements.png"),
             caption="../report/receding_profiles.rst",
             category="Receding contacts",
         ),
+    params:
+        report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
-        "logs/report/receding_gap.log",
+        logs("report/receding_gap.log"),
     shell:
-        "contactlab receding report --sweep {input.sweep} --compare {input.compare}"
-        " --regimes {input.regimes}"
-        " --profiles {input.profiles} --report-dir results/report --out {output.section}"
-        " 2> {log}"
+        "contactlab receding report --sweep {input.sweep:q} --compare {input.compare:q}"
+        " --regimes {input.regimes:q}"
+        " --profiles {input.profiles:q} --report-dir {params.report_dir:q} --out {output.section:q}"
+        " 2> {log:q}"
 
 
 ALL_TARGETS.extend(
     [
-        "results/receding/gap.nc",
-        *expand("results/receding/gap_N{n}.nc", n=RECEDING_COMPARE),
-        "results/receding/gap_regimes.nc",
-        *expand("results/receding/profiles/gap_{point}.nc", point=RECEDING_PROFILES),
+        result("receding/gap.nc"),
+        *expand(result("receding/gap_N{n}.nc"), n=RECEDING_COMPARE),
+        result("receding/gap_regimes.nc"),
+        *expand(result("receding/profiles/gap_{point}.nc"), point=RECEDING_PROFILES),
     ]
 )
-REPORT_SECTIONS.append("results/report/sections/50_receding_gap.html")
+REPORT_SECTIONS.append(result("report/sections/50_receding_gap.html"))
 
 
 # ---- Line load (ch. 6) and pressure patches (ch. 7): lift-off at all remote points.
@@ -173,7 +174,7 @@ PATCH_PROFILES = [liftoff_profile_name(p) for p in PATCHES["profiles"]]
 rule receding_line_chunk:
     """a, b, K_T of the line load (and the Chaise model) for one chunk of f."""
     output:
-        temp("results/receding/chunks/line_{chunk}.nc"),
+        temp(result("receding/chunks/line_{chunk}.nc")),
     wildcard_constraints:
         chunk=r"\d+",
     params:
@@ -181,126 +182,126 @@ rule receding_line_chunk:
         n=LINE["n"],
         lam=LINE["lambda"],
         e=LINE["e"],
-        chaise="" if LINE["chaise"] else "--no-chaise",
-        env=RECEDING_ENV,
+        chaise=[] if LINE["chaise"] else ["--no-chaise"],
     log:
-        "logs/receding/line_{chunk}.log",
+        logs("receding/line_{chunk}.log"),
     shell:
-        "{params.env} contactlab receding line-sweep --f {params.f} --n {params.n}"
-        " --lam {params.lam} --e {params.e} {params.chaise} --out {output} 2> {log}"
+        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
+        " contactlab receding line-sweep --f {params.f:q} --n {params.n:q}"
+        " --lam {params.lam:q} --e {params.e:q} {params.chaise:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_line_gather:
     """results/receding/line.nc: the line-load sweep over f (Figs 6.3, 7.6)."""
     input:
-        expand("results/receding/chunks/line_{chunk}.nc", chunk=LINE_CHUNKS),
+        expand(result("receding/chunks/line_{chunk}.nc"), chunk=LINE_CHUNKS),
     output:
-        "results/receding/line.nc",
+        result("receding/line.nc"),
     log:
-        "logs/receding/line_gather.log",
+        logs("receding/line_gather.log"),
     shell:
-        "contactlab receding liftoff-gather {input} --out {output} 2> {log}"
+        "contactlab receding liftoff-gather {input:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_patch_chunk:
     """a, b, K_T of one pressure patch law over (f chunk, w/c)."""
     output:
-        temp("results/receding/chunks/patch_{law}_{chunk}.nc"),
+        temp(result("receding/chunks/patch_{law}_{chunk}.nc")),
     wildcard_constraints:
         law="uniform|hertz|punch",
         chunk=r"\d+",
     params:
         f=lambda wc: chunk_values(PATCH_F, wc.chunk, len(PATCH_CHUNKS)),
-        w=" ".join(str(w) for w in PATCH_W),
+        w=PATCH_W,
         n=PATCHES["n"],
         lam_b=PATCHES["lambda_b"],
         e_minus_w=PATCHES["e_minus_w"],
-        env=RECEDING_ENV,
     log:
-        "logs/receding/patch_{law}_{chunk}.log",
+        logs("receding/patch_{law}_{chunk}.log"),
     shell:
-        "{params.env} contactlab receding patch-sweep --problem {wildcards.law}"
-        " --f {params.f} --w-hat {params.w} --n {params.n} --lam-b {params.lam_b}"
-        " --e-minus-w {params.e_minus_w} --out {output} 2> {log}"
+        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
+        " contactlab receding patch-sweep --problem {wildcards.law:q}"
+        " --f {params.f:q} --w-hat {params.w:q} --n {params.n:q} --lam-b {params.lam_b:q}"
+        " --e-minus-w {params.e_minus_w:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_patch_gather:
     """results/receding/<law>.nc: a pressure patch over (f, w/c) (Figs 7.5, 7.6, 7.9, 7.10)."""
     input:
-        lambda wc: expand("results/receding/chunks/patch_{law}_{chunk}.nc", law=wc.law,
+        lambda wc: expand(result("receding/chunks/patch_{law}_{chunk}.nc"), law=wc.law,
                           chunk=PATCH_CHUNKS),
     output:
-        "results/receding/{law}.nc",
+        result("receding/{law}.nc"),
     wildcard_constraints:
         law="uniform|hertz|punch",
     log:
-        "logs/receding/patch_gather_{law}.log",
+        logs("receding/patch_gather_{law}.log"),
     shell:
-        "contactlab receding liftoff-gather {input} --out {output} 2> {log}"
+        "contactlab receding liftoff-gather {input:q} --out {output:q} 2> {log:q}"
 
 
-PATCH_TABLES = PATCHES.get("tables", {})
+PATCH_TABLES = PATCHES["tables"]
 
 
 rule receding_table_chunk:
     """a, b, K_T of a user-given pressure shape (receding.patches.tables) over (f chunk, w/c)."""
     output:
-        temp("results/receding/chunks/table_{name}_{chunk}.nc"),
+        temp(result("receding/chunks/table_{name}_{chunk}.nc")),
     wildcard_constraints:
         name="|".join(PATCH_TABLES) or "(?!)",
         chunk=r"\d+",
     params:
         f=lambda wc: chunk_values(PATCH_F, wc.chunk, len(PATCH_CHUNKS)),
-        w=" ".join(str(w) for w in PATCH_W),
-        x=lambda wc: " ".join(str(v) for v in PATCH_TABLES[wc.name]["x"]),
-        p=lambda wc: " ".join(str(v) for v in PATCH_TABLES[wc.name]["p"]),
+        w=PATCH_W,
+        x=lambda wc: PATCH_TABLES[wc.name]["x"],
+        p=lambda wc: PATCH_TABLES[wc.name]["p"],
         n=PATCHES["n"],
         lam_b=PATCHES["lambda_b"],
         e_minus_w=PATCHES["e_minus_w"],
-        env=RECEDING_ENV,
     log:
-        "logs/receding/table_{name}_{chunk}.log",
+        logs("receding/table_{name}_{chunk}.log"),
     shell:
-        "{params.env} contactlab receding patch-sweep --problem table"
-        " --table-x {params.x} --table-p {params.p}"
-        " --f {params.f} --w-hat {params.w} --n {params.n} --lam-b {params.lam_b}"
-        " --e-minus-w {params.e_minus_w} --out {output} 2> {log}"
+        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
+        " contactlab receding patch-sweep --problem table"
+        " --table-x {params.x:q} --table-p {params.p:q}"
+        " --f {params.f:q} --w-hat {params.w:q} --n {params.n:q} --lam-b {params.lam_b:q}"
+        " --e-minus-w {params.e_minus_w:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_table_gather:
     """results/receding/table_<name>.nc: a user-given pressure shape over (f, w/c)."""
     input:
-        lambda wc: expand("results/receding/chunks/table_{name}_{chunk}.nc", name=wc.name,
+        lambda wc: expand(result("receding/chunks/table_{name}_{chunk}.nc"), name=wc.name,
                           chunk=PATCH_CHUNKS),
     output:
-        "results/receding/table_{name}.nc",
+        result("receding/table_{name}.nc"),
     wildcard_constraints:
         name="|".join(PATCH_TABLES) or "(?!)",
     log:
-        "logs/receding/table_gather_{name}.log",
+        logs("receding/table_gather_{name}.log"),
     shell:
-        "contactlab receding liftoff-gather {input} --out {output} 2> {log}"
+        "contactlab receding liftoff-gather {input:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_line_profile:
     """Densities, tractions, separation and slip of the line load (and Chaise model)."""
     output:
-        "results/receding/profiles/line_f{f}.nc",
+        result("receding/profiles/line_f{f}.nc"),
     params:
         n=LINE["n"],
         x_max=LINE["profile_x_max"],
-        env=RECEDING_ENV,
     log:
-        "logs/receding/line_profile_f{f}.log",
+        logs("receding/line_profile_f{f}.log"),
     shell:
-        "{params.env} contactlab receding liftoff-profile --problem line --f {wildcards.f}"
-        " --n {params.n} --x-max {params.x_max} --chaise --out {output} 2> {log}"
+        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
+        " contactlab receding liftoff-profile --problem line --f {wildcards.f:q}"
+        " --n {params.n:q} --x-max {params.x_max:q} --chaise --out {output:q} 2> {log:q}"
 
 
 rule receding_patch_profile:
     """Densities, tractions, separation and slip of one pressure patch solution."""
     output:
-        "results/receding/profiles/{point}.nc",
+        result("receding/profiles/{point}.nc"),
     wildcard_constraints:
         point=r"patch_[a-z]+_w[0-9.]+_f[0-9.]+",
     params:
@@ -309,96 +310,102 @@ rule receding_patch_profile:
         f=lambda wc: liftoff_profile_point(PATCHES["profiles"], wc.point)["f"],
         n=PATCHES["n"],
         x_max=PATCHES["profile_x_max"],
-        env=RECEDING_ENV,
     log:
-        "logs/receding/{point}.log",
+        logs("receding/{point}.log"),
     shell:
-        "{params.env} contactlab receding liftoff-profile --problem {params.law}"
-        " --w-hat {params.w} --f {params.f} --n {params.n} --x-max {params.x_max}"
-        " --out {output} 2> {log}"
+        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
+        " contactlab receding liftoff-profile --problem {params.law:q}"
+        " --w-hat {params.w:q} --f {params.f:q} --n {params.n:q} --x-max {params.x_max:q}"
+        " --out {output:q} 2> {log:q}"
 
 
 rule report_receding_line_patch:
     """Report section: Figs 6.3-6.6 and 7.2-7.10 and tables of the lifting-off problems."""
     input:
-        line="results/receding/line.nc",
-        patches=expand("results/receding/{law}.nc", law=PATCHES["laws"]),
+        line=result("receding/line.nc"),
+        patches=[
+            *expand(result("receding/{law}.nc"), law=PATCHES["laws"]),
+            *expand(result("receding/table_{name}.nc"), name=PATCH_TABLES),
+        ],
         profiles=[
-            *expand("results/receding/profiles/{p}.nc", p=LINE_PROFILES),
-            *expand("results/receding/profiles/{p}.nc", p=PATCH_PROFILES),
+            *expand(result("receding/profiles/{p}.nc"), p=LINE_PROFILES),
+            *expand(result("receding/profiles/{p}.nc"), p=PATCH_PROFILES),
         ],
     output:
-        section="results/report/sections/51_receding_line_patch.html",
+        section=result("report/sections/51_receding_line_patch.html"),
         tables=[
-            "results/report/tables/receding_line_sweep.csv",
-            "results/report/tables/receding_patch_points.csv",
-            "results/report/tables/receding_patch_fits.csv",
+            result("report/tables/receding_line_sweep.csv"),
+            result("report/tables/receding_patch_points.csv"),
+            result("report/tables/receding_patch_fits.csv"),
+            *([result("report/tables/receding_user_shapes.csv")] if PATCH_TABLES else []),
         ],
         line_zones=report(
-            "results/report/figures/receding_line_zones.png",
+            result("report/figures/receding_line_zones.png"),
             caption="../report/receding_line_patch.rst",
             category="Receding contacts",
         ),
         line_densities=report(
-            "results/report/figures/receding_line_densities.png",
+            result("report/figures/receding_line_densities.png"),
             caption="../report/receding_line_patch.rst",
             category="Receding contacts",
         ),
         line_tractions=report(
-            "results/report/figures/receding_line_tractions.png",
+            result("report/figures/receding_line_tractions.png"),
             caption="../report/receding_line_patch.rst",
             category="Receding contacts",
         ),
         line_displacements=report(
-            "results/report/figures/receding_line_displacements.png",
+            result("report/figures/receding_line_displacements.png"),
             caption="../report/receding_line_patch.rst",
             category="Receding contacts",
         ),
         patch_tractions=report(
-            "results/report/figures/receding_patch_tractions.png",
+            result("report/figures/receding_patch_tractions.png"),
             caption="../report/receding_line_patch.rst",
             category="Receding contacts",
         ),
         patch_densities=report(
-            "results/report/figures/receding_patch_densities.png",
+            result("report/figures/receding_patch_densities.png"),
             caption="../report/receding_line_patch.rst",
             category="Receding contacts",
         ),
         patch_displacements=report(
-            "results/report/figures/receding_patch_displacements.png",
+            result("report/figures/receding_patch_displacements.png"),
             caption="../report/receding_line_patch.rst",
             category="Receding contacts",
         ),
         patch_zones=report(
-            "results/report/figures/receding_patch_zones.png",
+            result("report/figures/receding_patch_zones.png"),
             caption="../report/receding_line_patch.rst",
             category="Receding contacts",
         ),
         patch_slope=report(
-            "results/report/figures/receding_patch_slope.png",
+            result("report/figures/receding_patch_slope.png"),
             caption="../report/receding_line_patch.rst",
             category="Receding contacts",
         ),
         patch_wide=report(
-            "results/report/figures/receding_patch_wide.png",
+            result("report/figures/receding_patch_wide.png"),
             caption="../report/receding_line_patch.rst",
             category="Receding contacts",
         ),
+    params:
+        report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
-        "logs/report/receding_line_patch.log",
+        logs("report/receding_line_patch.log"),
     shell:
-        "contactlab receding liftoff-report --line {input.line} --patches {input.patches}"
-        " --profiles {input.profiles} --report-dir results/report --out {output.section}"
-        " 2> {log}"
+        "contactlab receding liftoff-report --line {input.line:q} --patches {input.patches:q}"
+        " --profiles {input.profiles:q} --report-dir {params.report_dir:q} --out {output.section:q}"
+        " 2> {log:q}"
 
 
 ALL_TARGETS.extend(
     [
-        "results/receding/line.nc",
-        *expand("results/receding/{law}.nc", law=PATCHES["laws"]),
-        *expand("results/receding/table_{name}.nc", name=PATCH_TABLES),
-        *expand("results/receding/profiles/{p}.nc", p=LINE_PROFILES),
-        *expand("results/receding/profiles/{p}.nc", p=PATCH_PROFILES),
+        result("receding/line.nc"),
+        *expand(result("receding/{law}.nc"), law=PATCHES["laws"]),
+        *expand(result("receding/table_{name}.nc"), name=PATCH_TABLES),
+        *expand(result("receding/profiles/{p}.nc"), p=LINE_PROFILES),
+        *expand(result("receding/profiles/{p}.nc"), p=PATCH_PROFILES),
     ]
 )
-REPORT_SECTIONS.append("results/report/sections/51_receding_line_patch.html")
+REPORT_SECTIONS.append(result("report/sections/51_receding_line_patch.html"))

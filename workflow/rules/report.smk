@@ -1,4 +1,7 @@
-# The report page: stitches every branch's section fragment into index.html.
+# The report page: stitches every branch's section fragment into index.html, headed by the
+# run's provenance (study, config hash, version, commit) and what a named study changes.
+
+import json
 
 
 rule report_index:
@@ -6,10 +9,12 @@ rule report_index:
     input:
         sorted(REPORT_SECTIONS),
     output:
-        "results/report/index.html",
+        result("report/index.html"),
     params:
-        title=config["report"].get("title", "contactlab report"),
+        title=config["report"]["title"],
+        changes=json.dumps(STUDY_CHANGES, sort_keys=True),
     log:
-        "logs/report/index.log",
+        logs("report/index.log"),
     shell:
-        "contactlab report index {input:q} --title {params.title:q} --out {output} 2> {log}"
+        "contactlab report index {input:q} --title {params.title:q}"
+        " --changes {params.changes:q} --out {output:q} 2> {log:q}"

@@ -10,10 +10,10 @@ from contactlab.stiffness.raw_summary import CHAPTER_TABLES
 from contactlab.stiffness.workflow import raw_data_option, raw_inputs, raw_tests
 
 _RAW = config["stiffness"]["raw"]
-_ERR = config["stiffness"].get("errors", {})
+_ERR = config["stiffness"]["errors"]
 # the sec. 2.5.2 error model, shared with the published-steps aggregation
-_ERROR_OPTIONS = " ".join(
-    f"--{flag} {_ERR[key]}"
+_ERROR_OPTIONS = [
+    word
     for key, flag in (
         ("piston_area_cm2", "piston-area-cm2"),
         ("pressure_uncertainty_MPa", "pressure-uncertainty-MPa"),
@@ -21,15 +21,15 @@ _ERROR_OPTIONS = " ".join(
         ("tangential_pressure_rel_extra", "tangential-pressure-rel-extra"),
         ("qs_rel_extra", "qs-rel-extra"),
     )
-    if key in _ERR
-) + f" --tangential-pressure {_RAW['tangential_pressure']}"
+    for word in (f"--{flag}", str(_ERR[key]))
+] + ["--tangential-pressure", _RAW["tangential_pressure"]]
 
 
 RAW_TESTS = raw_tests(TESTS)
 _RAW_TEST_PATTERN = "|".join(re.escape(t) for t in RAW_TESTS) or "(?!)"
-RAW_TABLES = [f"results/report/tables/table_{t}.csv" for tables in CHAPTER_TABLES.values()
+RAW_TABLES = [result(f"report/tables/table_{t}.csv") for tables in CHAPTER_TABLES.values()
               for t in tables]
-RAW_TABLES += [f"results/report/tables/table_{t}.csv"
+RAW_TABLES += [result(f"report/tables/table_{t}.csv")
                for t, (test, _, _) in TANGENTIAL_TABLES.items() if test in RAW_TESTS]
 RAW_FIGURES = ["normal", "tangential", "steps", "mean_row"]
 
@@ -48,11 +48,12 @@ rule stiffness_demo:
     params:
         seed=_RAW["demo_seed"],
         published=PUBLISHED,
+        out_dir=lambda wildcards, output: Path(output.load_log).parent,
     log:
         "logs/stiffness/demo_{test}.log",
     shell:
-        "contactlab stiffness demo --test {wildcards.test} --seed {params.seed}"
-        " --published-dir {params.published} --out-dir results/demo/{wildcards.test} 2> {log}"
+        "contactlab stiffness demo --test {wildcards.test:q} --seed {params.seed:q}"
+        " --published-dir {params.published:q} --out-dir {params.out_dir:q} 2> {log:q}"
 
 
 rule stiffness_process:
@@ -60,7 +61,7 @@ rule stiffness_process:
     input:
         unpack(raw_inputs(TESTS)),
     output:
-        "results/stiffness/{test}.nc",
+        result("stiffness/{test}.nc"),
     wildcard_constraints:
         test=_RAW_TEST_PATTERN,
     params:
@@ -70,22 +71,22 @@ rule stiffness_process:
         grid=_RAW["grid_points"],
         errors=_ERROR_OPTIONS,
     log:
-        "logs/stiffness/process_{test}.log",
+        logs("stiffness/process_{test}.log"),
     shell:
-        "contactlab stiffness process --test {wildcards.test} --load-log {input.load_log}"
-        " {params.data} --max-normal-load-kN {params.load} --nominal-area-mm2 {params.area}"
-        " --grid-points {params.grid} {params.errors}"
-        " --out {output} 2> {log}"
+        "contactlab stiffness process --test {wildcards.test:q} --load-log {input.load_log:q}"
+        " {params.data:q} --max-normal-load-kN {params.load:q}"
+        " --nominal-area-mm2 {params.area:q} --grid-points {params.grid:q} {params.errors:q}"
+        " --out {output:q} 2> {log:q}"
 
 
 rule stiffness_figures:
     """Figures like Figs 2.8-2.17 for one test, published values overlaid."""
     input:
-        result="results/stiffness/{test}.nc",
+        result=result("stiffness/{test}.nc"),
     output:
         [
             report(
-                f"results/report/figures/stiffness_raw_{{test}}_{name}.png",
+                result(f"report/figures/stiffness_raw_{{test}}_{name}.png"),
                 caption="../report/stiffness_raw.rst",
                 category="Contact stiffness",
                 subcategory="{test}",
@@ -96,46 +97,48 @@ rule stiffness_figures:
         test=_RAW_TEST_PATTERN,
     params:
         published=PUBLISHED,
+        out_dir=lambda wildcards, output: Path(output[0]).parent,
     log:
-        "logs/stiffness/figures_{test}.log",
+        logs("stiffness/figures_{test}.log"),
     shell:
-        "contactlab stiffness figures {input.result} --published-dir {params.published}"
-        " --out-dir results/report/figures 2> {log}"
+        "contactlab stiffness figures {input.result:q} --published-dir {params.published:q}"
+        " --out-dir {params.out_dir:q} 2> {log:q}"
 
 
 rule stiffness_summary:
     """summary.nc and the thesis tables recomputed from the raw results of every test."""
     input:
-        results=expand("results/stiffness/{test}.nc", test=RAW_TESTS),
+        results=expand(result("stiffness/{test}.nc"), test=RAW_TESTS),
         tests=config["tests"],
-        seq="results/surfaces/seq.nc",
+        seq=result("surfaces/seq.nc"),
     output:
-        summary="results/stiffness/summary.nc",
+        summary=result("stiffness/summary.nc"),
         tables=RAW_TABLES,
     params:
         threshold=_RAW["kt0_margin_threshold"],
         errors=_ERROR_OPTIONS,
         published=PUBLISHED,
+        tables_dir=lambda wildcards, output: Path(output.tables[0]).parent,
     log:
-        "logs/stiffness/summary.log",
+        logs("stiffness/summary.log"),
     shell:
-        "contactlab stiffness summarize {input.results} --tests {input.tests}"
-        " --seq {input.seq} --kt0-threshold {params.threshold} {params.errors}"
-        " --published-dir {params.published}"
-        " --tables-dir results/report/tables --out {output.summary} 2> {log}"
+        "contactlab stiffness summarize {input.results:q} --tests {input.tests:q}"
+        " --seq {input.seq:q} --kt0-threshold {params.threshold:q} {params.errors:q}"
+        " --published-dir {params.published:q}"
+        " --tables-dir {params.tables_dir:q} --out {output.summary:q} 2> {log:q}"
 
 
 rule report_stiffness_raw:
     """Report section: every number of Tables 2.1-2.4, 2.7-2.10 from raw vs published."""
     input:
-        results=expand("results/stiffness/{test}.nc", test=RAW_TESTS),
-        summary="results/stiffness/summary.nc",
+        results=expand(result("stiffness/{test}.nc"), test=RAW_TESTS),
+        summary=result("stiffness/summary.nc"),
         tables=RAW_TABLES,
-        figures=expand("results/report/figures/stiffness_raw_{test}_{name}.png",
+        figures=expand(result("report/figures/stiffness_raw_{test}_{name}.png"),
                        test=RAW_TESTS, name=RAW_FIGURES),
         tests=config["tests"],
         from_published_steps=[
-            f"results/report/tables/table_{n}_from_published_steps.csv"
+            result(f"report/tables/table_{n}_from_published_steps.csv")
             for n in ["2.1", "2.2", "2.3", "2.4", "2.7", "2.8", "2.9", "2.10"]
         ],
         published=[
@@ -144,28 +147,29 @@ rule report_stiffness_raw:
                       *TANGENTIAL_TABLES]
         ],
     output:
-        section="results/report/sections/21_stiffness_raw.html",
-        comparison="results/report/tables/stiffness_raw_vs_published.csv",
-        recovery="results/report/tables/stiffness_raw_recovery.csv",
-        margins="results/report/tables/stiffness_raw_summary_margins.csv",
-        flags="results/report/tables/stiffness_raw_flagged_fits.csv",
+        section=result("report/sections/21_stiffness_raw.html"),
+        comparison=result("report/tables/stiffness_raw_vs_published.csv"),
+        recovery=result("report/tables/stiffness_raw_recovery.csv"),
+        margins=result("report/tables/stiffness_raw_summary_margins.csv"),
+        flags=result("report/tables/stiffness_raw_flagged_fits.csv"),
         figure=report(
-            "results/report/figures/stiffness_raw_summary.png",
+            result("report/figures/stiffness_raw_summary.png"),
             caption="../report/stiffness_raw.rst",
             category="Contact stiffness",
         ),
     params:
         published=PUBLISHED,
+        report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
-        "logs/report/stiffness_raw.log",
+        logs("report/stiffness_raw.log"),
     shell:
-        "contactlab stiffness report-raw {input.results} --summary {input.summary}"
-        " --tests {input.tests} --published-dir {params.published}"
-        " --report-dir results/report --flags {output.flags}"
-        " --out {output.section} 2> {log}"
+        "contactlab stiffness report-raw {input.results:q} --summary {input.summary:q}"
+        " --tests {input.tests:q} --published-dir {params.published:q}"
+        " --report-dir {params.report_dir:q} --flags {output.flags:q}"
+        " --out {output.section:q} 2> {log:q}"
 
 
-ALL_TARGETS.extend(expand("results/stiffness/{test}.nc", test=RAW_TESTS))
-ALL_TARGETS.append("results/stiffness/summary.nc")
+ALL_TARGETS.extend(expand(result("stiffness/{test}.nc"), test=RAW_TESTS))
+ALL_TARGETS.append(result("stiffness/summary.nc"))
 ALL_TARGETS.extend(RAW_TABLES)
-REPORT_SECTIONS.append("results/report/sections/21_stiffness_raw.html")
+REPORT_SECTIONS.append(result("report/sections/21_stiffness_raw.html"))

@@ -6,10 +6,10 @@ from contactlab.published import MEAN_ROW_TABLES, PER_STEP_FIT_TABLES
 
 STIFFNESS_PUBLISHED_NUMBERS = ["2.1", "2.2", "2.3", "2.4", "2.7", "2.8", "2.9", "2.10"]
 STIFFNESS_PUBLISHED_TABLES = expand(
-    "results/report/tables/table_{n}_from_published_steps.csv", n=STIFFNESS_PUBLISHED_NUMBERS
+    result("report/tables/table_{n}_from_published_steps.csv"), n=STIFFNESS_PUBLISHED_NUMBERS
 )
-_SP_ERRORS = config.get("stiffness", {}).get("errors", {})
-_SP = config.get("stiffness", {}).get("published_steps", {})
+_SP_ERRORS = config["stiffness"]["errors"]
+_SP = config["stiffness"]["published_steps"]
 
 # inputs: per-step fit and mean-row tables (A.2-A.39) and the normal fits (2.1, 2.7)
 STIFFNESS_PUBLISHED_INPUTS = [
@@ -22,48 +22,48 @@ rule stiffness_summary_from_published_steps:
     """Tables 2.1-2.4, 2.7-2.10 and a summary netCDF from the published per-step values."""
     input:
         tests=config["tests"],
-        seq="results/surfaces/seq.nc",
+        seq=result("surfaces/seq.nc"),
         published=STIFFNESS_PUBLISHED_INPUTS,
     output:
-        summary="results/stiffness/summary_from_published_steps.nc",
+        summary=result("stiffness/summary_from_published_steps.nc"),
         tables=STIFFNESS_PUBLISHED_TABLES,
     params:
         published=PUBLISHED,
         tables_dir=lambda wildcards, output: Path(output.tables[0]).parent,
-        threshold=_SP.get("kt0_margin_threshold", 0.5),
-        pressure=_SP.get("tangential_pressure", "multiply"),
-        area=_SP_ERRORS.get("piston_area_cm2", 6.5),
-        dp=_SP_ERRORS.get("pressure_uncertainty_MPa", 0.135),
-        u_area=_SP_ERRORS.get("piston_area_rel_uncertainty", 0.01),
-        u_tan=_SP_ERRORS.get("tangential_pressure_rel_extra", 0.01),
-        u_qs=_SP_ERRORS.get("qs_rel_extra", 0.01),
+        threshold=_SP["kt0_margin_threshold"],
+        pressure=_SP["tangential_pressure"],
+        area=_SP_ERRORS["piston_area_cm2"],
+        dp=_SP_ERRORS["pressure_uncertainty_MPa"],
+        u_area=_SP_ERRORS["piston_area_rel_uncertainty"],
+        u_tan=_SP_ERRORS["tangential_pressure_rel_extra"],
+        u_qs=_SP_ERRORS["qs_rel_extra"],
     log:
-        "logs/stiffness/summary_from_published_steps.log",
+        logs("stiffness/summary_from_published_steps.log"),
     shell:
-        "contactlab stiffness summarize-published --tests {input.tests} --seq {input.seq}"
-        " --published-dir {params.published} --tables-dir {params.tables_dir}"
-        " --kt0-threshold {params.threshold} --tangential-pressure {params.pressure}"
-        " --piston-area-cm2 {params.area} --pressure-uncertainty-MPa {params.dp}"
-        " --piston-area-rel-uncertainty {params.u_area}"
-        " --tangential-pressure-rel-extra {params.u_tan} --qs-rel-extra {params.u_qs}"
-        " --out {output.summary} 2> {log}"
+        "contactlab stiffness summarize-published --tests {input.tests:q} --seq {input.seq:q}"
+        " --published-dir {params.published:q} --tables-dir {params.tables_dir:q}"
+        " --kt0-threshold {params.threshold:q} --tangential-pressure {params.pressure:q}"
+        " --piston-area-cm2 {params.area:q} --pressure-uncertainty-MPa {params.dp:q}"
+        " --piston-area-rel-uncertainty {params.u_area:q}"
+        " --tangential-pressure-rel-extra {params.u_tan:q} --qs-rel-extra {params.u_qs:q}"
+        " --out {output.summary:q} 2> {log:q}"
 
 
 rule report_stiffness_published:
     """Report section: every number of Tables 2.1-2.4, 2.7-2.10, published vs recomputed."""
     input:
-        summary="results/stiffness/summary_from_published_steps.nc",
+        summary=result("stiffness/summary_from_published_steps.nc"),
         tables=STIFFNESS_PUBLISHED_TABLES,
         published=[PUBLISHED / f"table_{n}.csv" for n in STIFFNESS_PUBLISHED_NUMBERS],
     output:
-        section="results/report/sections/20_stiffness_published.html",
+        section=result("report/sections/20_stiffness_published.html"),
         tables=expand(
-            "results/report/tables/compare_{n}_from_published_steps.csv",
+            result("report/tables/compare_{n}_from_published_steps.csv"),
             n=STIFFNESS_PUBLISHED_NUMBERS,
         ),
         figures=report(
             expand(
-                "results/report/figures/stiffness_{fig}_from_published_steps.png",
+                result("report/figures/stiffness_{fig}_from_published_steps.png"),
                 fig=["fig_2_40", "fig_2_41", "fig_2_42", "fig_2_60", "fig_2_61", "mean_row"],
             ),
             caption="../report/stiffness_published.rst",
@@ -74,14 +74,14 @@ rule report_stiffness_published:
         tables_dir=lambda wildcards, input: Path(input.tables[0]).parent,
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
-        "logs/report/stiffness_published.log",
+        logs("report/stiffness_published.log"),
     shell:
-        "contactlab stiffness report-published --summary {input.summary}"
-        " --tables-dir {params.tables_dir} --published-dir {params.published}"
-        " --report-dir {params.report_dir} --out {output.section} 2> {log}"
+        "contactlab stiffness report-published --summary {input.summary:q}"
+        " --tables-dir {params.tables_dir:q} --published-dir {params.published:q}"
+        " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
 
 
 ALL_TARGETS.extend(
-    ["results/stiffness/summary_from_published_steps.nc", *STIFFNESS_PUBLISHED_TABLES]
+    [result("stiffness/summary_from_published_steps.nc"), *STIFFNESS_PUBLISHED_TABLES]
 )
-REPORT_SECTIONS.append("results/report/sections/20_stiffness_published.html")
+REPORT_SECTIONS.append(result("report/sections/20_stiffness_published.html"))

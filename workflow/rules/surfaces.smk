@@ -3,9 +3,9 @@
 
 from contactlab.surfaces.sheet import check_scan_files, read_surface_sheet, scan_paths
 
-SURFACES_CONFIG = config.get("surfaces", {})
-SURFACE_SHEET = SURFACES_CONFIG.get("sheet", "config/surfaces.csv")
-DEMO_SCAN_DIR = Path("results/surfaces/demo_scans")
+SURFACES_CONFIG = config["surfaces"]
+SURFACE_SHEET = SURFACES_CONFIG["sheet"]
+DEMO_SCAN_DIR = Path("results/surfaces/demo_scans")  # shared by all studies
 try:
     SURFACE_SPECS = read_surface_sheet(SURFACE_SHEET)
     SCANS = [str(p) for p in scan_paths(SURFACE_SPECS)]
@@ -26,14 +26,14 @@ if DEMO_SCANS:
         output:
             DEMO_SCANS,
         params:
-            seed=SURFACES_CONFIG.get("demo_seed", 0),
+            seed=SURFACES_CONFIG["demo_seed"],
             out_dir=lambda wildcards, output: Path(output[0]).parent,
             published=PUBLISHED,
         log:
             "logs/surfaces/demo_scans.log",
         shell:
-            "contactlab surfaces demo-scans --sheet {input.sheet} --out-dir {params.out_dir}"
-            " --seed {params.seed} --published-dir {params.published} > {log} 2>&1"
+            "contactlab surfaces demo-scans --sheet {input.sheet:q} --out-dir {params.out_dir:q}"
+            " --seed {params.seed:q} --published-dir {params.published:q} > {log:q} 2>&1"
 
 
 rule surface_texture:
@@ -42,81 +42,82 @@ rule surface_texture:
         sheet=SURFACE_SHEET,
         scans=SCANS,
     output:
-        summary="results/surfaces/texture.nc",
-        surfaces=expand("results/surfaces/{surface}.nc", surface=SURFACE_IDS),
+        summary=result("surfaces/texture.nc"),
+        surfaces=expand(result("surfaces/{surface}.nc"), surface=SURFACE_IDS),
     params:
-        bins=SURFACES_CONFIG.get("histogram_bins", 80),
+        bins=SURFACES_CONFIG["histogram_bins"],
         out_dir=lambda wildcards, output: Path(output.summary).parent,
     log:
-        "logs/surfaces/texture.log",
+        logs("surfaces/texture.log"),
     shell:
-        "contactlab surfaces texture --sheet {input.sheet} --out-dir {params.out_dir}"
-        " --summary {output.summary} --bins {params.bins} > {log} 2>&1"
+        "contactlab surfaces texture --sheet {input.sheet:q} --out-dir {params.out_dir:q}"
+        " --summary {output.summary:q} --bins {params.bins:q} > {log:q} 2>&1"
 
 
 rule seq:
     """Seq (eq. 2.1) of each test's imaged interface from the scans' and the published Sq."""
     input:
         tests=config["tests"],
-        texture="results/surfaces/texture.nc",
+        texture=result("surfaces/texture.nc"),
         roughness=[PUBLISHED / "table_A.1.csv", PUBLISHED / "table_A.27.csv"],
         beta_n=[PUBLISHED / "table_2.1.csv", PUBLISHED / "table_2.7.csv"],
     output:
-        "results/surfaces/seq.nc",
+        result("surfaces/seq.nc"),
     params:
         published=PUBLISHED,
     log:
-        "logs/surfaces/seq.log",
+        logs("surfaces/seq.log"),
     shell:
-        "contactlab surfaces seq --tests {input.tests} --texture {input.texture}"
-        " --published-dir {params.published} --out {output} 2> {log}"
+        "contactlab surfaces seq --tests {input.tests:q} --texture {input.texture:q}"
+        " --published-dir {params.published:q} --out {output:q} 2> {log:q}"
 
 
 rule report_surfaces:
     """Report section: Tables A.1, A.26, A.27, 2.6 and Seq (2.3, 2.10) beside ours."""
     input:
-        seq="results/surfaces/seq.nc",
-        texture="results/surfaces/texture.nc",
-        surfaces=expand("results/surfaces/{surface}.nc", surface=SURFACE_IDS),
+        seq=result("surfaces/seq.nc"),
+        texture=result("surfaces/texture.nc"),
+        surfaces=expand(result("surfaces/{surface}.nc"), surface=SURFACE_IDS),
         published=[
             PUBLISHED / f"table_{t}.csv" for t in ("2.3", "2.10", "A.1", "A.26", "A.27", "2.6")
         ],
     output:
-        section="results/report/sections/10_surfaces.html",
-        table="results/report/tables/seq.csv",
-        areal="results/report/tables/surfaces_areal.csv",
-        profile="results/report/tables/surfaces_profile.csv",
-        structured="results/report/tables/surfaces_100x.csv",
+        section=result("report/sections/10_surfaces.html"),
+        table=result("report/tables/seq.csv"),
+        areal=result("report/tables/surfaces_areal.csv"),
+        profile=result("report/tables/surfaces_profile.csv"),
+        structured=result("report/tables/surfaces_100x.csv"),
         figure=report(
-            "results/report/figures/seq.png",
+            result("report/figures/seq.png"),
             caption="../report/seq.rst",
             category="Surfaces",
         ),
         maps=report(
-            "results/report/figures/surfaces_maps.png",
+            result("report/figures/surfaces_maps.png"),
             caption="../report/surfaces_maps.rst",
             category="Surfaces",
         ),
         profiles=report(
-            "results/report/figures/surfaces_profiles.png",
+            result("report/figures/surfaces_profiles.png"),
             caption="../report/surfaces_profiles.rst",
             category="Surfaces",
         ),
         spectra=report(
-            "results/report/figures/surfaces_spectra.png",
+            result("report/figures/surfaces_spectra.png"),
             caption="../report/surfaces_spectra.rst",
             category="Surfaces",
         ),
     params:
         published=PUBLISHED,
         surface_dir=lambda wildcards, input: Path(input.texture).parent,
+        report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
-        "logs/report/surfaces.log",
+        logs("report/surfaces.log"),
     shell:
-        "contactlab surfaces report --seq {input.seq} --texture {input.texture}"
-        " --surface-dir {params.surface_dir} --published-dir {params.published}"
-        " --report-dir results/report --out {output.section} 2> {log}"
+        "contactlab surfaces report --seq {input.seq:q} --texture {input.texture:q}"
+        " --surface-dir {params.surface_dir:q} --published-dir {params.published:q}"
+        " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
 
 
-ALL_TARGETS.extend(["results/surfaces/seq.nc", "results/surfaces/texture.nc"])
-REPORT_SECTIONS.append("results/report/sections/10_surfaces.html")
+ALL_TARGETS.extend([result("surfaces/seq.nc"), result("surfaces/texture.nc")])
+REPORT_SECTIONS.append(result("report/sections/10_surfaces.html"))

@@ -16,6 +16,21 @@ from contactlab.report.section import Section
 
 LAW_NAMES = {"uniform": "constant (A1)", "hertz": "Hertzian (A2)", "punch": "flat punch (A3)"}
 LAW_COLORS = {"uniform": "C0", "hertz": "C1", "punch": "C2", "line": "k"}
+#: the fitted forms of sec. 7.6 exist for the thesis's laws only, not for a user's shape
+WIDE_FIT_BASIS = {"uniform": np.log, "hertz": np.sqrt, "punch": lambda w: 1.0 / w}
+
+
+def law_name(law: str) -> str:
+    """Legend name of a pressure law, or of a user's shape ``table_<name>``."""
+    return LAW_NAMES.get(law, f"your shape '{law.removeprefix('table_')}'")
+
+
+def law_color(law: str, patches: dict[str, xr.Dataset]) -> str:
+    """Fixed colours for the thesis's laws, the next free ones for the user's shapes."""
+    if law in LAW_COLORS:
+        return LAW_COLORS[law]
+    users = [name for name in patches if name not in LAW_COLORS]
+    return f"C{3 + users.index(law)}"
 
 
 def _open(path: Path) -> xr.Dataset:
@@ -117,10 +132,10 @@ def patch_zones_figure(patches: dict[str, xr.Dataset], w: float) -> plt.Figure:
     fig, ax = plt.subplots(figsize=(6.5, 4))
     for law, ds in patches.items():
         col = ds.sel(w_hat=w, method="nearest")
-        ax.plot(col["f"], _ok(col, "a"), "o-", ms=3, color=LAW_COLORS[law],
-                label=f"a/c, {LAW_NAMES[law]}")
-        ax.plot(col["f"], _ok(col, "b"), "s--", ms=3, color=LAW_COLORS[law],
-                label=f"b/c, {LAW_NAMES[law]}")
+        ax.plot(col["f"], _ok(col, "a"), "o-", ms=3, color=law_color(law, patches),
+                label=f"a/c, {law_name(law)}")
+        ax.plot(col["f"], _ok(col, "b"), "s--", ms=3, color=law_color(law, patches),
+                label=f"b/c, {law_name(law)}")
     ax.set_xlabel("coefficient of friction f")
     ax.set_ylabel("x/c")
     ax.set_title(f"w/c = {w:g}", fontsize=9)
@@ -135,8 +150,8 @@ def patch_slope_figure(patches: dict[str, xr.Dataset], line: xr.Dataset, w: floa
     ax.plot(line["f"], _ok(line, "K_T"), "k.-", label="line load (ch. 6)")
     for law, ds in patches.items():
         col = ds.sel(w_hat=w, method="nearest")
-        ax.plot(col["f"], _ok(col, "K_T"), "o-", ms=3, color=LAW_COLORS[law],
-                label=LAW_NAMES[law])
+        ax.plot(col["f"], _ok(col, "K_T"), "o-", ms=3, color=law_color(law, patches),
+                label=law_name(law))
     ax.set_xlabel("coefficient of friction f")
     ax.set_ylabel("K_T = k_l 2 mu / ((kappa+1) T)")
     ax.set_title(f"w/c = {w:g}", fontsize=9)
@@ -149,13 +164,15 @@ def wide_fits(patches: dict[str, xr.Dataset], f: float) -> pd.DataFrame:
     alpha sqrt(w) + beta, punch K_inf + gamma / w (asymptote)."""
     rows = []
     for law, ds in patches.items():
+        if law not in WIDE_FIT_BASIS:
+            continue
         row = ds.sel(f=f, method="nearest")
         w = row["w_hat"].values
         k = _ok(row, "K_B").values
         use = np.isfinite(k) & (w >= 2.0)
         if use.sum() < 2:
             continue
-        basis = {"uniform": np.log(w), "hertz": np.sqrt(w), "punch": 1.0 / w}[law]
+        basis = WIDE_FIT_BASIS[law](w)
         slope, icpt = np.polyfit(basis[use], k[use], 1)
         form = {"uniform": "alpha ln(w/c) + beta", "hertz": "alpha sqrt(w/c) + beta",
                 "punch": "K_inf + gamma c/w (K_inf = beta)"}[law]
@@ -174,18 +191,18 @@ def wide_figure(patches: dict[str, xr.Dataset], line: xr.Dataset, f: float,
     wl = np.linspace(0.5, 22.0, 200)
     for law, ds in patches.items():
         row = ds.sel(f=f, method="nearest")
-        color = LAW_COLORS[law]
-        top.plot(row["w_hat"], _ok(row, "K_B"), "o", ms=4, color=color, label=LAW_NAMES[law])
+        color = law_color(law, patches)
+        top.plot(row["w_hat"], _ok(row, "K_B"), "o", ms=4, color=color, label=law_name(law))
         fit = fits[fits["law"] == law] if len(fits) else fits
         if len(fit):
-            basis = {"uniform": np.log(wl), "hertz": np.sqrt(wl), "punch": 1.0 / wl}[law]
+            basis = WIDE_FIT_BASIS[law](wl)
             top.plot(wl, fit["alpha_or_gamma"].iloc[0] * basis + fit["beta"].iloc[0], "-",
                      color=color, lw=0.8, label=f"fit {fit['fit'].iloc[0]}")
         w = row["w_hat"]
         bottom.plot(w, _ok(row, "a") - w, "o-", ms=3, color=color,
-                    label=f"(a - w)/c, {LAW_NAMES[law]}")
+                    label=f"(a - w)/c, {law_name(law)}")
         bottom.plot(w, _ok(row, "b") - w, "s--", ms=3, color=color,
-                    label=f"(b - w)/c, {LAW_NAMES[law]}")
+                    label=f"(b - w)/c, {law_name(law)}")
     lrow = line.sel(f=f, method="nearest")
     if int(lrow["converged"]) == 1:
         bottom.plot([0.0], [float(lrow["a"])], "k^", label="line load a/c")
@@ -197,6 +214,22 @@ def wide_figure(patches: dict[str, xr.Dataset], line: xr.Dataset, f: float,
     for ax in (top, bottom):
         ax.legend(fontsize=7, frameon=False)
     return fig
+
+
+def user_shapes_table(patches: dict[str, xr.Dataset]) -> pd.DataFrame:
+    """Every point of the user's pressure shapes, with the shape each was given as."""
+    frames = []
+    for name, ds in patches.items():
+        if name in LAW_NAMES:
+            continue
+        df = ds[["a", "b", "K_T", "converged", "admissible"]].to_dataframe().reset_index()
+        shape = ", ".join(f"{x:g}:{p:g}" for x, p in zip(
+            np.atleast_1d(ds.attrs.get("table_x_over_w", [])),
+            np.atleast_1d(ds.attrs.get("table_p", [])), strict=True))
+        df.insert(0, "shape (x/w:p)", shape)
+        df.insert(0, "name", name.removeprefix("table_"))
+        frames.append(df)
+    return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
 
 
 def line_table(line: xr.Dataset) -> pd.DataFrame:
@@ -241,7 +274,8 @@ def build_section(line_path: Path, patch_paths: list[Path], profile_paths: list[
     patches = {}
     for path in patch_paths:
         ds = _open(path)
-        patches[ds.attrs["problem"]] = ds
+        # a user's pressure shape (receding.patches.tables) is named by its file, table_<name>
+        patches[Path(path).stem if ds.attrs["problem"] == "table" else ds.attrs["problem"]] = ds
     profiles = [_open(p) for p in profile_paths]
     figures = report_dir / "figures"
     tables = report_dir / "tables"
@@ -320,4 +354,9 @@ def build_section(line_path: Path, patch_paths: list[Path], profile_paths: list[
                   tables / "receding_patch_points.csv", digits=4)
     section.table(fits, f"Fits of K_B(w) at f = {f_wide:g} (sec. 7.6)",
                   tables / "receding_patch_fits.csv", digits=4)
+    users = user_shapes_table(patches)
+    if len(users):
+        section.table(users, "Your pressure shapes (receding.patches.tables): the shape as "
+                      "given and a, b, K_T over (f, w/c); also drawn in the figures above",
+                      tables / "receding_user_shapes.csv", digits=4)
     section.write(out)

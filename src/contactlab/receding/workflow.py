@@ -19,9 +19,9 @@ def sweep_values(spec: Mapping[str, float] | Sequence[float]) -> list[float]:
     return [float(v) for v in spec]
 
 
-def chunk_values(values: Sequence[float], chunk: int, chunks: int) -> str:
+def chunk_values(values: Sequence[float], chunk: int, chunks: int) -> list[str]:
     """The values of one chunk, interleaved (balances cheap and dear points), as CLI words."""
-    return " ".join(str(v) for v in values[int(chunk) :: chunks])
+    return [str(v) for v in values[int(chunk) :: chunks]]
 
 
 def profile_name(point: Mapping[str, float]) -> str:

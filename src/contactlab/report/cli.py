@@ -7,13 +7,17 @@ report``); this command only stitches them together.
 from __future__ import annotations
 
 import argparse
+import json
 from pathlib import Path
 
 from contactlab.report.index import build_index
 
 
 def _index(args: argparse.Namespace) -> None:
-    build_index(args.sections, args.out, args.title, args.intro)
+    from contactlab.study import provenance
+
+    changes = json.loads(args.changes) if args.changes else {}
+    build_index(args.sections, args.out, args.title, args.intro, provenance(), changes)
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -24,5 +28,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     index.add_argument("sections", nargs="+", type=Path)
     index.add_argument("--title", default="contactlab report")
     index.add_argument("--intro", default="")
+    index.add_argument("--changes", default="",
+                       help="JSON {key: [default, study]} of what a named study changes")
     index.add_argument("--out", type=Path, required=True)
     index.set_defaults(func=_index)

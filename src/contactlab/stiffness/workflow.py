@@ -41,8 +41,11 @@ def raw_inputs(sheet: pd.DataFrame) -> Callable[[Any], dict[str, str]]:
     return inputs
 
 
-def raw_data_option(wildcards: Any, input: Mapping[str, Any]) -> str:
-    """The ``--fields`` or ``--contact-displacement`` option of ``stiffness process``."""
+def raw_data_option(wildcards: Any, input: Mapping[str, Any]) -> list[str]:
+    """The ``--fields`` or ``--contact-displacement`` option of ``stiffness process``.
+
+    Returned as separate words, so the rule quotes the path as one argument (``:q``).
+    """
     if "fields" in input.keys():
-        return f"--fields {input['fields']}"
-    return f"--contact-displacement {input['contact_displacement']}"
+        return ["--fields", str(input["fields"])]
+    return ["--contact-displacement", str(input["contact_displacement"])]

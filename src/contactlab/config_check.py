@@ -1,0 +1,151 @@
+"""Start-up checks of the study configuration, each problem as one line naming its source.
+
+The schema (``workflow/schemas/config.schema.yaml``) says what each key may hold; these
+functions turn its findings into ``<source>: <key.path>: <value> - <what is allowed>`` lines,
+where the source is the config file or ``--config`` that set the key, and add the checks a
+JSON schema cannot express (empty sweep ranges, mesh levels that do not exist).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Iterable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+#: (name, dict) of each place a value can come from, in the order they are merged.
+Source = tuple[str, Mapping[str, Any]]
+
+
+class ConfigError(ValueError):
+    """One or more problems with the configuration, one line each."""
+
+
+def load_yaml_file(path: str | Path) -> dict[str, Any]:
+    """A config file as a dict; ConfigError naming the file (and the YAML line) otherwise."""
+    import yaml
+
+    path = Path(path)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise ConfigError(f"{path}: cannot read the config file ({exc.strerror})") from None
+    try:
+        data = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        start = getattr(exc, "context_mark", None)
+        where = f", line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+        if start is not None and mark is not None and start.line != mark.line:
+            where = f", line {start.line + 1} (noticed at line {mark.line + 1})"
+        problem = getattr(exc, "problem", None) or str(exc).splitlines()[0]
+        context = f" {exc.context}" if getattr(exc, "context", None) else ""
+        raise ConfigError(f"{path}{where}: not valid YAML:{context}: {problem}") from None
+    if data is None:
+        raise ConfigError(f"{path}: the config file is empty; it needs at least the keys "
+                          "tests, published_dir and report (see config/config.yaml)")
+    if not isinstance(data, dict):
+        raise ConfigError(f"{path}: a config file maps keys to values at its top level, "
+                          f"not a {type(data).__name__}")
+    return data
+
+
+def _lookup(data: Mapping[str, Any], keys: Sequence[Any]) -> bool:
+    node: Any = data
+    for key in keys:
+        if isinstance(node, Mapping) and key in node:
+            node = node[key]
+        elif isinstance(node, list) and isinstance(key, int) and key < len(node):
+            node = node[key]
+        else:
+            return False
+    return True
+
+
+def source_of(keys: Sequence[Any], sources: Sequence[Source]) -> str:
+    """The last source that sets the key path (later sources override earlier ones)."""
+    for name, data in reversed(sources):
+        if data and _lookup(data, keys):
+            return name
+    for name, data in reversed(sources):  # a missing key: blame the parent's source
+        if data and keys and _lookup(data, keys[:-1]):
+            return name
+    return sources[-1][0] if sources else "the configuration"
+
+
+def _dotted(keys: Iterable[Any]) -> str:
+    return ".".join(f"[{k}]" if isinstance(k, int) else str(k) for k in keys) or "(top level)"
+
+
+def _short(value: Any) -> str:
+    text = json.dumps(value, default=str)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def schema_problems(config: Mapping[str, Any], schema: Mapping[str, Any],
+                    sources: Sequence[Source]) -> list[str]:
+    """One line per schema violation: source, key path, bad value, what is allowed."""
+    from jsonschema import Draft202012Validator
+    from jsonschema.exceptions import best_match
+
+    lines = []
+    for error in Draft202012Validator(schema).iter_errors(config):
+        error = best_match([error]) if error.context else error
+        keys = list(error.absolute_path)
+        allowed = error.message
+        description = error.schema.get("description", "") if isinstance(error.schema,
+                                                                          Mapping) else ""
+        if error.validator == "additionalProperties":
+            known = error.schema.get("properties", {})
+            extra = [k for k in error.instance if k not in known]
+            keys.append(extra[0])
+            allowed = (f"unknown key; allowed here: {', '.join(known)}" if known
+                       else "unknown key")
+            description = ""
+        elif len(allowed) > 200:
+            allowed = f"{_short(error.instance)} is not valid here"
+        hint = f" ({' '.join(description.split())[:100]})" if description else ""
+        lines.append(f"{source_of(keys, sources)}: {_dotted(keys)}: {allowed}{hint}")
+    return sorted(set(lines))
+
+
+def _count(spec: Any) -> int:
+    if isinstance(spec, Mapping):
+        return round((spec["stop"] - spec["start"]) / spec["step"]) + 1
+    return len(spec)
+
+
+def semantic_problems(config: Mapping[str, Any], sources: Sequence[Source]) -> list[str]:
+    """What the schema cannot say: empty sweep ranges, mesh levels that are not defined."""
+    lines = []
+    receding = config.get("receding", {})
+    for section, key in (("gap", "w"), ("gap", "f"), ("line", "f"), ("patches", "f"),
+                         ("patches", "w")):
+        spec = receding.get(section, {}).get(key)
+        if isinstance(spec, Mapping) and _count(spec) < 1:
+            keys = ["receding", section, key]
+            lines.append(f"{source_of(keys, sources)}: {_dotted(keys)}: {_short(dict(spec))} "
+                         "is an empty range: stop must be >= start")
+    fe = config.get("fe", {})
+    if fe.get("enabled"):
+        levels = fe.get("levels", {})
+        for problem, spec in fe.get("problems", {}).items():
+            for key in ("level", "convergence"):
+                values = spec.get(key, [])
+                for i, level in enumerate([values] if isinstance(values, str) else values):
+                    if level not in levels:
+                        keys = ["fe", "problems", problem, key] + ([] if key == "level" else [i])
+                        lines.append(f"{source_of(keys, sources)}: {_dotted(keys)}: "
+                                     f"{_short(level)} is not a mesh level; fe.levels defines "
+                                     f"{', '.join(levels) or 'none'}")
+    return lines
+
+
+def check_config(config: Mapping[str, Any], schema: Mapping[str, Any],
+                 sources: Sequence[Source]) -> None:
+    """Raise ConfigError listing every problem, one line each, or return quietly."""
+    problems = schema_problems(config, schema, sources)
+    if not problems:
+        problems = semantic_problems(config, sources)
+    if problems:
+        raise ConfigError("invalid configuration:\n  " + "\n  ".join(problems))
