@@ -47,3 +47,36 @@ def test_concat_chunks_joins_sorts_and_refuses_overlap_or_missing(tmp_path: Path
         concat_chunks([tmp_path / "a.nc", tmp_path / "a.nc"], "f")
     with pytest.raises(FileNotFoundError, match=r"c\.nc not found"):
         concat_chunks([tmp_path / "a.nc", tmp_path / "c.nc"], "f")
+
+
+def test_history_has_the_full_command_and_gathers_keep_the_chunks(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    from contactlab.io import concat_chunks, stamp
+
+    attrs = {"long_name": "value", "units": "1"}
+    monkeypatch.delenv("SOURCE_DATE_EPOCH", raising=False)
+    for name, f in (("a", [0.1]), ("b", [0.5])):
+        monkeypatch.setattr("sys.argv", ["/venv/bin/contactlab", "receding", "line-sweep",
+                                         "--f", str(f[0]), "--out", f"{name} 1.nc"])
+        ds = xr.Dataset({"v": ("f", np.array(f), attrs)},
+                        coords={"f": ("f", f, {"long_name": "f", "units": "1"})})
+        stamp(ds, title="chunk", source="test", history="library call")
+        assert ds.attrs["history"] == f"contactlab receding line-sweep --f {f[0]} --out " \
+                                      f"'{name} 1.nc'"
+        assert "institution" not in ds.attrs and "contactlab" in ds.attrs["source"]
+        write_netcdf(ds, tmp_path / f"{name}.nc")
+    # the wall-clock time goes to the log (stderr), not into the file
+    assert "Z: contactlab receding line-sweep --f 0.5" in capsys.readouterr().err
+    monkeypatch.setattr("sys.argv", ["python", "-m", "pytest"])
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
+    joined, _ = concat_chunks([tmp_path / "a.nc", tmp_path / "b.nc"], "f")
+    stamp(joined, title="gather", source="test", history="gather of 2 chunks")
+    assert joined.attrs["history"].splitlines() == [
+        "contactlab receding line-sweep --f 0.1 --out 'a 1.nc'",
+        "contactlab receding line-sweep --f 0.5 --out 'b 1.nc'",
+        "2023-11-14T22:13:20Z: gather of 2 chunks",
+    ]
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "yesterday")
+    with pytest.raises(ValueError, match=r"SOURCE_DATE_EPOCH.*'yesterday'"):
+        stamp(joined, title="gather", source="test", history="again")

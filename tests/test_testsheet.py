@@ -39,3 +39,44 @@ def test_missing_data_file_names_sheet_line_and_column(tmp_path: Path) -> None:
 def test_surface_id_with_and_without_side() -> None:
     assert surface_id("rough_specimen", "B") == "rough_specimen_B"
     assert surface_id("S1_specimen", float("nan")) == "S1_specimen"
+
+
+def test_numbers_are_checked_per_cell(tmp_path: Path) -> None:
+    sheet_path = tmp_path / "tests.csv"
+    sheet_path.write_text(HEADER + "A,ground,s,B,p,B,4,20,\n\nB,ground,s,B,p,B,12kN,20,\n")
+    with pytest.raises(TestSheetError) as info:
+        read_test_sheet(sheet_path)
+    # the blank line counts: B is on line 4; A's good value 4 is not blamed
+    assert str(info.value) == (f"{sheet_path}: line 4 (test B), column 'max_normal_load_kN': "
+                               "'12kN' is not a finite number")
+    sheet_path.write_text(HEADER + "A,ground,s,B,p,B,4,20,\n\nB,ground,s,B,p,B,12,20.5,\n")
+    sheet = read_test_sheet(sheet_path)
+    assert sheet["max_normal_load_kN"].dtype.kind == "i"
+    assert list(sheet["nominal_area_mm2"]) == [20.0, 20.5]
+    assert sheet.attrs["line"] == {"A": 2, "B": 4}
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "words"),
+    [
+        ("RU3_pad,B,12,20", "RU3_pad,B,12kN,20",
+         ["config/tests.csv: line 4 (test RU3), column 'max_normal_load_kN': '12kN'"]),
+        ("RU2,ground,rough_specimen,B,RU2_pad,B,8,20,results/demo/RU2/load_log.csv",
+         "\nRU2,ground,rough_specimen,B,RU2_pad,B,8,20,data/RU2/log.csv",
+         ["config/tests.csv: line 4 (test RU2), column 'load_log': file not found: "
+          "data/RU2/log.csv"]),
+    ],
+    ids=["load-not-a-number", "missing-file-after-blank-line"],
+)
+def test_bad_sheet_stops_the_workflow_in_one_line(workflow_copy: Path, snakemake, old: str,
+                                                  new: str, words: list[str]) -> None:
+    sheet = workflow_copy / "config" / "tests.csv"
+    text = sheet.read_text()
+    assert old in text
+    sheet.write_text(text.replace(old, new, 1))
+    run = snakemake(workflow_copy, "-j2", "all")
+    assert run.returncode != 0
+    for word in words:
+        assert word in run.stderr, (word, run.stderr[-2000:])
+    assert "Traceback" not in run.stderr
+    assert not (workflow_copy / "results").exists()

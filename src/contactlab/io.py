@@ -9,8 +9,10 @@ from __future__ import annotations
 import contextlib
 import datetime as dt
 import os
+import shlex
+import sys
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 import xarray as xr
@@ -42,18 +44,69 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
         tmp_path.unlink(missing_ok=True)
 
 
-def stamp(ds: xr.Dataset, *, title: str, source: str, history: str) -> xr.Dataset:
+def command_line(fallback: str) -> str:
+    """The running ``contactlab`` command with all its arguments, quoted as for a shell.
+
+    When the process is not the ``contactlab`` command (a library call, a test), the
+    caller's ``fallback`` description is returned instead.
+    """
+    program = Path(sys.argv[0]) if sys.argv and sys.argv[0] else Path()
+    if program.name == "contactlab" or program.parts[-2:] == ("contactlab", "__main__.py"):
+        return shlex.join(["contactlab", *sys.argv[1:]])
+    return fallback
+
+
+def history_time() -> str | None:
+    """ISO 8601 UTC time for ``history`` from ``SOURCE_DATE_EPOCH``, or None if unset.
+
+    Results must be byte-identical when rerun, so the wall clock never goes into a file;
+    :func:`stamp` writes it to the log (stderr) instead. Set ``SOURCE_DATE_EPOCH`` (seconds
+    since 1970, the reproducible-builds convention) to date the history lines.
+    """
+    epoch = os.environ.get("SOURCE_DATE_EPOCH", "").strip()
+    if not epoch:
+        return None
+    try:
+        when = dt.datetime.fromtimestamp(int(epoch), tz=dt.UTC)
+    except (ValueError, OverflowError, OSError):
+        raise ValueError(f"environment variable SOURCE_DATE_EPOCH: {epoch!r} is not a whole "
+                         "number of seconds since 1970-01-01") from None
+    return when.strftime("%Y-%m-%dT%H:%M:%SZ")
+
+
+def history_lines(*datasets: xr.Dataset) -> list[str]:
+    """The ``history`` lines of ``datasets``, in order, each line once."""
+    lines: list[str] = []
+    for ds in datasets:
+        for line in str(ds.attrs.get("history", "")).splitlines():
+            if line.strip() and line not in lines:
+                lines.append(line)
+    return lines
+
+
+def stamp(ds: xr.Dataset, *, title: str, source: str, history: str,
+          inputs: Sequence[xr.Dataset] = ()) -> xr.Dataset:
     """Add the global CF attributes every contactlab result carries.
 
-    Inside a workflow run these include the study name, the hash of the effective config
-    and the git commit (:func:`contactlab.study.provenance`).
+    ``history`` (CF sec. 2.6.2) keeps the lines ``ds`` and the ``inputs`` (e.g. the chunks
+    of a gather) already carry and appends one for this step: the full command line (or
+    ``history`` outside the command line), dated only by ``SOURCE_DATE_EPOCH``
+    (:func:`history_time`). The wall-clock time and the command go to stderr, the job's log.
+    ``source`` names the method and the contactlab version; no ``institution``, which is
+    the user's to say. Inside a workflow run the attributes include the study name, the
+    hash of the effective config and the git commit (:func:`contactlab.study.provenance`).
     """
+    command = command_line(history)
+    when = history_time()
+    line = f"{when}: {command}" if when else command
+    now = dt.datetime.now(dt.UTC).strftime("%Y-%m-%dT%H:%M:%SZ")
+    print(f"contactlab: {now}: {command}: writing {title!r}", file=sys.stderr)
+    ds.attrs.pop("institution", None)
     ds.attrs.update(
         Conventions=CONVENTIONS,
         title=title,
-        institution="contactlab",
-        source=source,
-        history=f"{dt.date.today().isoformat()}: contactlab {__version__}: {history}",
+        source=f"{source} (contactlab {__version__})",
+        history="\n".join([*history_lines(*inputs, ds), line]),
         contactlab_version=__version__,
         **provenance(),
     )
@@ -70,11 +123,21 @@ def check_cf(ds: xr.Dataset) -> None:
             raise ValueError(f"variable {name!r} lacks CF attribute(s) {missing}")
 
 
-def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str]) -> Path:
-    """Check CF attributes, then write ``ds`` to ``path`` atomically (netCDF4)."""
+def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str],
+                 encoding: dict[str, dict[str, object]] | None = None) -> Path:
+    """Check CF attributes, then write ``ds`` to ``path`` atomically (netCDF4).
+
+    Coordinate variables get no ``_FillValue`` (CF sec. 2.5.1 forbids one there; xarray
+    adds it to float variables by default). ``encoding`` (e.g. compression of data
+    variables) goes to :meth:`xarray.Dataset.to_netcdf`.
+    """
     check_cf(ds)
+    ds = ds.copy(deep=False)
+    for name in ds.dims:
+        if name in ds.variables and ds.variables[name].dtype.kind == "f":
+            ds.variables[name].encoding["_FillValue"] = None
     with atomic_path(path) as tmp:
-        ds.to_netcdf(tmp, engine="netcdf4")
+        ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
     return Path(path)
 
 
@@ -94,7 +157,7 @@ def concat_chunks(paths: list[str | os.PathLike[str]], dim: str) -> tuple[xr.Dat
                    combine_attrs="drop_conflicts").sortby(dim)
     if ds[dim].to_index().has_duplicates:
         raise ValueError(f"sweep chunks {', '.join(map(str, paths))} overlap in {dim}")
-    ds.attrs.pop("history", None)
+    ds.attrs["history"] = "\n".join(history_lines(*parts))  # the chunks' commands
     return ds, parts
 
 

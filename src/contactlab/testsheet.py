@@ -1,8 +1,10 @@
 """The test sheet: one row per contact-stiffness test (``config/tests.csv``).
 
 Columns are described in ``workflow/schemas/tests.schema.yaml`` and the README.
-This module adds the checks a JSON schema cannot express: unique ids and
-existing data files, each error naming the sheet, the row and the column.
+This module adds the checks a JSON schema cannot express: numbers parsed cell
+by cell (pandas reads a column with one bad cell as text), unique ids and
+existing data files, each error naming the sheet, the line in the file, the
+test id, the column and the value.
 """
 
 from __future__ import annotations
@@ -12,8 +14,12 @@ from pathlib import Path
 
 import pandas as pd
 
+from contactlab.csvlines import numeric_cells, read_csv_lines
+
 #: Columns holding paths to a test's raw data (empty when a test has none).
 PATH_COLUMNS = ("load_log", "fields", "contact_displacement")
+#: Columns holding numbers (type ``number`` in the schema).
+NUMBER_COLUMNS = ("max_normal_load_kN", "nominal_area_mm2")
 
 
 class TestSheetError(ValueError):
@@ -23,20 +29,35 @@ class TestSheetError(ValueError):
 
 
 def read_test_sheet(path: str | Path) -> pd.DataFrame:
-    """Read the test sheet as strings/numbers with ``id`` as index."""
+    """Read the test sheet as strings/numbers with ``id`` as index.
+
+    ``sheet.attrs["line"]`` maps each test id to its line in the file (the header is line
+    1; blank lines count). Cells of :data:`NUMBER_COLUMNS` must be numbers.
+    """
     path = Path(path)
-    if not path.is_file():
-        raise TestSheetError(f"{path}: test sheet not found")
     try:
-        sheet = pd.read_csv(path, dtype={"id": str}, keep_default_na=False, na_values=[""])
-    except (pd.errors.ParserError, UnicodeDecodeError) as exc:
-        raise TestSheetError(f"{path}: cannot parse as CSV: {exc}") from exc
+        sheet = read_csv_lines(path, "test sheet", dtype=str, keep_default_na=False,
+                               na_values=[""])
+    except (ValueError, FileNotFoundError) as exc:
+        raise TestSheetError(str(exc)) from None
+    sheet.columns = [str(c).strip() for c in sheet.columns]
     if "id" not in sheet.columns:
         raise TestSheetError(f"{path}: missing column 'id'")
+    sheet["id"] = sheet["id"].str.strip()
+    for column in NUMBER_COLUMNS:
+        if column in sheet.columns:
+            try:
+                sheet[column] = numeric_cells(sheet, column, str(path), row_id="id",
+                                              row_label="test")
+            except ValueError as exc:
+                raise TestSheetError(str(exc)) from None
     duplicated = sheet["id"][sheet["id"].duplicated()].tolist()
     if duplicated:
         raise TestSheetError(f"{path}: column 'id': duplicate test id(s) {duplicated}")
-    return sheet.set_index("id", drop=False)
+    lines = dict(zip(sheet["id"], sheet.index.tolist(), strict=True))
+    sheet = sheet.set_index("id", drop=False)
+    sheet.attrs["line"] = lines
+    return sheet
 
 
 def check_data_files(sheet: pd.DataFrame, sheet_path: str | Path, root: str | Path = ".",
@@ -48,7 +69,8 @@ def check_data_files(sheet: pd.DataFrame, sheet_path: str | Path, root: str | Pa
     only those may be missing at start-up, every other path must exist.
     """
     made = {Path(p).as_posix() for p in generated}
-    for row_number, (test_id, row) in enumerate(sheet.iterrows(), start=2):
+    lines = sheet.attrs.get("line", {})
+    for test_id, row in sheet.iterrows():
         for column in PATH_COLUMNS:
             value = row.get(column)
             if value is None or pd.isna(value) or str(value).strip() == "":
@@ -57,7 +79,8 @@ def check_data_files(sheet: pd.DataFrame, sheet_path: str | Path, root: str | Pa
                 continue
             if not (Path(root) / str(value)).exists():
                 raise TestSheetError(
-                    f"{sheet_path}: line {row_number} (test {test_id}), column '{column}': "
+                    f"{sheet_path}: line {lines.get(test_id, '?')} (test {test_id}), "
+                    f"column '{column}': "
                     f"file not found: {value}"
                 )
 

@@ -106,7 +106,7 @@ def _merge_grid_bem(args: argparse.Namespace) -> None:
                     combine_attrs="drop_conflicts")
     out.attrs.pop("equal_loads", None)
     stamp(out, title="BEM of the asperity grids (beyond the thesis)",
-          source=SOURCE + ", sec. 3.3.2 limitation 1", history=_history(args))
+          source=SOURCE + ", sec. 3.3.2 limitation 1", history=_history(args), inputs=parts)
     write_netcdf(out, args.out)
 
 

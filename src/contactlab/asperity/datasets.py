@@ -7,6 +7,8 @@ variable names are an interface read by other tools (issue 4): keep them.
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 import xarray as xr
 from numpy.typing import ArrayLike
@@ -16,6 +18,11 @@ from contactlab.asperity import grid as hgrid
 from contactlab.asperity import grid_bem as gbem
 
 ONE = "1"
+
+
+def _log_seconds(what: str, seconds: ArrayLike) -> None:
+    """Solver wall time to stderr (the job's log); results carry no timings."""
+    print(f"{what}: {float(np.sum(seconds)):.2f} s", file=sys.stderr)
 
 
 def _v(dims, data, long_name: str, units: str = ONE, **attrs) -> xr.Variable:
@@ -36,6 +43,7 @@ def bem_family_dataset(law: str, q_ratio: ArrayLike, taus: list[float], f: float
     """One BEM family (Coulomb, or one curve per shear limit) on the ``Q/Q_n`` grid."""
     q = np.asarray(q_ratio, float)
     curves = bem_runs.family(law, q, taus, f=f, nu=nu, cells=cells)
+    _log_seconds(f"BEM {law} family, {len(curves)} curve(s)", [c.seconds for c in curves])
     labels = [f"bem_{law}" if law == "coulomb" else f"bem_{law}_{t:.2f}" for t in
               ([np.nan] if law == "coulomb" else taus)]
     tau = [np.nan] * len(curves) if law == "coulomb" else list(taus)
@@ -54,8 +62,6 @@ def bem_family_dataset(law: str, q_ratio: ArrayLike, taus: list[float], f: float
             "full_slip_displacement_ratio": _v(("law",), [c.full_slip_ratio for c in curves],
                                                "limit of Delta_x/Delta_n as the stick zone "
                                                "vanishes"),
-            "seconds": _v(("law",), [c.seconds for c in curves],
-                          "wall-clock time of the curve", "s"),
             "unknowns": _v(("law",), [c.unknowns for c in curves],
                            "traction unknowns (first quadrant)"),
         },
@@ -152,6 +158,9 @@ def transverse_dataset(fractions: ArrayLike, f: float, tau_max: float, nu: float
     runs = [bem_runs.transverse_effect(law, fr, f=f, tau_max=tau_max, nu=nu, cells=cells,
                                        tol=tol) for law in laws]
 
+    _log_seconds("transverse traction, all laws",
+                 [r["seconds_scalar"] + r["seconds_vector"] for r in runs])
+
     def stack(key):
         return np.array([r[key] for r in runs])
 
@@ -177,8 +186,6 @@ def transverse_dataset(fractions: ArrayLike, f: float, tau_max: float, nu: float
             "iterations_vector": _v(dims, stack("iterations_vector"),
                                     "FISTA iterations, q_y free"),
             "residual": _v(dims, stack("residual"), "final projected-step residual"),
-            "seconds": _v(("law",), [r["seconds_scalar"] + r["seconds_vector"] for r in runs],
-                          "wall-clock time of both solves", "s"),
         },
         coords={"law": ("law", list(laws)),
                 "fraction": _v(("fraction",), fr,
@@ -322,6 +329,7 @@ def grid_bem_dataset(n: int, area_ratio: ArrayLike, cells_per_spacing: int,
     pt, _ = hgrid.loads_for_area_ratio(ar, n)
     hz = hgrid.fixed_grid(n, pt)
     rig = gbem.solve_grid(n, pt, cells_per_spacing)
+    _log_seconds(f"BEM grid N = {n}, rigid approach, {ar.size} loads", rig["seconds"])
     data = {
         "Pt_over_Pd": _v(("area_ratio_hertz",), pt, "total load Pt/Pd"),
         "u_cen_hertz": _v(("area_ratio_hertz",), hz["u_cen"],
@@ -342,10 +350,10 @@ def grid_bem_dataset(n: int, area_ratio: ArrayLike, cells_per_spacing: int,
         "residual": _v(("area_ratio_hertz",), rig["residual"], "final residual"),
         "converged": _v(("area_ratio_hertz",), rig["converged"].astype(np.int8),
                         "1 if the normal solver converged"),
-        "seconds": _v(("area_ratio_hertz",), rig["seconds"], "wall-clock time per load", "s"),
     }
     if equal_loads:
         eq = gbem.solve_grid_equal_loads(n, pt, cells_per_spacing)
+        _log_seconds(f"BEM grid N = {n}, equal loads, {ar.size} loads", eq["seconds"])
         data.update({
             "u_cen_bem_equal": _v(("area_ratio_hertz",), eq["u_cen"],
                                   "centre displacement, BEM, equal asperity loads"),
@@ -358,8 +366,6 @@ def grid_bem_dataset(n: int, area_ratio: ArrayLike, cells_per_spacing: int,
                                    "max relative asperity-load error, equal loads"),
             "converged_equal": _v(("area_ratio_hertz",), eq["converged"].astype(np.int8),
                                   "1 if the equal-load solves converged"),
-            "seconds_equal": _v(("area_ratio_hertz",), eq["seconds"],
-                                "wall-clock time per load, equal loads", "s"),
         })
     return xr.Dataset(
         data,

@@ -361,7 +361,6 @@ def run_asperity(model: AsperityModel, yield_stress: float, threads: int = 1,
                                  "N/mm^2", dims=()),
             "yield_ratio": _var(yield_stress / sigma_v if yield_stress > 0 else np.nan,
                                 "yield stress over sigma_v = 0.62 p0", dims=()),
-            "wall_time": _var(run.wall_time, "wall-clock time of the ccx run", "s", dims=()),
             "n_elements": _var(mesh.n_elements, "number of C3D10 elements", dims=()),
             "n_nodes": _var(len(mesh.nodes), "number of nodes", dims=()),
             "iterations": _var(run.sta["iterations"], "Newton iterations", dims=()),
@@ -424,7 +423,7 @@ def gather(runs: list[xr.Dataset], bem_path=None) -> xr.Dataset:
         attrs={"long_name": "Delta_x/Delta_n with Delta_n = Q_n times the elastic stuck FE "
                "compliance (the text's definition of Delta_n)", "units": "1"})
     for key in ("yield_stress", "yield_ratio", "P_normal", "P_hertz", "Q_n", "Delta_n_eq33",
-                "wall_time", "n_elements", "n_nodes", "iterations"):
+                "n_elements", "n_nodes", "iterations"):
         data[key] = xr.DataArray([float(r[key]) for r in models], dims=("model",),
                                  attrs=dict(models[0][key].attrs))
     data["elastic_compliance"] = xr.DataArray(

@@ -9,6 +9,7 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
+import sys
 import tempfile
 import time
 from dataclasses import dataclass
@@ -19,11 +20,11 @@ from contactlab.fe.frd import FrdResult, read_frd, read_sta
 
 @dataclass
 class CcxRun:
-    """What a run produced: the parsed ``.frd``, ``.sta`` counters, wall time and log."""
+    """What a run produced: the parsed ``.frd``, ``.sta`` counters and log (the wall time
+    goes to stderr, the job's log: results carry no timings)."""
 
     frd: FrdResult
     sta: dict[str, float]
-    wall_time: float
     log: str
     dat: str
     partial: bool = False
@@ -70,6 +71,7 @@ def run_ccx(deck: str, job: str = "job", threads: int = 1, keep: str | None = No
         proc = subprocess.run([exe, "-i", job], cwd=work, env=env, capture_output=True,
                               text=True, check=False, timeout=timeout)
         wall = time.perf_counter() - start
+        print(f"ccx job {job}: {wall:.1f} s", file=sys.stderr)  # the log, not the results
         log = proc.stdout + proc.stderr
         if keep:
             dest = Path(keep)
@@ -84,7 +86,7 @@ def run_ccx(deck: str, job: str = "job", threads: int = 1, keep: str | None = No
             raise RuntimeError(f"ccx failed on job {job!r} (exit {proc.returncode}):\n{tail}")
         dat_path = work / f"{job}.dat"
         return CcxRun(
-            frd=read_frd(frd_path), sta=read_sta(work / f"{job}.sta"), wall_time=wall,
+            frd=read_frd(frd_path), sta=read_sta(work / f"{job}.sta"),
             log=log, dat=dat_path.read_text(errors="replace") if dat_path.exists() else "",
             partial=failed,
         )

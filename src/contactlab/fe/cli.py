@@ -71,6 +71,7 @@ def _convergence(args: argparse.Namespace) -> None:
         title=f"Mesh convergence of the FE model '{out.attrs['problem']}' (thesis sec. 8.3)",
         source="contactlab fe receding runs on successively refined meshes",
         history="contactlab fe convergence " + " ".join(str(p) for p in args.runs),
+        inputs=runs,
     )
     write_netcdf(out, args.out)
 
@@ -108,6 +109,7 @@ def _asperity_gather(args: argparse.Namespace) -> None:
         title="Elastic-perfectly plastic stuck asperity: Delta_x/Delta_n against Q/Q_n (Fig. 3.8)",
         source="contactlab fe asperity runs; elastic stuck and Cattaneo-Mindlin (eq. 3.5); BEM",
         history="contactlab fe asperity-gather " + " ".join(str(p) for p in args.runs),
+        inputs=runs,
     )
     write_netcdf(out, args.out)
 

@@ -3,7 +3,7 @@
 :func:`agreement` adds to an FE solution (from :func:`contactlab.fe.receding.run_receding`)
 the DDT transition points ``b_ddt`` and ``a_ddt`` (``a3_ddt`` for the gap problem), the
 differences in percent, and the DDT profiles on the FE grid. :func:`convergence` stacks
-the transition points and run times of several meshes of one problem (sec. 8.3).
+the transition points and sizes of several meshes of one problem (sec. 8.3).
 """
 
 from __future__ import annotations
@@ -65,12 +65,12 @@ def agreement(fe: xr.Dataset, ref: DdtReference) -> xr.Dataset:
 
 
 def convergence(runs: list[xr.Dataset]) -> xr.Dataset:
-    """Transition points, sizes and run times of several meshes, along dimension ``mesh``."""
+    """Transition points and sizes of several meshes, along dimension ``mesh``."""
     if not runs:
         raise ValueError("convergence needs at least one FE run")
     problem = runs[0].attrs["problem"]
     a = STICK_SLIP_NAME[problem]
-    keys = ["b_fe", f"{a}_fe", "wall_time", "n_elements", "n_nodes", "h", "iterations",
+    keys = ["b_fe", f"{a}_fe", "n_elements", "n_nodes", "h", "iterations",
             "equilibrium_error", "max_penetration"]
     order = np.argsort([-float(r["h"]) for r in runs])
     runs = [runs[i] for i in order]

@@ -128,7 +128,6 @@ def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = ""
                                    "nodal sigma_yy of the block at the interface over q"),
             "b_fe": _var(b, "separation point b/c from finite elements", dims=()),
             f"{name}_fe": _var(a, f"stick-slip point {name}/c from finite elements", dims=()),
-            "wall_time": _var(run.wall_time, "wall-clock time of the ccx run", "s", dims=()),
             "n_elements": _var(mesh.n_elements, "number of elements", dims=()),
             "n_nodes": _var(mesh.n_nodes, "number of nodes", dims=()),
             "h": _var(geom.h / geom.thickness, "interface element size h/c", dims=()),

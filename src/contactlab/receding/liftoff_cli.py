@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 import time
 from pathlib import Path
 
@@ -69,10 +70,18 @@ def run_solve(args: argparse.Namespace) -> None:
           f"{sol.converged}, {out['seconds']} s")
 
 
+def _log_time(ds, start: float) -> None:
+    """Wall time of a sweep to stderr (the job's log); results carry no timings."""
+    print(f"{int(ds['converged'].sum())}/{ds['converged'].size} points converged in "
+          f"{time.perf_counter() - start:.2f} s", file=sys.stderr)
+
+
 def _line_sweep(args: argparse.Namespace) -> None:
     from contactlab.receding.liftoff_sweep import sweep_line
 
+    start = time.perf_counter()
     ds = sweep_line(np.asarray(args.f), args.n, args.lam, args.e, chaise=not args.no_chaise)
+    _log_time(ds, start)
     stamp(ds, title=f"Line load on a layer (thesis ch. 6): a, b, K_T over f, N = {args.n}",
           source=SOURCE, history=f"contactlab receding line-sweep --f "
                                  f"{' '.join(map(str, args.f))} --n {args.n}")
@@ -87,8 +96,10 @@ def _patch_sweep(args: argparse.Namespace) -> None:
         if args.table_x is None or args.table_p is None:
             raise ValueError("a pressure table needs both --table-x and --table-p")
         shape = {"x": args.table_x, "p": args.table_p}
+    start = time.perf_counter()
     ds = sweep_patch(args.problem, np.asarray(args.f), np.asarray(args.w_hat), args.n,
                      args.lam_b, args.e_minus_w, shape)
+    _log_time(ds, start)
     if shape is not None:
         ds.attrs.update(table_x_over_w=np.asarray(shape["x"], dtype=float),
                         table_p=np.asarray(shape["p"], dtype=float))

@@ -32,7 +32,6 @@ SCALARS = {
                          "in (kappa + 1) T c / (2 mu)",
     "remote_slip_lhs": "int_0^inf B_x dx, times 2 mu / ((kappa + 1) T c)",
     "remote_slip_rhs": "-1/8 - K_T/2 + (1/4) int_0^b x S dx / (T c^2)",
-    "seconds": "wall time of the solution",
 }
 CHECKS = {
     "max_tension": "largest N/T in contact (admissible <= 0)",
@@ -53,7 +52,7 @@ def _code(sol: LiftoffSolution) -> int:
 
 def _record(sol: LiftoffSolution) -> dict[str, float]:
     rec = {k: np.nan for k in [*SCALARS, *CHECKS]}
-    rec.update(a=sol.a, b=sol.b, K_T=sol.K_T, residual=sol.residual, seconds=sol.seconds)
+    rec.update(a=sol.a, b=sol.b, K_T=sol.K_T, residual=sol.residual)
     if sol.converged:
         if sol.preformed_used:
             rel = sol.remote_slip()
@@ -83,8 +82,7 @@ def _variables(records: np.ndarray, dims: tuple[str, ...], suffix: str = "",
     shape = records.shape
     for key, name in {**SCALARS, **CHECKS}.items():
         values = np.array([r[key] for r in flat], dtype=float).reshape(shape)
-        unit = "s" if key == "seconds" else ONE
-        out[key + suffix] = (dims, values, {"long_name": name + what, "units": unit})
+        out[key + suffix] = (dims, values, {"long_name": name + what, "units": ONE})
     for key, name, dtype in (("converged", "root finder converged (1) or not", np.int8),
                              ("admissible", "contact conditions hold within CHECK_TOL",
                               np.int8),

@@ -62,7 +62,7 @@ def profile_figure(ds: xr.Dataset) -> plt.Figure:
 
 
 def agreement_table(results: list[xr.Dataset]) -> pd.DataFrame:
-    """One row per problem: mesh, run time, b and a of FE and DDT with the differences."""
+    """One row per problem: mesh, b and a of FE and DDT with the differences."""
     rows = []
     for ds in results:
         a = _stick_slip(ds)
@@ -72,7 +72,6 @@ def agreement_table(results: list[xr.Dataset]) -> pd.DataFrame:
             "w/c": float(ds.attrs.get("w_hat", np.nan)),
             "h/c": float(ds["h"]),
             "elements": int(ds["n_elements"]),
-            "ccx time (s)": float(ds["wall_time"]),
             "b FE": float(ds["b_fe"]),
             "b DDT": float(ds["b_ddt"]),
             "b diff (%)": float(ds["b_difference"]),
@@ -94,7 +93,6 @@ def convergence_table(conv: list[xr.Dataset]) -> pd.DataFrame:
             rows.append({
                 "problem": ds.attrs["problem"], "mesh": str(mesh),
                 "h/c": float(ds["h"][i]), "elements": int(ds["n_elements"][i]),
-                "ccx time (s)": float(ds["wall_time"][i]),
                 "iterations": int(ds["iterations"][i]),
                 "b FE": float(ds["b_fe"][i]), "a FE": float(ds[f"{a}_fe"][i]),
             })
@@ -223,7 +221,7 @@ def build_section(results: list[Path], convergence: list[Path], asperity: Path |
             conv.append(ds.load())
     if conv:
         sec.table(convergence_table(conv), "Mesh convergence (sec. 8.3): transition points "
-                  "and ccx wall times per mesh", report_dir / "tables" / "fe_convergence.csv")
+                  "and sizes per mesh", report_dir / "tables" / "fe_convergence.csv")
         sec.figure(convergence_figure(conv), "Transition points against the element size and "
                    "the normal traction on each mesh (sec. 8.3).",
                    report_dir / "figures" / "fe_convergence.png")
@@ -243,10 +241,9 @@ def build_section(results: list[Path], convergence: list[Path], asperity: Path |
             "sigma_y/sigma_v": asp["yield_ratio"].values,
             "P/P_Hertz": asp["P_normal"].values / asp["P_hertz"].values,
             "elements": asp["n_elements"].values.astype(int),
-            "ccx time (s)": asp["wall_time"].values,
         })
         sec.table(rows, "Asperity models: normal load after the normal step over Hertz, "
-                  "size and ccx wall time", report_dir / "tables" / "fe_asperity.csv")
+                  "and size", report_dir / "tables" / "fe_asperity.csv")
         sec.figure(asperity_figure(asp), "Delta_x/Delta_n against Q/Q_n for the yield limits "
                    "(thesis Fig. 3.8) with the elastic stuck and Cattaneo-Mindlin curves; the "
                    "Coulomb BEM (dotted) lies on the Mindlin curve. Left: Delta_n from the "

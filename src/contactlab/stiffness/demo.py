@@ -84,7 +84,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from contactlab.io import atomic_path, check_cf, stamp
+from contactlab.io import atomic_path, stamp, write_netcdf
 from contactlab.published import (
     NOMINAL_AREA_MM2,
     NORMAL_LOAD_KN,
@@ -549,9 +549,7 @@ def write_demo(test: str, out_dir: str | Path, seed: int = 20180501,
                        encoding="utf-8")
     encoding = {name: {"zlib": True, "complevel": 4, "_FillValue": np.float32(np.nan)}
                 for name in ("u", "v")}
-    check_cf(fields)  # compressed, so written here rather than by write_netcdf
-    with atomic_path(paths["fields"]) as tmp:
-        fields.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+    write_netcdf(fields, paths["fields"], encoding=encoding)
     with atomic_path(paths["design"]) as tmp:
         tmp.write_text(f"# {RECONSTRUCTED}\n" + design.to_csv(index=False,
                                                                 lineterminator="\n"),

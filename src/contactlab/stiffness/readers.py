@@ -28,6 +28,8 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from contactlab.csvlines import numeric_cells, read_csv_lines
+
 __all__ = [
     "LOAD_LOG_COLUMNS",
     "Geometry",
@@ -89,13 +91,10 @@ class Geometry:
 
 
 def _read_csv(path: Path, what: str) -> pd.DataFrame:
-    """A CSV with ``#`` comment lines; missing or unparsable files named in the error."""
-    if not path.is_file():
-        raise FileNotFoundError(f"{path}: {what} not found")
-    try:
-        return pd.read_csv(path, comment="#", skipinitialspace=True)
-    except (pd.errors.ParserError, UnicodeDecodeError, pd.errors.EmptyDataError) as exc:
-        raise ValueError(f"{path}: cannot parse {what} as CSV: {exc}") from None
+    """A CSV with ``#`` comment lines, indexed by line number; missing or bad files named."""
+    table = read_csv_lines(path, what, comment="#", skipinitialspace=True)
+    table.columns = [str(c).strip() for c in table.columns]
+    return table
 
 
 def geometry_of(ds: xr.Dataset, source: str = "fields") -> Geometry:
@@ -134,52 +133,43 @@ def read_load_log(path: str | Path, *, monotonic_tolerance: float = 0.05) -> pd.
     """
     path = Path(path)
     log = _read_csv(path, "load log")
-    log.columns = [str(c).strip() for c in log.columns]
     missing = [c for c in LOAD_LOG_COLUMNS if c not in log.columns]
     if missing:
         raise ValueError(f"{path}: load log lacks column(s) {missing}")
     if log.empty:
         raise ValueError(f"{path}: load log has no rows")
-    for column in ("frame", "step"):
-        values = pd.to_numeric(log[column], errors="coerce")
-        bad = log.index[values.isna() | (values != values.round())]
-        if len(bad):
-            line = int(bad[0]) + 2
-            raise ValueError(f"{path}: line {line}: column '{column}' is not an integer: "
-                             f"{log[column].iloc[bad[0]]!r}")
-        log[column] = values.astype(int)
+    log["frame"] = numeric_cells(log, "frame", str(path), integer=True)
+    log["step"] = numeric_cells(log, "step", str(path), row_id="frame", integer=True)
     for column in ("Pn", "Qt"):
-        values = pd.to_numeric(log[column], errors="coerce")
-        bad = log.index[~np.isfinite(values.to_numpy(dtype=float))]
-        if len(bad):
-            raise ValueError(f"{path}: frame {log['frame'].iloc[bad[0]]}: column '{column}' "
-                             f"is not a finite number: {log[column].iloc[bad[0]]!r}")
-        log[column] = values.astype(float)
+        log[column] = numeric_cells(log, column, str(path), row_id="frame").astype(float)
     for column, allowed in (("kind", KINDS), ("direction", DIRECTIONS)):
-        log[column] = log[column].astype(str).str.strip().str.lower()
+        text = log[column].fillna("").astype(str).str.strip()
+        log[column] = text.str.lower()
         bad = log.index[~log[column].isin(allowed)]
         if len(bad):
-            raise ValueError(f"{path}: frame {log['frame'].iloc[bad[0]]}: column '{column}' "
-                             f"is {log[column].iloc[bad[0]]!r}, expected one of {allowed}")
+            raise ValueError(f"{path}: line {bad[0]} (frame {log['frame'].loc[bad[0]]}), "
+                             f"column '{column}': {text.loc[bad[0]]!r} is not one of "
+                             f"{allowed}")
     frames = log["frame"].to_numpy()
     steps_back = np.flatnonzero(np.diff(frames) <= 0)
     if len(steps_back):
         i = int(steps_back[0])
-        raise ValueError(f"{path}: frame ids must increase strictly; frame {frames[i + 1]} "
-                         f"(line {i + 3}) follows frame {frames[i]}")
+        raise ValueError(f"{path}: line {log.index[i + 1]}: frame ids must increase strictly; "
+                         f"frame {frames[i + 1]} follows frame {frames[i]}")
     positive = log.index[log["Pn"] > 0]
     if len(positive):
-        raise ValueError(f"{path}: frame {log['frame'].iloc[positive[0]]}: Pn = "
-                         f"{log['Pn'].iloc[positive[0]]} > 0; Pn uses the thesis's sign "
+        line = positive[0]
+        raise ValueError(f"{path}: line {line} (frame {log['frame'].loc[line]}), column 'Pn': "
+                         f"{log['Pn'].loc[line]:g} > 0; Pn uses the thesis's sign "
                          "(compression negative, -Pn = 4 kN for a 4 kN test)")
     key = log["kind"] + "/" + log["direction"] + "/" + log["step"].astype(str)
     block = (key != key.shift()).cumsum()
     repeated = key.groupby(block).first().duplicated()
     if repeated.any():
         name = key.groupby(block).first()[repeated].iloc[0]
-        first = log["frame"][block == repeated[repeated].index[0]].iloc[0]
-        raise ValueError(f"{path}: step {name} is split: its frames are not contiguous "
-                         f"(again at frame {first})")
+        again = log[block == repeated[repeated].index[0]]
+        raise ValueError(f"{path}: line {again.index[0]}: step {name} is split: its frames "
+                         f"are not contiguous (again at frame {again['frame'].iloc[0]})")
     for name, rows in log.groupby(key, sort=False):
         kind, direction, _ = name.split("/")
         load = -rows["Pn"].to_numpy() if kind == "normal" else rows["Qt"].to_numpy()
@@ -190,7 +180,8 @@ def read_load_log(path: str | Path, *, monotonic_tolerance: float = 0.05) -> pd.
         if len(back):
             frame = rows["frame"].iloc[int(back[0]) + 1]
             word = "rises" if sign < 0 else "falls"
-            raise ValueError(f"{path}: step {name}: frame {frame}: the load {word} by "
+            raise ValueError(f"{path}: line {rows.index[int(back[0]) + 1]}: step {name}: "
+                             f"frame {frame}: the load {word} by "
                              f"{abs(change[back[0]]):.4g} kN in a {direction} step "
                              f"(non-monotonic load log)")
     return log.reset_index(drop=True)
@@ -257,6 +248,45 @@ def _normalise(ds: xr.Dataset, geometry: Geometry, source: str) -> xr.Dataset:
     return out
 
 
+def _one_grid(ds: xr.Dataset, source: str) -> xr.Dataset:
+    """Check the netCDF coordinates ``frame``, ``y``, ``x``: present, 1-D, finite, unique.
+
+    Positions stored per frame (``x`` or ``y`` with dims ``(frame, x)``) are accepted only if
+    every frame has the same grid; otherwise the first frame that differs is named.
+    """
+    for dim in ("frame", "y", "x"):
+        if dim not in ds.dims:
+            raise ValueError(f"{source}: fields lack dimension {dim!r}")
+        if dim not in ds.coords:
+            raise ValueError(f"{source}: fields lack the coordinate variable {dim!r} "
+                             "(frame ids, or vector positions in um)")
+        coord = ds[dim]
+        if coord.dims != (dim,):
+            if set(coord.dims) != {"frame", dim}:
+                raise ValueError(f"{source}: coordinate {dim!r} has dims {coord.dims}; "
+                                 f"expected ({dim!r},)")
+            grid = coord.transpose("frame", dim).to_numpy()
+            differs = np.flatnonzero(~np.all(np.isclose(grid, grid[:1], rtol=0.0,
+                                                        atol=1e-9, equal_nan=True), axis=1))
+            if len(differs):
+                frames = ds["frame"].to_numpy() if "frame" in ds.coords else \
+                    np.arange(1, grid.shape[0] + 1)
+                k = int(differs[0])
+                col = int(np.flatnonzero(~np.isclose(grid[k], grid[0], rtol=0.0,
+                                                     atol=1e-9))[0])
+                raise ValueError(f"{source}: frame {frames[k]}: {dim} grid differs from "
+                                 f"frame {frames[0]} ({dim} = {grid[k, col]:g} um where frame "
+                                 f"{frames[0]} has {grid[0, col]:g} um); every frame must "
+                                 "have the same grid")
+            ds = ds.drop_vars(dim).assign_coords({dim: (dim, grid[0], coord.attrs)})
+        values = ds[dim].to_numpy()
+        if values.dtype.kind not in "iuf" or not np.all(np.isfinite(values)):
+            raise ValueError(f"{source}: coordinate {dim!r} must hold finite numbers")
+        if len(np.unique(values)) != len(values):
+            raise ValueError(f"{source}: coordinate {dim!r} has duplicate values")
+    return ds
+
+
 def read_fields_netcdf(path: str | Path) -> xr.Dataset:
     """Read DIC fields from netCDF (dims frame, y, x; u, v in um; geometry on ``x``)."""
     path = Path(path)
@@ -267,6 +297,7 @@ def read_fields_netcdf(path: str | Path) -> xr.Dataset:
             ds = raw.load()
     except (OSError, ValueError) as exc:
         raise ValueError(f"{path}: cannot read as netCDF: {exc}") from None
+    ds = _one_grid(ds, str(path))
     for name in ("u", "v"):
         if name in ds and ds[name].attrs.get("units", "um") not in ("um", "µm", "micrometre"):
             raise ValueError(f"{path}: variable {name!r} has units {ds[name].attrs['units']!r}; "
@@ -300,15 +331,21 @@ def read_fields_csv(path: str | Path) -> xr.Dataset:
     missing = [c for c in ("frame", "x", "y", "u", "v") if c not in table.columns]
     if missing:
         raise ValueError(f"{path}: fields CSV lacks column(s) {missing}")
-    if table.duplicated(["frame", "y", "x"]).any():
-        row = table[table.duplicated(["frame", "y", "x"])].iloc[0]
-        raise ValueError(f"{path}: frame {row['frame']}: duplicate vector at x = {row['x']}, "
-                         f"y = {row['y']}")
-    counts = table.groupby("frame").size()
-    if counts.nunique() > 1:
-        frame = counts.index[counts != counts.max()][0]
-        raise ValueError(f"{path}: frame {frame}: {counts[frame]} vectors, other frames have "
-                         f"{counts.max()} (every frame needs the same grid)")
+    if table.empty:
+        raise ValueError(f"{path}: fields CSV has no rows")
+    table["frame"] = numeric_cells(table, "frame", str(path), integer=True)
+    for column in ("x", "y"):
+        table[column] = numeric_cells(table, column, str(path), row_id="frame").astype(float)
+    for column in ("u", "v"):  # empty cells are masked vectors
+        table[column] = numeric_cells(table, column, str(path), row_id="frame",
+                                      finite=False).astype(float)
+    duplicated = table.duplicated(["frame", "y", "x"])
+    if duplicated.any():
+        line = table.index[duplicated.to_numpy()][0]
+        row = table.loc[line]
+        raise ValueError(f"{path}: line {line} (frame {row['frame']}): duplicate vector at "
+                         f"x = {row['x']:g}, y = {row['y']:g}")
+    _check_same_grid(table, path)
     empty = table["u"].isna() & table["v"].isna()
     table["valid"] = ~empty
     ds = table.set_index(["frame", "y", "x"]).to_xarray()
@@ -316,6 +353,28 @@ def read_fields_csv(path: str | Path) -> xr.Dataset:
     attrs = {key: header[key] for key in GEOMETRY_KEYS if key in header}
     ds.attrs.update(attrs)
     return _normalise(ds, geometry_of(ds, str(path)), str(path))
+
+
+def _check_same_grid(table: pd.DataFrame, path: Path) -> None:
+    """Raise ValueError naming the first frame whose (x, y) positions differ from frame 1's.
+
+    A shifted grid would otherwise be merged into a larger one with masked holes and move
+    that frame's contact displacement (the format asks for one grid for all frames).
+    """
+    grids = table.groupby("frame", sort=True)[["x", "y"]]
+    first_frame, first = next(iter(grids))
+    reference = set(zip(first["x"], first["y"], strict=True))
+    for frame, positions in grids:
+        points = set(zip(positions["x"], positions["y"], strict=True))
+        if points == reference:
+            continue
+        extra = positions[[p not in reference for p in zip(positions["x"], positions["y"],
+                                                            strict=True)]]
+        where = (f"first at line {extra.index[0]}: x = {extra['x'].iloc[0]:g}, "
+                 f"y = {extra['y'].iloc[0]:g} um" if len(extra) else
+                 f"{len(reference) - len(points)} position(s) of frame {first_frame} missing")
+        raise ValueError(f"{path}: frame {frame}: vector grid differs from frame {first_frame} "
+                         f"({where}); every frame must have the same grid")
 
 
 _LENGTH_TO_UM = {"um": 1.0, "µm": 1.0, "micrometer": 1.0, "mm": 1e3, "m": 1e6, "nm": 1e-3}
@@ -425,9 +484,14 @@ def read_contact_displacement(path: str | Path, log: pd.DataFrame,
     missing = [c for c in ("frame", "uc", "vc") if c not in table.columns]
     if missing:
         raise ValueError(f"{path}: contact displacement CSV lacks column(s) {missing}")
-    if table["frame"].duplicated().any():
-        raise ValueError(f"{path}: frame {table['frame'][table['frame'].duplicated()].iloc[0]} "
-                         "appears twice")
+    table["frame"] = numeric_cells(table, "frame", str(path), integer=True)
+    for column in ("uc", "vc"):  # may be empty where the step kind does not need it
+        table[column] = numeric_cells(table, column, str(path), row_id="frame",
+                                      finite=False).astype(float)
+    duplicated = table["frame"].duplicated()
+    if duplicated.any():
+        line = table.index[duplicated.to_numpy()][0]
+        raise ValueError(f"{path}: line {line}: frame {table['frame'].loc[line]} appears twice")
     by_frame = table.set_index("frame")
     missing_frames = sorted(set(log["frame"]) - set(by_frame.index))
     if missing_frames:
@@ -439,9 +503,12 @@ def read_contact_displacement(path: str | Path, log: pd.DataFrame,
     out = log.copy()
     out["uc"] = by_frame.loc[log["frame"], "uc"].to_numpy(dtype=float)
     out["vc"] = by_frame.loc[log["frame"], "vc"].to_numpy(dtype=float)
+    line_of = pd.Series(table.index, index=table["frame"])
     for column, kind in (("uc", "normal"), ("vc", "tangential")):
         bad = out.index[(out["kind"] == kind) & ~np.isfinite(out[column])]
         if len(bad):
-            raise ValueError(f"{path}: frame {out['frame'].iloc[bad[0]]}: {column} is missing "
-                             f"or NaN in a {kind} step")
+            frame = out["frame"].loc[bad[0]]
+            raise ValueError(f"{path}: line {line_of[frame]} (frame {frame}), column "
+                             f"'{column}': {out[column].loc[bad[0]]} (empty, NaN or inf) in a "
+                             f"{kind} step, which needs it")
     return out

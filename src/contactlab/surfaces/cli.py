@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 from pathlib import Path
 
@@ -66,7 +67,8 @@ def _texture_summary(args: argparse.Namespace) -> None:
     summary = summary_dataset(datasets)
     stamp(summary, title="Texture parameters of every surface (Tables A.1, A.26, A.27, 2.6)",
           source="results/surfaces/<surface>.nc of the surfaces in the surface sheet, sec. 2.3.4",
-          history=f"contactlab surfaces texture-summary ({len(datasets)} surfaces)")
+          history=f"contactlab surfaces texture-summary ({len(datasets)} surfaces)",
+          inputs=datasets)
     write_netcdf(summary, args.out)
 
 
