@@ -106,9 +106,17 @@ rule report_fe:
         asperity=[result("fe/asperity_plastic.nc")] if FE_ASPERITY else [],
     output:
         section=result("report/sections/70_fe.html"),
-        table=result("report/tables/fe_agreement.csv"),
-        figure=report(
-            result("report/figures/fe_gap.png"),
+        tables=[
+            result("report/tables/fe_agreement.csv"),
+            *([result("report/tables/fe_convergence.csv")] if FE_CONVERGENCE else []),
+            *([result("report/tables/fe_asperity.csv")] if FE_ASPERITY else []),
+        ],
+        figures=report(
+            [
+                *expand(result("report/figures/fe_{problem}.png"), problem=FE_PROBLEMS),
+                *([result("report/figures/fe_convergence.png")] if FE_CONVERGENCE else []),
+                *([result("report/figures/fe_asperity.png")] if FE_ASPERITY else []),
+            ],
             caption="../report/fe.rst",
             category="Finite elements",
         ),

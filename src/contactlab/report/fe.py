@@ -210,11 +210,6 @@ def build_section(results: list[Path], convergence: list[Path], asperity: Path |
                    f"(h/c = {float(ds['h']):g}, {int(ds['n_elements'])} elements, block edges "
                    f"{ds.attrs['edges']}) over the distributed-dislocation solution ({figs}).")
         sec.figure(profile_figure(ds), caption, report_dir / "figures" / f"fe_{problem}.png")
-    if "gap" not in by_problem:  # the rule declares fe_gap.png; say why it is empty
-        fig, ax = plt.subplots(figsize=(4, 1))
-        ax.axis("off")
-        ax.text(0.5, 0.5, "gap problem not in this study (fe.problems)", ha="center")
-        sec.figure(fig, "The gap problem was not run.", report_dir / "figures" / "fe_gap.png")
     conv = []
     for path in convergence:
         with xr.open_dataset(path) as ds:
