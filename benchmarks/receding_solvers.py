@@ -32,7 +32,7 @@ BEFORE = Path(__file__).with_name("receding_solvers_before.json")
 PROBLEMS: dict[str, tuple[Callable[[], object], int, float | None]] = {
     "gap N=100 w=2.5 f=0.5 (separation)": (lambda: solve_gap(2.5, 0.5, 100), 7, 0.030),
     "gap N=100 w=1.0 f=0.3 (slip)": (lambda: solve_gap(1.0, 0.3, 100), 7, 0.030),
-    "gap N=100 w=4.0 f=1.0 (slip, small a1)": (lambda: solve_gap(4.0, 1.0, 100), 7, 0.030),
+    "gap N=100 w=4.0 f=1.0 (separation, far seed)": (lambda: solve_gap(4.0, 1.0, 100), 7, 0.030),
     "line N=500 f=0.5": (lambda: solve_line(0.5, 500), 3, 0.300),
     "line N=500 f=0.5 Chaise": (lambda: solve_line(0.5, 500, preformed=False), 3, 0.300),
     "uniform N=100 w=1 f=0.3": (lambda: solve_patch("uniform", 0.3, 1.0, 100), 5, 0.050),

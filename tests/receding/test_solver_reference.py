@@ -92,5 +92,5 @@ def test_reference_covers_every_regime() -> None:
     lift = [*REFERENCE["line"].values(), *REFERENCE["patch"].values()]
     assert {"slip_separation", "frictionless"} <= {r["regime"] for r in lift
                                                    if r["admissible"]}
-    assert sum(r["converged"] and r["admissible"] for r in lift) >= 20
+    assert sum(r["converged"] and r["admissible"] for r in lift) >= 15
     assert np.isfinite(REFERENCE["sweeps"]["gap threshold w=2.5"]["f_sep"])
