@@ -79,6 +79,15 @@ SPLIT = {
 }
 
 
+def regular_pair(kind: Kind, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(shear, normal) regular parts of SPLIT for one kind, sharing the powers of 1/q."""
+    iq, iq2, iq3 = _powers(d)
+    even = 8.0 * (3.0 * iq2 - 16.0 * iq3)  # H_yxy = -H_xyy
+    if kind == "glide":
+        return d * (-iq + 12.0 * iq2 - 64.0 * iq3), -even
+    return even, d * (-iq - 4.0 * iq2 - 64.0 * iq3)
+
+
 def kernel(kind: Kind, component: Component, d: np.ndarray) -> np.ndarray:
     """The full Green's function H for ``kind`` of dislocation and traction ``component``."""
     cauchy, regular = SPLIT[(kind, component)]

@@ -54,7 +54,6 @@ from functools import lru_cache
 
 import numpy as np
 
-from contactlab.receding.kernels import h_yxy, h_yyy
 from contactlab.receding.loading import Load
 
 #: geometric panels per finite segment and Gauss points per panel
@@ -74,16 +73,6 @@ def printed_cubic_coefficients(b: float, e: float, k2: float, kl: float) -> tupl
     r1 = -(b * k2 - 4.0 * e * k2 + 3.0 * e * e * kl) / (e * e * (b - e) ** 2)
     r2 = -(-b * k2 - 3.0 * e * k2 + 2.0 * e * e * kl) / (e * e * (e - b) ** 3)
     return r1, r2
-
-
-def _cauchy_part(d: np.ndarray) -> np.ndarray:
-    return 4.0 / (d * (d * d + 4.0))
-
-
-def _h_yyy_rest(d: np.ndarray) -> np.ndarray:
-    """H_yyy - C: smooth, decays like d^-3."""
-    q = 4.0 + d * d
-    return d * (-4.0 / q**2 - 64.0 / q**3)
 
 
 @lru_cache(maxsize=4)
@@ -170,33 +159,61 @@ class Preformed:
 
     def stresses(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(shear, normal), each (len(x), 2) for the [load, K] bases, in units of T."""
+        shear, normal = self._integrals(x, shear=True)
+        assert shear is not None
+        return shear, normal
+
+    def normal_stress(self, x: np.ndarray) -> np.ndarray:
+        """The normal part of ``stresses`` alone (the rows N = 0 of eq. 6.18)."""
+        return self._integrals(x, shear=False)[1]
+
+    def _integrals(self, x: np.ndarray, shear: bool) -> tuple[np.ndarray | None, np.ndarray]:
+        """(shear or None, normal) per basis density, eqs (6.10)-(6.11) by quadrature."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
         ax = np.abs(x)
         b, e = self.b, self.e
         c1 = np.clip(ax, b, e)
         c2 = np.maximum(ax, e)
         full = np.full_like(ax, b)
-        parts = [_graded(full, c1, True), _graded(c1, np.full_like(ax, e), False),
-                 _graded(np.full_like(ax, e), c2, True), _tail(c2)]
-        xi = np.concatenate([p[0] for p in parts], axis=1)
-        om = np.concatenate([p[1] for p in parts], axis=1)
-        shape = xi.shape
-        a_xi = self.basis(xi.ravel()).reshape(*shape, 2)
+        inner = [_graded(full, c1, True), _graded(c1, np.full_like(ax, e), False)]
+        outer = [_graded(np.full_like(ax, e), c2, True), _tail(c2)]
+        xi = np.concatenate([p[0] for p in inner + outer], axis=1)
+        om = np.concatenate([p[1] for p in inner + outer], axis=1)
+        # the basis densities at the nodes, per column: the cubics on [b, e] (inner
+        # panels), the remote forms g and -1 beyond e (outer panels and tail)
+        k_in = sum(p[0].shape[1] for p in inner)
+        h = xi[:, :k_in] - b
+        h2, h3 = h * h, h * h * h
+        r = self.coefficients
+        g_far = self.load.remote_g(xi[:, k_in:].ravel()).reshape(xi.shape[0], -1)
+        a_xi = [np.concatenate([r[0, 0] * h2 + r[0, 1] * h3, g_far], axis=1),
+                np.concatenate([r[1, 0] * h2 + r[1, 1] * h3, np.full_like(g_far, -1.0)],
+                               axis=1)]
         a_x = self.basis(ax)  # (m, 2)
+        # kernels with the powers of 1/(4 + d^2) shared (kernels.py, App. B.1)
         d = ax[:, None] - xi
         dp = ax[:, None] + xi
+        iq = 1.0 / (4.0 + d * d)
+        ip = 1.0 / (4.0 + dp * dp)
         with np.errstate(divide="ignore", invalid="ignore"):
-            cp = _cauchy_part(d)
+            cp = 4.0 * iq / d  # C(d) = 4 / (d (d^2 + 4))
         cp = np.where(np.abs(d) < 1e-13, 0.0, cp)
-        smooth_n = _h_yyy_rest(d) - h_yyy(dp)
-        kern_s = h_yxy(d) - h_yxy(dp)
+        # (H_yyy - C)(d) - H_yyy(d + 2 xi)
+        smooth_n = d * iq * iq * (-4.0 - 64.0 * iq) - (1.0 / dp - dp * ip * (
+            1.0 + ip * (4.0 + 64.0 * ip)))
         # the Cauchy part against A(xi) - A(x): zero at d = 0 in the limit times finite
-        normal = np.einsum("mk,mkj->mj", om * cp, a_xi - a_x[:, None, :])
-        normal += np.einsum("mk,mkj->mj", om * smooth_n, a_xi)
+        w_c, w_n = om * cp, om * smooth_n
+        normal = np.column_stack([
+            np.einsum("mk,mk->m", w_c, a_xi[j] - a_x[:, j:j + 1])
+            + np.einsum("mk,mk->m", w_n, a_xi[j]) for j in (0, 1)])
         gap = ax - b
         with np.errstate(divide="ignore"):
             log_term = np.where(gap != 0.0, 0.5 * np.log(gap * gap / (gap * gap + 4.0)), 0.0)
         normal += a_x * log_term[:, None]
-        shear = np.einsum("mk,mkj->mj", om * kern_s, a_xi)
+        if not shear:
+            return None, normal / np.pi
+        # H_yxy(d) - H_yxy(d + 2 xi), H_yxy = 8 (3/q^2 - 16/q^3)
+        w_s = om * 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
+        out = np.column_stack([np.einsum("mk,mk->m", w_s, a_xi[j]) for j in (0, 1)])
         sign = np.where(x < 0, -1.0, 1.0)[:, None]
-        return sign * shear / np.pi, normal / np.pi
+        return sign * out / np.pi, normal / np.pi

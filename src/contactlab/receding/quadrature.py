@@ -97,12 +97,19 @@ def _chebyshev_outer(t: np.ndarray, n: int) -> np.ndarray:
     return out
 
 
-def _sine_sum(alpha: np.ndarray, n: int) -> np.ndarray:
-    """sum_{j=1}^{n} sin(j alpha) = sin(n alpha/2) sin((n+1) alpha/2) / sin(alpha/2)."""
-    half = 0.5 * alpha
-    den = np.sin(half)
+def _sine_sum(theta: np.ndarray, phi: np.ndarray, sign: float, n: int) -> np.ndarray:
+    """sum_{j=1}^{n} sin(j alpha), alpha = theta_i + sign phi_k, as a (len(phi), len(theta))
+    array: sin(n alpha/2) sin((n+1) alpha/2) / sin(alpha/2) with every sine of a sum
+    expanded by the addition theorem into products of sines and cosines of theta and phi
+    alone (no transcendental function per entry)."""
+
+    def sine(m: float) -> np.ndarray:  # sin(m alpha / 2)
+        a, b = 0.5 * m * theta[None, :], 0.5 * m * phi[:, None]
+        return np.sin(a) * np.cos(b) + sign * np.cos(a) * np.sin(b)
+
+    den = sine(1.0)
     small = np.abs(den) < 1e-12
-    out = np.sin(n * half) * np.sin((n + 1) * half) / np.where(small, 1.0, den)
+    out = sine(float(n)) * sine(float(n + 1)) / np.where(small, 1.0, den)
     return np.where(small, 0.0, out)
 
 
@@ -136,13 +143,16 @@ def cauchy_matrix(t: np.ndarray, n: int) -> np.ndarray:
     out = np.empty((t.size, n))
     inside = np.abs(t) <= 1.0
     if inside.any():
-        phi = np.arccos(t[inside])[:, None]
-        out[inside] = scale * 0.5 * (_sine_sum(theta + phi, n) + _sine_sum(theta - phi, n))
+        phi = np.arccos(t[inside])
+        out[inside] = scale * 0.5 * (_sine_sum(rule.theta, phi, 1.0, n)
+                                     + _sine_sum(rule.theta, phi, -1.0, n))
     if (~inside).any():
         to = t[~inside]
         z = np.sign(to) / (np.abs(to) + np.sqrt(to * to - 1.0))  # |z| < 1
+        # q^(n+1) = z^(n+1) e^{i (n+1) theta}: an outer product, no power per entry
         q = z[:, None] * np.exp(1j * theta)
-        out[~inside] = scale * (q * (1.0 - q**n) / (1.0 - q)).imag
+        q_end = (z ** (n + 1))[:, None] * np.exp(1j * (n + 1) * theta)
+        out[~inside] = scale * ((q - q_end) / (1.0 - q)).imag
     return out
 
 
