@@ -255,7 +255,7 @@ def _slip_system(w: float, f: float, n: int, a1: float, a2: float,
     With the log map a1 converges in N down to ~1e-70 (N = 100 vs 200 agree to 10 %);
     below that only "a1 ~ 0" is meaningful, flagged by the contact checks between nodes.
     """
-    glide = DensityInterval("glide", a1, a2, n, parity=+1, mapping="log")
+    glide = _slip_glide(a1, a2, n)
     xk = glide.collocation
     ms, mn = glide.influence(xk)
     sb, nb = gap_bilateral(xk, w)
@@ -264,6 +264,11 @@ def _slip_system(w: float, f: float, n: int, a1: float, a2: float,
     rhs = np.concatenate([-(sb - f * nb), [0.0]])
     # leave out the collocation row nearest the middle of the zone and the closure
     return LinearSystem(matrix, rhs, leftover=[n // 2, n + 1]), glide
+
+
+def _slip_glide(a1: float, a2: float, n: int) -> DensityInterval:
+    """The glide density of the slip regime on [a1, a2] (log map) with its even image."""
+    return DensityInterval("glide", a1, a2, n, parity=+1, mapping="log")
 
 
 #: log a1 is kept above this (a1 ~ 1e-304) so that a1 stays a normal double
@@ -310,7 +315,8 @@ def solve_slip(w: float, f: float, n: int = 100,
         guesses.append(np.array([np.log(a1), np.log(a2 - a1)]))
     root = find_transitions(assemble, guesses, valid=valid)
     a1, a2 = _slip_params(root.params)
-    system, glide = _slip_system(w, f, n, a1, a2, p)
+    system, glide = _slip_system(w, f, n, a1, a2, p) if root.system is None else (
+        root.system, _slip_glide(a1, a2, n))
     sol = _from_root("slip", w, f, n, root, system, p)
     sol.a1, sol.a2 = a1, a2
     sol.intervals = [glide]
@@ -341,8 +347,7 @@ def _separation_system(w: float, f: float, n: int, b: float, a3: float, p: float
     glide closure (5.27), climb closure (5.28). Returns (matrix, rhs, leftover rows,
     climb interval, glide interval); the leftovers are the two t = 0 rows and the closures.
     """
-    climb = DensityInterval("climb", -b, b, n)
-    glide = DensityInterval("glide", -a3, a3, n)
+    climb, glide = _separation_intervals(b, a3, n)
     xc = climb.collocation
     xg = glide.collocation
     points = np.concatenate([xc, xg])
@@ -368,6 +373,12 @@ def _separation_system(w: float, f: float, n: int, b: float, a3: float, p: float
     centre = n // 2  # t_k = 0 for even N
     leftover = [centre, m + centre, 2 * m, 2 * m + 1]
     return matrix, rhs, leftover, climb, glide
+
+
+def _separation_intervals(b: float, a3: float, n: int) -> tuple[DensityInterval,
+                                                                  DensityInterval]:
+    """The climb density on [-b, b] and the glide density on [-a3, a3] (linear maps)."""
+    return DensityInterval("climb", -b, b, n), DensityInterval("glide", -a3, a3, n)
 
 
 def _sep_params(p: np.ndarray) -> tuple[float, float]:
@@ -407,8 +418,12 @@ def solve_separation(w: float, f: float, n: int = 100,
         guesses.insert(min(len(guesses), 2), np.array([np.log(0.75 * w), np.log(0.25 * w + 1.3)]))
     root = find_transitions(assemble, guesses, valid=valid)
     b, a3 = _sep_params(root.params)
-    matrix, rhs, leftover, climb, glide = _separation_system(w, f, n, b, a3, p)
-    sol = _from_root("slip_separation", w, f, n, root, LinearSystem(matrix, rhs, leftover), p)
+    if root.system is None:
+        matrix, rhs, leftover, climb, glide = _separation_system(w, f, n, b, a3, p)
+        system = LinearSystem(matrix, rhs, leftover)
+    else:
+        system, (climb, glide) = root.system, _separation_intervals(b, a3, n)
+    sol = _from_root("slip_separation", w, f, n, root, system, p)
     sol.b, sol.a3 = b, a3
     sol.intervals = [climb, glide]
     sol.phis = [root.phi[:n], root.phi[n:]]

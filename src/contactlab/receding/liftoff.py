@@ -309,27 +309,28 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
     xb = climb.collocation
     xa = glide.collocation
     m = n + 1
-    points = np.concatenate([xb, xa])
     # separate calls per point set: at its own collocation points an interval uses the
-    # classical Gauss-Chebyshev sum (exact there), elsewhere the exact transform
-    gs_b, gn_b = glide.influence(xb)
-    gs_a, gn_a = glide.influence(xa)
-    cs_b, cn_b = climb.influence(xb)
+    # classical Gauss-Chebyshev sum (exact there), elsewhere the exact transform; only
+    # the normal traction is needed on the rows of [b, inf)
+    gn_b = glide.normal_influence(xb)
+    gs_a, gn_a = glide.collocation_influence()
+    cn_b = climb.collocation_influence()[1]
     cs_a, cn_a = climb.influence(xa)
-    gs, gn = np.vstack([gs_b, gs_a]), np.vstack([gn_b, gn_a])
-    cs, cn = np.vstack([cs_b, cs_a]), np.vstack([cn_b, cn_a])
-    sb, nb = load.bilateral(points)
+    nb = load.bilateral(xb)[1]
+    sb, nb_a = load.bilateral(xa)
     h = np.where(xa < b, f, 0.0)  # H(b - x) f on the shear rows
-    cols_n = [gn[:m], cn[:m]]
-    cols_s = [gs[m:] + h[:, None] * gn[m:], cs[m:] + h[:, None] * cn[m:]]
-    rhs_n = -nb[:m]
-    rhs_s = -(sb[m:] + h * nb[m:])
+    cols_n = [gn_b, cn_b]
+    cols_s = [gs_a + h[:, None] * gn_a, cs_a + h[:, None] * cn_a]
+    rhs_n = -nb
+    rhs_s = -(sb + h * nb_a)
     if preformed:
-        ps, pn = Preformed(load, b, e).stresses(points)
-        cols_n.append(pn[:m, 1:2])
-        cols_s.append(ps[m:, 1:2] + h[:, None] * pn[m:, 1:2])
-        rhs_n = rhs_n - pn[:m, 0]
-        rhs_s = rhs_s - (ps[m:, 0] + h * pn[m:, 0])
+        pre = Preformed(load, b, e)
+        pn_b = pre.normal_stress(xb)
+        ps, pn = pre.stresses(xa)
+        cols_n.append(pn_b[:, 1:2])
+        cols_s.append(ps[:, 1:2] + h[:, None] * pn[:, 1:2])
+        rhs_n = rhs_n - pn_b[:, 0]
+        rhs_s = rhs_s - (ps[:, 0] + h * pn[:, 0])
     matrix = np.vstack([np.hstack(cols_n), np.hstack(cols_s)])
     rhs = np.concatenate([rhs_n, rhs_s])
     if preformed:
@@ -362,6 +363,14 @@ def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: f
                   preformed: bool = True, guess: tuple[float, float] | None = None,
                   problem: str = "") -> LiftoffSolution:
     """Solve for (a, b, K_T) and the densities at friction f > 0 (see module docstring)."""
+    return _solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, problem)[0]
+
+
+def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
+                   preformed: bool, guess: tuple[float, float] | None, problem: str,
+                   ) -> tuple[LiftoffSolution, np.ndarray | None]:
+    """``solve_liftoff`` and the secant Jacobian of its root in (log a, log(b - a)) (None
+    if there is none), which seeds the root finder of the next N of the continuation."""
     import time
 
     check_inputs(f, n, lam_a, lam_b, e, load)
@@ -377,12 +386,17 @@ def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: f
 
     w = load.w
     fine_only = False
-    coarse = None
+    coarse = jacobian = None
     if n > COARSE_N and (guess is None or n > 2.5 * COARSE_N):
         # N-continuation: the transition points converge slowly but smoothly in N, so a
-        # cheap solve at COARSE_N is a close first guess for the fine root finder; if even
-        # the coarse problem has no root, the fine one is not tried (flagged instead)
-        coarse = solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed, guess, problem)
+        # cheap solve at COARSE_N is a close first guess for the fine root finder, and its
+        # Jacobian times N / COARSE_N a close first Jacobian (the leftover rows grow like N:
+        # measured 7.9 for 500/64 on the line load); if even the coarse problem has no
+        # root, the fine one is not tried (flagged instead)
+        coarse, jacobian = _solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed,
+                                          guess, problem)
+        if jacobian is not None:
+            jacobian = jacobian * (n / COARSE_N)
         if coarse.converged:
             guess = (coarse.a, coarse.b)
             fine_only = True
@@ -404,13 +418,18 @@ def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: f
         guesses = [np.array([np.log(0.25), np.log(1.5)])]
     if guesses:
         root = find_transitions(system, guesses, valid=valid, tol=1e-11, accept=1e-8,
-                                maxfev=60 if fine_only else 200)
+                                maxfev=60 if fine_only else 200,
+                                jacobian=jacobian if fine_only else None)
     else:
         root = coarse_failure(coarse)
     a, b = _params(root.params)
     sol = LiftoffSolution(problem=problem or load.law, load=load, f=f, n=n, lam_a=lam_a,
                           lam_b=lam_b, e=e, preformed_used=preformed, a=a, b=b,
                           nfev=root.nfev, message="; ".join(root.history))
+    if root.system is not None:  # the root finder's own system at the root
+        sol.record(root, root.system, *_intervals(a, b, n, lam_a, lam_b))
+        sol.seconds = time.perf_counter() - start
+        return sol, root.jacobian
     try:
         with single_thread():
             sysm, glide, climb = assemble(load, f, n, a, b, lam_a, lam_b, e, preformed)
@@ -419,10 +438,10 @@ def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: f
         sol.regime = "failed"
         sol.evaluate_checks()
         sol.seconds = time.perf_counter() - start
-        return sol
+        return sol, None
     sol.record(root, sysm, glide, climb)
     sol.seconds = time.perf_counter() - start
-    return sol
+    return sol, None
 
 
 def solve_quietly(*args, **kwargs) -> LiftoffSolution:
