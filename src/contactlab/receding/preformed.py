@@ -168,19 +168,45 @@ class Preformed:
         return self._integrals(x, shear=False)[1]
 
     def _integrals(self, x: np.ndarray, shear: bool) -> tuple[np.ndarray | None, np.ndarray]:
-        """(shear or None, normal) per basis density, eqs (6.10)-(6.11) by quadrature."""
+        """(shear or None, normal) per basis density, eqs (6.10)-(6.11) by quadrature.
+
+        Panels on [b, e] graded towards x (or towards the nearer end when x lies outside),
+        panels on [e, x] for x > e and the tail beyond max(x, e); the points are grouped
+        by where they lie so that no group carries panels of zero length.
+        """
         x = np.atleast_1d(np.asarray(x, dtype=float))
         ax = np.abs(x)
         b, e = self.b, self.e
-        c1 = np.clip(ax, b, e)
-        c2 = np.maximum(ax, e)
-        full = np.full_like(ax, b)
-        inner = [_graded(full, c1, True), _graded(c1, np.full_like(ax, e), False)]
-        outer = [_graded(np.full_like(ax, e), c2, True), _tail(c2)]
+        normal = np.zeros((ax.size, 2))
+        out = np.zeros((ax.size, 2))
+        for rows in (ax < b, (ax >= b) & (ax <= e), ax > e):
+            if not rows.any():
+                continue
+            xr = ax[rows]
+            lo, hi = np.full_like(xr, b), np.full_like(xr, e)
+            if xr[0] < b:
+                inner, outer = [_graded(lo, hi, False)], [_tail(hi)]
+            elif xr[0] <= e:
+                inner, outer = [_graded(lo, xr, True), _graded(xr, hi, False)], [_tail(hi)]
+            else:
+                inner, outer = [_graded(lo, hi, True)], [_graded(hi, xr, True), _tail(xr)]
+            normal[rows], shear_rows = self._sums(xr, inner, outer, shear)
+            if shear_rows is not None:
+                out[rows] = shear_rows
+        if not shear:
+            return None, normal / np.pi
+        sign = np.where(x < 0, -1.0, 1.0)[:, None]
+        return sign * out / np.pi, normal / np.pi
+
+    def _sums(self, ax: np.ndarray, inner: list, outer: list, shear: bool,
+              ) -> tuple[np.ndarray, np.ndarray | None]:
+        """pi sigma_yy^A and pi sigma_xy^A (or None) at the points ax >= 0, from the nodes
+        and weights of the panels on [b, e] (``inner``) and beyond e (``outer``)."""
+        b = self.b
         xi = np.concatenate([p[0] for p in inner + outer], axis=1)
         om = np.concatenate([p[1] for p in inner + outer], axis=1)
-        # the basis densities at the nodes, per column: the cubics on [b, e] (inner
-        # panels), the remote forms g and -1 beyond e (outer panels and tail)
+        # the basis densities at the nodes, per column: the cubics on [b, e], the
+        # remote forms g and -1 beyond e
         k_in = sum(p[0].shape[1] for p in inner)
         h = xi[:, :k_in] - b
         h2, h3 = h * h, h * h * h
@@ -211,9 +237,7 @@ class Preformed:
             log_term = np.where(gap != 0.0, 0.5 * np.log(gap * gap / (gap * gap + 4.0)), 0.0)
         normal += a_x * log_term[:, None]
         if not shear:
-            return None, normal / np.pi
+            return normal, None
         # H_yxy(d) - H_yxy(d + 2 xi), H_yxy = 8 (3/q^2 - 16/q^3)
         w_s = om * 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
-        out = np.column_stack([np.einsum("mk,mk->m", w_s, a_xi[j]) for j in (0, 1)])
-        sign = np.where(x < 0, -1.0, 1.0)[:, None]
-        return sign * out / np.pi, normal / np.pi
+        return normal, np.column_stack([np.einsum("mk,mk->m", w_s, a_xi[j]) for j in (0, 1)])
