@@ -71,7 +71,12 @@ from contactlab.receding.dislocations import DensityInterval
 from contactlab.receding.loading import Load
 from contactlab.receding.preformed import Preformed
 from contactlab.receding.quadrature import interpolation_matrix, legendre
-from contactlab.receding.solve import LinearSystem, RootResult, find_transitions
+from contactlab.receding.solve import (
+    LinearSystem,
+    RootResult,
+    difference_jacobian,
+    find_transitions,
+)
 
 #: tolerance (units of T) of the contact checks between the nodes
 CHECK_TOL = 5e-3
@@ -389,10 +394,12 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
     coarse = jacobian = None
     if n > COARSE_N and (guess is None or n > 2.5 * COARSE_N):
         # N-continuation: the transition points converge slowly but smoothly in N, so a
-        # cheap solve at COARSE_N is a close first guess for the fine root finder, and its
-        # Jacobian times N / COARSE_N a close first Jacobian (the leftover rows grow like N:
-        # measured 7.9 for 500/64 on the line load); if even the coarse problem has no
-        # root, the fine one is not tried (flagged instead)
+        # cheap solve at COARSE_N is a close first guess for the fine root finder; if even
+        # the coarse problem has no root, the fine one is not tried (flagged instead).
+        # The leftover rows grow like N, and so does the Jacobian of the root finder:
+        # J/N at the line-load root (f = 0.5) is within 2 % between N = 250 and 500 but
+        # one entry is 4x off at N = 64, so the fine Newton starts from the coarse secant
+        # Jacobian times N/COARSE_N, or (large N) from differences at N/2 times 2.
         coarse, jacobian = _solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed,
                                           guess, problem)
         if jacobian is not None:
@@ -400,6 +407,13 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
         if coarse.converged:
             guess = (coarse.a, coarse.b)
             fine_only = True
+            half = 2 * (n // 4)
+            if half > 2 * COARSE_N:
+                mid = difference_jacobian(
+                    lambda p: assemble(load, f, half, *_params(p), lam_a, lam_b, e,
+                                       preformed)[0],
+                    np.array([np.log(coarse.a), np.log(coarse.b - coarse.a)]))
+                jacobian = jacobian if mid is None else mid * (n / half)
     guesses = []
     if guess is not None and np.all(np.isfinite(guess)) and guess[1] > guess[0] > 0:
         guesses.append(np.array([np.log(guess[0]), np.log(guess[1] - guess[0])]))

@@ -92,8 +92,8 @@ def find_transitions(
     outside its domain; those count as large residuals. The first guess whose result has
     residual <= ``accept`` and passes ``valid`` (e.g. no zero-width zone) wins; otherwise
     the best attempt is returned unconverged. ``jacobian`` (an estimate of the Jacobian
-    of the residuals in the parameters, e.g. from a coarser N) saves the finite
-    differences of the first Newton step.
+    of the residuals in the parameters at the first guess, e.g. from a coarser N) saves
+    the finite differences of the first Newton iteration.
     """
     with single_thread(), warnings.catch_warnings():
         # near-singular squares occur on the way (e.g. nearly zero-width zones); the
@@ -136,6 +136,32 @@ class _Evaluations:
         return res
 
 
+def _differences(fun: Callable[[np.ndarray], np.ndarray], x: np.ndarray,
+                 r: np.ndarray) -> np.ndarray:
+    """Forward-difference Jacobian of fun at x (fun(x) = r), relative steps 1e-7."""
+    jacobian = np.empty((r.size, x.size))
+    for j in range(x.size):
+        h = 1e-7 * max(1.0, abs(x[j]))
+        step = x.copy()
+        step[j] += h
+        jacobian[:, j] = (fun(step) - r) / h
+    return jacobian
+
+
+def difference_jacobian(assemble: Callable[[np.ndarray], LinearSystem],
+                        params: np.ndarray) -> np.ndarray | None:
+    """Forward-difference Jacobian of the leftover (target) residuals of ``assemble`` at
+    ``params`` (None where a system cannot be assembled or solved), one BLAS thread."""
+    params = np.asarray(params, dtype=float)
+    fun = _Evaluations(assemble, params.size)
+    with single_thread(), warnings.catch_warnings():
+        warnings.simplefilter("ignore", linalg.LinAlgWarning)
+        r = fun(params)
+        jacobian = _differences(fun, params, r)
+    # a failed step shows as a residual of 1e3, i.e. a difference quotient of ~1e10
+    return jacobian if np.all(np.abs(jacobian) < 1e6) and np.all(r != 1e3) else None
+
+
 def _secant_newton(fun: _Evaluations, x: np.ndarray, jacobian: np.ndarray | None,
                    xtol: float, accept: float, budget: int = 12,
                    ) -> tuple[np.ndarray, np.ndarray | None, bool]:
@@ -149,14 +175,8 @@ def _secant_newton(fun: _Evaluations, x: np.ndarray, jacobian: np.ndarray | None
     r = fun(x)
     if np.all(r == 1e3):
         return x, None, False
-    if jacobian is None:
-        jacobian = np.empty((r.size, x.size))
-        for j in range(x.size):
-            h = 1e-7 * max(1.0, abs(x[j]))
-            step = x.copy()
-            step[j] += h
-            jacobian[:, j] = (fun(step) - r) / h
-    jacobian = np.array(jacobian, dtype=float)
+    jacobian = np.array(_differences(fun, x, r) if jacobian is None else jacobian,
+                        dtype=float)
     start = fun.count
     while fun.count - start < budget:
         try:
@@ -186,10 +206,10 @@ def _find(assemble, guesses, tol, accept, maxfev, valid, jacobian) -> RootResult
     best_rank: tuple[bool, float] = (True, np.inf)
     history: list[str] = []
     total = 0
-    for guess in guesses:
+    for k, guess in enumerate(guesses):
         guess = np.asarray(guess, dtype=float)
         fun = _Evaluations(assemble, guess.size)
-        x, jac, fast = _secant_newton(fun, guess, jacobian, tol, accept)
+        x, jac, fast = _secant_newton(fun, guess, jacobian if k == 0 else None, tol, accept)
         if fast and (valid is None or valid(x)):
             system, phi, res = fun.full(x)
             total += fun.count
