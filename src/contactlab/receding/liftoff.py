@@ -241,8 +241,9 @@ class LiftoffSolution:
             v <= CHECK_TOL for k, v in self.checks.items() if k.startswith("max_"))
 
     def record(self, root: RootResult, system: LinearSystem, glide: DensityInterval,
-               climb: DensityInterval) -> None:
-        """Store the densities of the converged (or last) root, its residuals and checks."""
+               climb: DensityInterval, checks: bool = True) -> None:
+        """Store the densities of the converged (or last) root, its residuals and (unless
+        ``checks`` is False, e.g. for an internal coarse solve) the contact checks."""
         n = self.n
         self.glide, self.climb = glide, climb
         if root.phi.size == system.matrix.shape[1]:
@@ -253,7 +254,8 @@ class LiftoffSolution:
         self.converged = root.converged
         if not root.converged:
             self.regime = "failed"
-        self.evaluate_checks()
+        if checks:
+            self.evaluate_checks()
 
     def evaluate_checks(self, points: int = 600) -> dict[str, float]:
         """Contact conditions on 0 <= x <= b + 8 (symmetry), in units of T.
@@ -373,9 +375,10 @@ def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: f
 
 def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
                    preformed: bool, guess: tuple[float, float] | None, problem: str,
-                   ) -> tuple[LiftoffSolution, np.ndarray | None]:
+                   checks: bool = True) -> tuple[LiftoffSolution, np.ndarray | None]:
     """``solve_liftoff`` and the secant Jacobian of its root in (log a, log(b - a)) (None
-    if there is none), which seeds the root finder of the next N of the continuation."""
+    if there is none), which seeds the root finder of the next N of the continuation.
+    ``checks=False`` skips the contact checks (the coarse solve only seeds the fine one)."""
     import time
 
     check_inputs(f, n, lam_a, lam_b, e, load)
@@ -401,7 +404,7 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
         # one entry is 4x off at N = 64, so the fine Newton starts from the coarse secant
         # Jacobian times N/COARSE_N, or (large N) from differences at N/2 times 2.
         coarse, jacobian = _solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed,
-                                          guess, problem)
+                                          guess, problem, checks=False)
         if jacobian is not None:
             jacobian = jacobian * (n / COARSE_N)
         if coarse.converged:
@@ -441,7 +444,7 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
                           lam_b=lam_b, e=e, preformed_used=preformed, a=a, b=b,
                           nfev=root.nfev, message="; ".join(root.history))
     if root.system is not None:  # the root finder's own system at the root
-        sol.record(root, root.system, *_intervals(a, b, n, lam_a, lam_b))
+        sol.record(root, root.system, *_intervals(a, b, n, lam_a, lam_b), checks=checks)
         sol.seconds = time.perf_counter() - start
         return sol, root.jacobian
     try:
@@ -453,7 +456,7 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
         sol.evaluate_checks()
         sol.seconds = time.perf_counter() - start
         return sol, None
-    sol.record(root, sysm, glide, climb)
+    sol.record(root, sysm, glide, climb, checks=checks)
     sol.seconds = time.perf_counter() - start
     return sol, None
 

@@ -103,6 +103,11 @@ def _tail(start: np.ndarray, scale: float = 2.0) -> tuple[np.ndarray, np.ndarray
     return x, w
 
 
+def _row_dot(w: np.ndarray, a: np.ndarray) -> np.ndarray:
+    """sum_k w[m, k] a[m, k] per row m; ``a`` may be one row shared by all."""
+    return np.einsum("mk,k->m", w, a[0]) if a.shape[0] == 1 else np.einsum("mk,mk->m", w, a)
+
+
 @dataclass(frozen=True)
 class Preformed:
     """A_y for a load, separation start b and blending end e (units of c), b < e."""
@@ -183,13 +188,17 @@ class Preformed:
             if not rows.any():
                 continue
             xr = ax[rows]
-            lo, hi = np.full_like(xr, b), np.full_like(xr, e)
+            # panels with fixed ends are shared by all rows (one row of nodes)
+            lo, hi = np.full(1, b), np.full(1, e)
             if xr[0] < b:
                 inner, outer = [_graded(lo, hi, False)], [_tail(hi)]
             elif xr[0] <= e:
-                inner, outer = [_graded(lo, xr, True), _graded(xr, hi, False)], [_tail(hi)]
+                inner = [_graded(np.full_like(xr, b), xr, True),
+                         _graded(xr, np.full_like(xr, e), False)]
+                outer = [_tail(hi)]
             else:
-                inner, outer = [_graded(lo, hi, True)], [_graded(hi, xr, True), _tail(xr)]
+                inner, outer = [_graded(lo, hi, True)], [_graded(np.full_like(xr, e), xr, True),
+                                                         _tail(xr)]
             normal[rows], shear_rows = self._sums(xr, inner, outer, shear)
             if shear_rows is not None:
                 out[rows] = shear_rows
@@ -201,43 +210,46 @@ class Preformed:
     def _sums(self, ax: np.ndarray, inner: list, outer: list, shear: bool,
               ) -> tuple[np.ndarray, np.ndarray | None]:
         """pi sigma_yy^A and pi sigma_xy^A (or None) at the points ax >= 0, from the nodes
-        and weights of the panels on [b, e] (``inner``) and beyond e (``outer``)."""
-        b = self.b
-        xi = np.concatenate([p[0] for p in inner + outer], axis=1)
-        om = np.concatenate([p[1] for p in inner + outer], axis=1)
-        # the basis densities at the nodes, per column: the cubics on [b, e], the
-        # remote forms g and -1 beyond e
-        k_in = sum(p[0].shape[1] for p in inner)
-        h = xi[:, :k_in] - b
-        h2, h3 = h * h, h * h * h
+        and weights (one row, or one per point) of the panels on [b, e] (``inner``) and
+        beyond e (``outer``)."""
         r = self.coefficients
-        g_far = self.load.remote_g(xi[:, k_in:].ravel()).reshape(xi.shape[0], -1)
-        a_xi = [np.concatenate([r[0, 0] * h2 + r[0, 1] * h3, g_far], axis=1),
-                np.concatenate([r[1, 0] * h2 + r[1, 1] * h3, np.full_like(g_far, -1.0)],
-                               axis=1)]
         a_x = self.basis(ax)  # (m, 2)
-        # kernels with the powers of 1/(4 + d^2) shared (kernels.py, App. B.1)
-        d = ax[:, None] - xi
-        dp = ax[:, None] + xi
-        iq = 1.0 / (4.0 + d * d)
-        ip = 1.0 / (4.0 + dp * dp)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            cp = 4.0 * iq / d  # C(d) = 4 / (d (d^2 + 4))
-        cp = np.where(np.abs(d) < 1e-13, 0.0, cp)
-        # (H_yyy - C)(d) - H_yyy(d + 2 xi)
-        smooth_n = d * iq * iq * (-4.0 - 64.0 * iq) - (1.0 / dp - dp * ip * (
-            1.0 + ip * (4.0 + 64.0 * ip)))
-        # the Cauchy part against A(xi) - A(x): zero at d = 0 in the limit times finite
-        w_c, w_n = om * cp, om * smooth_n
-        normal = np.column_stack([
-            np.einsum("mk,mk->m", w_c, a_xi[j] - a_x[:, j:j + 1])
-            + np.einsum("mk,mk->m", w_n, a_xi[j]) for j in (0, 1)])
-        gap = ax - b
+        normal = np.zeros((ax.size, 2))
+        out = np.zeros((ax.size, 2)) if shear else None
+        cauchy_total = np.zeros(ax.size)
+        for (xi, om), cubic in [(p, True) for p in inner] + [(p, False) for p in outer]:
+            # the basis densities at the nodes: the cubics on [b, e], g and -1 beyond e
+            if cubic:
+                h = xi - self.b
+                h2, h3 = h * h, h * h * h
+                a_xi = [r[0, 0] * h2 + r[0, 1] * h3, r[1, 0] * h2 + r[1, 1] * h3]
+            else:
+                a_xi = [self.load.remote_g(xi.ravel()).reshape(xi.shape), -np.ones_like(xi)]
+            # kernels with the powers of 1/(4 + d^2) shared (kernels.py, App. B.1)
+            d = ax[:, None] - xi
+            dp = ax[:, None] + xi
+            iq = 1.0 / (4.0 + d * d)
+            ip = 1.0 / (4.0 + dp * dp)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                cp = 4.0 * iq / d  # C(d) = 4 / (d (d^2 + 4))
+            cp = np.where(np.abs(d) < 1e-13, 0.0, cp)
+            # (H_yyy - C)(d) - H_yyy(d + 2 xi)
+            smooth_n = d * iq * iq * (-4.0 - 64.0 * iq) - (1.0 / dp - dp * ip * (
+                1.0 + ip * (4.0 + 64.0 * ip)))
+            # the Cauchy part against A(xi) - A(x): sum C A(xi) - A(x) sum C
+            w_c = om * cp
+            cauchy_total += w_c.sum(axis=1)
+            w_t = w_c + om * smooth_n
+            for j in (0, 1):
+                normal[:, j] += _row_dot(w_t, a_xi[j])
+            if out is not None:
+                # H_yxy(d) - H_yxy(d + 2 xi), H_yxy = 8 (3/q^2 - 16/q^3)
+                w_s = om * 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
+                for j in (0, 1):
+                    out[:, j] += _row_dot(w_s, a_xi[j])
+        normal -= a_x * cauchy_total[:, None]
+        gap = ax - self.b
         with np.errstate(divide="ignore"):
             log_term = np.where(gap != 0.0, 0.5 * np.log(gap * gap / (gap * gap + 4.0)), 0.0)
         normal += a_x * log_term[:, None]
-        if not shear:
-            return normal, None
-        # H_yxy(d) - H_yxy(d + 2 xi), H_yxy = 8 (3/q^2 - 16/q^3)
-        w_s = om * 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
-        return normal, np.column_stack([np.einsum("mk,mk->m", w_s, a_xi[j]) for j in (0, 1)])
+        return normal, out
