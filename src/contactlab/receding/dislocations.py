@@ -48,7 +48,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from contactlab.receding.kernels import Kind, h_xyy, regular_pair
+from contactlab.receding.kernels import Kind, even_part, regular_pair
 from contactlab.receding.quadrature import (
     bounded_rule,
     cauchy_matrix,
@@ -178,18 +178,22 @@ class DensityInterval:
             # transform of the interpolant to round-off (the Chebyshev ellipse through t has
             # rho^-2N < 1e-17); skip the O(N) transform there (images, far points)
             mapped &= t > -1.0 - 200.0 / self.n**2
-        if mapped.any():
-            tm = t[mapped][:, None]
-            dm = d[mapped]
-            gap = tm - rule.s[None, :]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                ratio = np.where(np.abs(gap) < 1e-14, 1.0,
-                                 self.derivative(rule.s)[None, :] * gap / dm)
-            ratio = np.where(np.abs(gap) < 1e-14, 1.0, ratio)
-            out[mapped] = cauchy_matrix(t[mapped], self.n) * ratio
+        if mapped.all():
+            out = self._mapped_cauchy(t, d, rule)
+        elif mapped.any():
+            out[mapped] = self._mapped_cauchy(t[mapped], d[mapped], rule)
         if (~mapped).any():
             out[~mapped] = self.weights[None, :] / (np.pi * d[~mapped])
         return out
+
+    def _mapped_cauchy(self, t: np.ndarray, d: np.ndarray, rule) -> np.ndarray:
+        """The transform of psi = phi T'(s) (t - s) / (x - T(s)) at points with preimage t."""
+        gap = t[:, None] - rule.s[None, :]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = self.derivative(rule.s)[None, :] * gap / d
+        ratio[np.abs(gap) < 1e-14] = 1.0
+        ratio *= cauchy_matrix(t, self.n)
+        return ratio
 
     def influence(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(S, N): (len(x), N) matrices mapping phi_i to shear and normal traction / p at x."""
@@ -209,10 +213,11 @@ class DensityInterval:
         if self.kind == "climb":
             return self.influence(x)[1]
         scale = self.weights[None, :] / np.pi
-        out = h_xyy(x[:, None] - self.nodes[None, :]) * scale
+        out = even_part(x[:, None] - self.nodes[None, :])  # H_xyy = -H_yxy
         if self.parity:
-            image = h_xyy(-x[:, None] - self.nodes[None, :]) * scale
+            image = even_part(-x[:, None] - self.nodes[None, :])
             out += self.parity * _KERNEL_PARITY[("glide", "normal")] * image
+        out *= -scale
         return out
 
     def collocation_influence(self) -> tuple[np.ndarray, np.ndarray]:

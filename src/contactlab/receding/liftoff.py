@@ -368,9 +368,10 @@ def check_inputs(f: float, n: int, lam_a: float, lam_b: float, e: float, load: L
 
 def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
                   preformed: bool = True, guess: tuple[float, float] | None = None,
-                  problem: str = "") -> LiftoffSolution:
-    """Solve for (a, b, K_T) and the densities at friction f > 0 (see module docstring)."""
-    return _solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, problem)[0]
+                  problem: str = "", checks: bool = True) -> LiftoffSolution:
+    """Solve for (a, b, K_T) and the densities at friction f > 0 (see module docstring);
+    ``checks=False`` skips the contact checks (for solutions that only seed others)."""
+    return _solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, problem, checks)[0]
 
 
 def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
