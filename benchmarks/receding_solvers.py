@@ -22,8 +22,8 @@ from pathlib import Path
 
 from contactlab.receding._blas import single_thread
 from contactlab.receding.gap import solve_gap
-from contactlab.receding.line import solve_line
 from contactlab.receding.liftoff_sweep import sweep_patch
+from contactlab.receding.line import solve_line
 from contactlab.receding.patch import solve_patch
 
 BEFORE = Path(__file__).with_name("receding_solvers_before.json")

@@ -19,8 +19,8 @@ from typing import Any
 import numpy as np
 
 from contactlab.receding.gap import separation_friction, solve_gap
-from contactlab.receding.line import solve_line
 from contactlab.receding.liftoff_sweep import sweep_line, sweep_patch
+from contactlab.receding.line import solve_line
 from contactlab.receding.patch import solve_patch
 from contactlab.receding.sweep import sweep_friction
 
