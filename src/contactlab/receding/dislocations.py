@@ -44,10 +44,11 @@ separation for climb) is ``-int_{-inf}^{x} B_bar dxi`` in units of (kappa+1) p c
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
-from contactlab.receding.kernels import SPLIT, Kind
+from contactlab.receding.kernels import Kind, even_part, regular_pair
 from contactlab.receding.quadrature import (
     bounded_rule,
     cauchy_matrix,
@@ -156,20 +157,14 @@ class DensityInterval:
     def _own(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Influence of the density itself (no image) at the points x."""
         rule = bounded_rule(self.n)
-        xi = self.nodes
-        weights = self.weights
-        d = x[:, None] - xi[None, :]
-        cauchy_part = None
-        out = []
-        for component in ("shear", "normal"):
-            cauchy, regular = SPLIT[(self.kind, component)]
-            mat = regular(d) * (weights[None, :] / np.pi)
-            if cauchy:
-                if cauchy_part is None:
-                    cauchy_part = self._cauchy(x, d, rule)
-                mat = mat + cauchy * cauchy_part
-            out.append(mat)
-        return out[0], out[1]
+        d = x[:, None] - self.nodes[None, :]
+        scale = self.weights[None, :] / np.pi
+        shear, normal = regular_pair(self.kind, d)
+        shear *= scale
+        normal *= scale
+        # the Cauchy part 1/d belongs to H_xxy (glide shear) and H_yyy (climb normal)
+        (shear if self.kind == "glide" else normal)[...] += self._cauchy(x, d, rule)
+        return shear, normal
 
     def _cauchy(self, x: np.ndarray, d: np.ndarray, rule) -> np.ndarray:
         """(1/pi) int B_bar/(x - xi) dxi as a matrix on phi (see the module docstring)."""
@@ -183,18 +178,22 @@ class DensityInterval:
             # transform of the interpolant to round-off (the Chebyshev ellipse through t has
             # rho^-2N < 1e-17); skip the O(N) transform there (images, far points)
             mapped &= t > -1.0 - 200.0 / self.n**2
-        if mapped.any():
-            tm = t[mapped][:, None]
-            dm = d[mapped]
-            gap = tm - rule.s[None, :]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                ratio = np.where(np.abs(gap) < 1e-14, 1.0,
-                                 self.derivative(rule.s)[None, :] * gap / dm)
-            ratio = np.where(np.abs(gap) < 1e-14, 1.0, ratio)
-            out[mapped] = cauchy_matrix(t[mapped], self.n) * ratio
+        if mapped.all():
+            out = self._mapped_cauchy(t, d, rule)
+        elif mapped.any():
+            out[mapped] = self._mapped_cauchy(t[mapped], d[mapped], rule)
         if (~mapped).any():
             out[~mapped] = self.weights[None, :] / (np.pi * d[~mapped])
         return out
+
+    def _mapped_cauchy(self, t: np.ndarray, d: np.ndarray, rule) -> np.ndarray:
+        """The transform of psi = phi T'(s) (t - s) / (x - T(s)) at points with preimage t."""
+        gap = t[:, None] - rule.s[None, :]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = self.derivative(rule.s)[None, :] * gap / d
+        ratio[np.abs(gap) < 1e-14] = 1.0
+        ratio *= cauchy_matrix(t, self.n)
+        return ratio
 
     def influence(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(S, N): (len(x), N) matrices mapping phi_i to shear and normal traction / p at x."""
@@ -206,6 +205,34 @@ class DensityInterval:
             shear = shear + self.parity * _KERNEL_PARITY[(self.kind, "shear")] * ms
             normal = normal + self.parity * _KERNEL_PARITY[(self.kind, "normal")] * mn
         return shear, normal
+
+    def normal_influence(self, x: np.ndarray) -> np.ndarray:
+        """The normal-traction matrix of ``influence`` alone. For a glide density it is the
+        regular kernel H_xyy (App. B.1, no Cauchy part), so no transform is needed."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        if self.kind == "climb":
+            return self.influence(x)[1]
+        scale = self.weights[None, :] / np.pi
+        out = even_part(x[:, None] - self.nodes[None, :])  # H_xyy = -H_yxy
+        if self.parity:
+            image = even_part(-x[:, None] - self.nodes[None, :])
+            out += self.parity * _KERNEL_PARITY[("glide", "normal")] * image
+        out *= -scale
+        return out
+
+    def collocation_influence(self) -> tuple[np.ndarray, np.ndarray]:
+        """``influence(self.collocation)``. For a semi-infinite map the density's own part
+        there depends on N and lam only (T(t_k) - T(s_i) is free of lo, sec. 6.4), so it
+        is computed once and only the image part follows lo."""
+        x = self.collocation
+        if self.mapping != "semi-infinite":
+            return self.influence(x)
+        shear, normal = _own_at_collocation(self.kind, self.n, self.lam)
+        if not self.parity:
+            return shear.copy(), normal.copy()
+        ms, mn = self._own(-x)
+        return (shear + self.parity * _KERNEL_PARITY[(self.kind, "shear")] * ms,
+                normal + self.parity * _KERNEL_PARITY[(self.kind, "normal")] * mn)
 
     # ---- densities and displacements
     def density(self, phi: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -245,3 +272,13 @@ class DensityInterval:
             # parity * (total - int_{-inf}^{-x} B)
             out = out - self.parity * (self.integral(phi) - self._cumulative(phi, -x))
         return out
+
+
+@lru_cache(maxsize=16)
+def _own_at_collocation(kind: Kind, n: int, lam: float) -> tuple[np.ndarray, np.ndarray]:
+    """Own (no image) influence of a semi-infinite density at its collocation points."""
+    interval = DensityInterval(kind, 0.0, np.inf, n, mapping="semi-infinite", lam=lam)
+    shear, normal = interval._own(interval.collocation)
+    shear.setflags(write=False)
+    normal.setflags(write=False)
+    return shear, normal

@@ -27,16 +27,23 @@ from contactlab.receding.quadrature import interpolation_matrix
 from contactlab.receding.solve import LinearSystem, find_transitions
 
 
-def assemble_frictionless(load: Load, n: int, b: float, lam_a: float, lam_b: float, e: float,
-                          preformed: bool = True):
+def _intervals(n: int, b: float, lam_a: float, lam_b: float) -> tuple[DensityInterval,
+                                                                      DensityInterval]:
+    """The whole-line glide density and the climb density on [b, inf)."""
     glide = DensityInterval("glide", -np.inf, np.inf, n, mapping="infinite", lam=lam_a)
     climb = DensityInterval("climb", b, np.inf, n, parity=-1, mapping="semi-infinite",
                             lam=lam_b)
+    return glide, climb
+
+
+def assemble_frictionless(load: Load, n: int, b: float, lam_a: float, lam_b: float, e: float,
+                          preformed: bool = True):
+    glide, climb = _intervals(n, b, lam_a, lam_b)
     xb, xa = climb.collocation, glide.collocation
     m = n + 1
-    _, gn_b = glide.influence(xb)
+    gn_b = glide.normal_influence(xb)
     gs_a, _ = glide.influence(xa)
-    _, cn_b = climb.influence(xb)
+    cn_b = climb.collocation_influence()[1]
     cs_a, _ = climb.influence(xa)
     sb_a, _ = load.bilateral(xa)
     _, nb_b = load.bilateral(xb)
@@ -80,8 +87,11 @@ def solve_frictionless(load: Load, n: int, lam_a: float, lam_b: float, e: float,
     sol = LiftoffSolution(problem=problem or load.law, load=load, f=0.0, n=n, lam_a=lam_a,
                           lam_b=lam_b, e=e, preformed_used=preformed, regime="frictionless",
                           a=0.0, b=b, nfev=root.nfev, message="; ".join(root.history))
-    with single_thread():
-        sysm, glide, climb = assemble_frictionless(load, n, b, lam_a, lam_b, e, preformed)
-    sol.record(root, sysm, glide, climb)
+    if root.system is not None:  # the root finder's own system at the root
+        sol.record(root, root.system, *_intervals(n, b, lam_a, lam_b))
+    else:
+        with single_thread():
+            sysm, glide, climb = assemble_frictionless(load, n, b, lam_a, lam_b, e, preformed)
+        sol.record(root, sysm, glide, climb)
     sol.seconds = time.perf_counter() - start
     return sol

@@ -38,6 +38,7 @@ so an admissible slip zone has S * slip >= 0 (checked in ``GapSolution.checks``)
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -46,7 +47,12 @@ from scipy import optimize
 from contactlab.receding.bilateral import gap_bilateral
 from contactlab.receding.dislocations import DensityInterval
 from contactlab.receding.quadrature import bounded_rule
-from contactlab.receding.solve import LinearSystem, RootResult, find_transitions
+from contactlab.receding.solve import (
+    LinearSystem,
+    RootResult,
+    difference_jacobian,
+    find_transitions,
+)
 
 REGIMES = ("stick", "slip", "slip_separation")
 #: Tolerance (in units of p) for contact-condition checks on the dense grid. The checks
@@ -255,7 +261,7 @@ def _slip_system(w: float, f: float, n: int, a1: float, a2: float,
     With the log map a1 converges in N down to ~1e-70 (N = 100 vs 200 agree to 10 %);
     below that only "a1 ~ 0" is meaningful, flagged by the contact checks between nodes.
     """
-    glide = DensityInterval("glide", a1, a2, n, parity=+1, mapping="log")
+    glide = _slip_glide(a1, a2, n)
     xk = glide.collocation
     ms, mn = glide.influence(xk)
     sb, nb = gap_bilateral(xk, w)
@@ -264,6 +270,11 @@ def _slip_system(w: float, f: float, n: int, a1: float, a2: float,
     rhs = np.concatenate([-(sb - f * nb), [0.0]])
     # leave out the collocation row nearest the middle of the zone and the closure
     return LinearSystem(matrix, rhs, leftover=[n // 2, n + 1]), glide
+
+
+def _slip_glide(a1: float, a2: float, n: int) -> DensityInterval:
+    """The glide density of the slip regime on [a1, a2] (log map) with its even image."""
+    return DensityInterval("glide", a1, a2, n, parity=+1, mapping="log")
 
 
 #: log a1 is kept above this (a1 ~ 1e-304) so that a1 stays a normal double
@@ -291,9 +302,9 @@ def solve_slip(w: float, f: float, n: int = 100,
         raise ValueError(f"no slip at w_hat={w}, f={f}: the bilateral solution sticks")
     lo, hi = zone
 
-    def assemble(params: np.ndarray) -> LinearSystem:
+    def assemble(params: np.ndarray, size: int = n) -> LinearSystem:
         a1, a2 = _slip_params(params)
-        return _slip_system(w, f, n, a1, a2, p)[0]
+        return _slip_system(w, f, size, a1, a2, p)[0]
 
     def valid(params: np.ndarray) -> bool:
         a1, a2 = _slip_params(params)
@@ -301,21 +312,54 @@ def solve_slip(w: float, f: float, n: int = 100,
         resolved = np.log10(a2) - params[0] / np.log(10.0) <= n
         return bool(resolved and a1 <= lo + tol and a2 >= hi - tol)
 
-    guesses = []
+    seed, jacobian = (None, None) if guess is not None else _coarse_seed(
+        n, lambda: solve_slip(w, f, COARSE_N, None, p),
+        lambda s: (s.a1, s.a2), lambda q: assemble(q, COARSE_N))
+    guesses = [] if seed is None else [seed]
     if guess is not None and np.all(np.isfinite(guess)) and guess[1] > guess[0] > 0:
         guesses.append(np.array([np.log(guess[0]), np.log(guess[1] - guess[0])]))
     for grow in (0.5, 1.0, 2.0, 4.0):
         a1 = max(lo - 0.25 * grow * (hi - lo), 1e-3 * lo, 1e-6)
         a2 = hi + 0.5 * grow * (hi - lo)
         guesses.append(np.array([np.log(a1), np.log(a2 - a1)]))
-    root = find_transitions(assemble, guesses, valid=valid)
+    root = find_transitions(assemble, guesses, valid=valid, jacobian=jacobian)
     a1, a2 = _slip_params(root.params)
-    system, glide = _slip_system(w, f, n, a1, a2, p)
+    system, glide = _slip_system(w, f, n, a1, a2, p) if root.system is None else (
+        root.system, _slip_glide(a1, a2, n))
     sol = _from_root("slip", w, f, n, root, system, p)
     sol.a1, sol.a2 = a1, a2
     sol.intervals = [glide]
     sol.phis = [root.phi]
     return sol
+
+
+#: N of the coarse solve that seeds a cold solve at larger N (a1, a2, a3 of it agree with
+#: N = 100 to ~1e-8, b to ~1e-3, e.g. w_hat = 1, f = 0.3 and w_hat = 2.5, f = 0.5)
+COARSE_N = 24
+
+
+def _coarse_seed(n: int, solve_coarse: Callable[[], GapSolution],
+                 ends: Callable[[GapSolution], tuple[float, float]],
+                 assemble_coarse: Callable[[np.ndarray], LinearSystem],
+                 ) -> tuple[np.ndarray | None, np.ndarray | None]:
+    """(first guess, its Jacobian) of a cold solve at N from the same regime at COARSE_N.
+
+    The unknowns are log(inner end) and log(outer - inner end). Of the two leftover
+    equations the collocation row grows like N and the closure (5.7)/(5.27) does not
+    (measured at N = 16-100), so the coarse Jacobian's first row is scaled by
+    N/COARSE_N. (None, None) when N is small or the coarse problem has no root.
+    """
+    if n < 2 * COARSE_N:
+        return None, None
+    coarse = solve_coarse()
+    if not coarse.converged:
+        return None, None
+    inner, outer = ends(coarse)
+    seed = np.array([np.log(inner), np.log(outer - inner)])
+    jacobian = difference_jacobian(assemble_coarse, seed)
+    if jacobian is not None:
+        jacobian = jacobian * np.array([[n / COARSE_N], [1.0]])
+    return seed, jacobian
 
 
 def _from_root(regime: str, w: float, f: float, n: int, root: RootResult,
@@ -341,8 +385,7 @@ def _separation_system(w: float, f: float, n: int, b: float, a3: float, p: float
     glide closure (5.27), climb closure (5.28). Returns (matrix, rhs, leftover rows,
     climb interval, glide interval); the leftovers are the two t = 0 rows and the closures.
     """
-    climb = DensityInterval("climb", -b, b, n)
-    glide = DensityInterval("glide", -a3, a3, n)
+    climb, glide = _separation_intervals(b, a3, n)
     xc = climb.collocation
     xg = glide.collocation
     points = np.concatenate([xc, xg])
@@ -370,6 +413,12 @@ def _separation_system(w: float, f: float, n: int, b: float, a3: float, p: float
     return matrix, rhs, leftover, climb, glide
 
 
+def _separation_intervals(b: float, a3: float, n: int) -> tuple[DensityInterval,
+                                                                  DensityInterval]:
+    """The climb density on [-b, b] and the glide density on [-a3, a3] (linear maps)."""
+    return DensityInterval("climb", -b, b, n), DensityInterval("glide", -a3, a3, n)
+
+
 def _sep_params(p: np.ndarray) -> tuple[float, float]:
     b = float(np.exp(min(p[0], 5.0)))
     return b, b + float(np.exp(min(p[1], 5.0)))
@@ -388,16 +437,19 @@ def solve_separation(w: float, f: float, n: int = 100,
     zone = bilateral_slip_zone(w, f)
     hi = zone[1] if zone is not None else w
 
-    def assemble(params: np.ndarray) -> LinearSystem:
+    def assemble(params: np.ndarray, size: int = n) -> LinearSystem:
         b, a3 = _sep_params(params)
-        matrix, rhs, leftover, _, _ = _separation_system(w, f, n, b, a3, p)
+        matrix, rhs, leftover, _, _ = _separation_system(w, f, size, b, a3, p)
         return LinearSystem(matrix, rhs, leftover, targets=[0, 2])
 
     def valid(params: np.ndarray) -> bool:
         b, a3 = _sep_params(params)
         return b > 1e-4 and a3 >= hi - 0.05
 
-    guesses = []
+    seed, jacobian = (None, None) if guess is not None else _coarse_seed(
+        n, lambda: solve_separation(w, f, COARSE_N, None, p),
+        lambda s: (s.b, s.a3), lambda q: assemble(q, COARSE_N))
+    guesses = [] if seed is None else [seed]
     if guess is not None and np.all(np.isfinite(guess)) and guess[1] > guess[0] > 0:
         guesses.append(np.array([np.log(guess[0]), np.log(guess[1] - guess[0])]))
     for b0, grow in ((0.2, 1.1), (0.5, 1.3), (0.05, 1.05), (0.8, 1.6)):
@@ -405,10 +457,14 @@ def solve_separation(w: float, f: float, n: int = 100,
         guesses.append(np.array([np.log(b0 * hi), np.log(a30 - b0 * hi)]))
     if w > 1.0:  # wide gaps: separation over most of the gap (b ~ 0.75 w, a3 ~ w + 1.3)
         guesses.insert(min(len(guesses), 2), np.array([np.log(0.75 * w), np.log(0.25 * w + 1.3)]))
-    root = find_transitions(assemble, guesses, valid=valid)
+    root = find_transitions(assemble, guesses, valid=valid, jacobian=jacobian)
     b, a3 = _sep_params(root.params)
-    matrix, rhs, leftover, climb, glide = _separation_system(w, f, n, b, a3, p)
-    sol = _from_root("slip_separation", w, f, n, root, LinearSystem(matrix, rhs, leftover), p)
+    if root.system is None:
+        matrix, rhs, leftover, climb, glide = _separation_system(w, f, n, b, a3, p)
+        system = LinearSystem(matrix, rhs, leftover)
+    else:
+        system, (climb, glide) = root.system, _separation_intervals(b, a3, n)
+    sol = _from_root("slip_separation", w, f, n, root, system, p)
     sol.b, sol.a3 = b, a3
     sol.intervals = [climb, glide]
     sol.phis = [root.phi[:n], root.phi[n:]]

@@ -79,6 +79,44 @@ SPLIT = {
 }
 
 
+def _inverse_q(d: np.ndarray) -> np.ndarray:
+    """1/q = 1/(4 + d^2), computed in place of one temporary."""
+    iq = d * d
+    iq += 4.0
+    return np.reciprocal(iq, out=iq)
+
+
+def even_part(d: np.ndarray) -> np.ndarray:
+    """H_yxy(d) = -H_xyy(d) = 8 (3/q^2 - 16/q^3) in Horner form, without temporaries."""
+    iq = _inverse_q(d)
+    out = iq * -16.0
+    out += 3.0
+    out *= iq
+    out *= iq
+    out *= 8.0
+    return out
+
+
+def regular_pair(kind: Kind, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(shear, normal) regular parts of SPLIT for one kind, sharing the powers of 1/q:
+    d/q (-1 + (12 | -4)/q - 64/q^2) for H_xxy | H_yyy and the even part for the other."""
+    iq = _inverse_q(d)
+    even = iq * -16.0
+    even += 3.0
+    even *= iq
+    even *= iq
+    even *= 8.0  # H_yxy = -H_xyy
+    odd = iq * -64.0
+    odd += 12.0 if kind == "glide" else -4.0
+    odd *= iq
+    odd -= 1.0
+    odd *= iq
+    odd *= d
+    if kind == "glide":
+        return odd, np.negative(even, out=even)
+    return even, odd
+
+
 def kernel(kind: Kind, component: Component, d: np.ndarray) -> np.ndarray:
     """The full Green's function H for ``kind`` of dislocation and traction ``component``."""
     cauchy, regular = SPLIT[(kind, component)]

@@ -71,7 +71,12 @@ from contactlab.receding.dislocations import DensityInterval
 from contactlab.receding.loading import Load
 from contactlab.receding.preformed import Preformed
 from contactlab.receding.quadrature import interpolation_matrix, legendre
-from contactlab.receding.solve import LinearSystem, RootResult, find_transitions
+from contactlab.receding.solve import (
+    LinearSystem,
+    RootResult,
+    difference_jacobian,
+    find_transitions,
+)
 
 #: tolerance (units of T) of the contact checks between the nodes
 CHECK_TOL = 5e-3
@@ -236,8 +241,9 @@ class LiftoffSolution:
             v <= CHECK_TOL for k, v in self.checks.items() if k.startswith("max_"))
 
     def record(self, root: RootResult, system: LinearSystem, glide: DensityInterval,
-               climb: DensityInterval) -> None:
-        """Store the densities of the converged (or last) root, its residuals and checks."""
+               climb: DensityInterval, checks: bool = True) -> None:
+        """Store the densities of the converged (or last) root, its residuals and (unless
+        ``checks`` is False, e.g. for an internal coarse solve) the contact checks."""
         n = self.n
         self.glide, self.climb = glide, climb
         if root.phi.size == system.matrix.shape[1]:
@@ -248,7 +254,8 @@ class LiftoffSolution:
         self.converged = root.converged
         if not root.converged:
             self.regime = "failed"
-        self.evaluate_checks()
+        if checks:
+            self.evaluate_checks()
 
     def evaluate_checks(self, points: int = 600) -> dict[str, float]:
         """Contact conditions on 0 <= x <= b + 8 (symmetry), in units of T.
@@ -309,27 +316,28 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
     xb = climb.collocation
     xa = glide.collocation
     m = n + 1
-    points = np.concatenate([xb, xa])
     # separate calls per point set: at its own collocation points an interval uses the
-    # classical Gauss-Chebyshev sum (exact there), elsewhere the exact transform
-    gs_b, gn_b = glide.influence(xb)
-    gs_a, gn_a = glide.influence(xa)
-    cs_b, cn_b = climb.influence(xb)
+    # classical Gauss-Chebyshev sum (exact there), elsewhere the exact transform; only
+    # the normal traction is needed on the rows of [b, inf)
+    gn_b = glide.normal_influence(xb)
+    gs_a, gn_a = glide.collocation_influence()
+    cn_b = climb.collocation_influence()[1]
     cs_a, cn_a = climb.influence(xa)
-    gs, gn = np.vstack([gs_b, gs_a]), np.vstack([gn_b, gn_a])
-    cs, cn = np.vstack([cs_b, cs_a]), np.vstack([cn_b, cn_a])
-    sb, nb = load.bilateral(points)
+    nb = load.bilateral(xb)[1]
+    sb, nb_a = load.bilateral(xa)
     h = np.where(xa < b, f, 0.0)  # H(b - x) f on the shear rows
-    cols_n = [gn[:m], cn[:m]]
-    cols_s = [gs[m:] + h[:, None] * gn[m:], cs[m:] + h[:, None] * cn[m:]]
-    rhs_n = -nb[:m]
-    rhs_s = -(sb[m:] + h * nb[m:])
+    cols_n = [gn_b, cn_b]
+    cols_s = [gs_a + h[:, None] * gn_a, cs_a + h[:, None] * cn_a]
+    rhs_n = -nb
+    rhs_s = -(sb + h * nb_a)
     if preformed:
-        ps, pn = Preformed(load, b, e).stresses(points)
-        cols_n.append(pn[:m, 1:2])
-        cols_s.append(ps[m:, 1:2] + h[:, None] * pn[m:, 1:2])
-        rhs_n = rhs_n - pn[:m, 0]
-        rhs_s = rhs_s - (ps[m:, 0] + h * pn[m:, 0])
+        pre = Preformed(load, b, e)
+        pn_b = pre.normal_stress(xb)
+        ps, pn = pre.stresses(xa)
+        cols_n.append(pn_b[:, 1:2])
+        cols_s.append(ps[:, 1:2] + h[:, None] * pn[:, 1:2])
+        rhs_n = rhs_n - pn_b[:, 0]
+        rhs_s = rhs_s - (ps[:, 0] + h * pn[:, 0])
     matrix = np.vstack([np.hstack(cols_n), np.hstack(cols_s)])
     rhs = np.concatenate([rhs_n, rhs_s])
     if preformed:
@@ -360,8 +368,18 @@ def check_inputs(f: float, n: int, lam_a: float, lam_b: float, e: float, load: L
 
 def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
                   preformed: bool = True, guess: tuple[float, float] | None = None,
-                  problem: str = "") -> LiftoffSolution:
-    """Solve for (a, b, K_T) and the densities at friction f > 0 (see module docstring)."""
+                  problem: str = "", checks: bool = True) -> LiftoffSolution:
+    """Solve for (a, b, K_T) and the densities at friction f > 0 (see module docstring);
+    ``checks=False`` skips the contact checks (for solutions that only seed others)."""
+    return _solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, problem, checks)[0]
+
+
+def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
+                   preformed: bool, guess: tuple[float, float] | None, problem: str,
+                   checks: bool = True) -> tuple[LiftoffSolution, np.ndarray | None]:
+    """``solve_liftoff`` and the secant Jacobian of its root in (log a, log(b - a)) (None
+    if there is none), which seeds the root finder of the next N of the continuation.
+    ``checks=False`` skips the contact checks (the coarse solve only seeds the fine one)."""
     import time
 
     check_inputs(f, n, lam_a, lam_b, e, load)
@@ -377,15 +395,29 @@ def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: f
 
     w = load.w
     fine_only = False
-    coarse = None
+    coarse = jacobian = None
     if n > COARSE_N and (guess is None or n > 2.5 * COARSE_N):
         # N-continuation: the transition points converge slowly but smoothly in N, so a
         # cheap solve at COARSE_N is a close first guess for the fine root finder; if even
-        # the coarse problem has no root, the fine one is not tried (flagged instead)
-        coarse = solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed, guess, problem)
+        # the coarse problem has no root, the fine one is not tried (flagged instead).
+        # The leftover rows grow like N, and so does the Jacobian of the root finder:
+        # J/N at the line-load root (f = 0.5) is within 2 % between N = 250 and 500 but
+        # one entry is 4x off at N = 64, so the fine Newton starts from the coarse secant
+        # Jacobian times N/COARSE_N, or (large N) from differences at N/2 times 2.
+        coarse, jacobian = _solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed,
+                                          guess, problem, checks=False)
+        if jacobian is not None:
+            jacobian = jacobian * (n / COARSE_N)
         if coarse.converged:
             guess = (coarse.a, coarse.b)
             fine_only = True
+            half = 2 * (n // 4)
+            if half > 2 * COARSE_N:
+                mid = difference_jacobian(
+                    lambda p: assemble(load, f, half, *_params(p), lam_a, lam_b, e,
+                                       preformed)[0],
+                    np.array([np.log(coarse.a), np.log(coarse.b - coarse.a)]))
+                jacobian = jacobian if mid is None else mid * (n / half)
     guesses = []
     if guess is not None and np.all(np.isfinite(guess)) and guess[1] > guess[0] > 0:
         guesses.append(np.array([np.log(guess[0]), np.log(guess[1] - guess[0])]))
@@ -404,13 +436,18 @@ def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: f
         guesses = [np.array([np.log(0.25), np.log(1.5)])]
     if guesses:
         root = find_transitions(system, guesses, valid=valid, tol=1e-11, accept=1e-8,
-                                maxfev=60 if fine_only else 200)
+                                maxfev=60 if fine_only else 200,
+                                jacobian=jacobian if fine_only else None)
     else:
         root = coarse_failure(coarse)
     a, b = _params(root.params)
     sol = LiftoffSolution(problem=problem or load.law, load=load, f=f, n=n, lam_a=lam_a,
                           lam_b=lam_b, e=e, preformed_used=preformed, a=a, b=b,
                           nfev=root.nfev, message="; ".join(root.history))
+    if root.system is not None:  # the root finder's own system at the root
+        sol.record(root, root.system, *_intervals(a, b, n, lam_a, lam_b), checks=checks)
+        sol.seconds = time.perf_counter() - start
+        return sol, root.jacobian
     try:
         with single_thread():
             sysm, glide, climb = assemble(load, f, n, a, b, lam_a, lam_b, e, preformed)
@@ -419,10 +456,10 @@ def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: f
         sol.regime = "failed"
         sol.evaluate_checks()
         sol.seconds = time.perf_counter() - start
-        return sol
-    sol.record(root, sysm, glide, climb)
+        return sol, None
+    sol.record(root, sysm, glide, climb, checks=checks)
     sol.seconds = time.perf_counter() - start
-    return sol
+    return sol, None
 
 
 def solve_quietly(*args, **kwargs) -> LiftoffSolution:

@@ -44,7 +44,7 @@ def _continuation(load: Load, f: float, n: int, lam_a: float, lam_b: float, e_ex
         step_load = load if w == load.w else _scaled(load, w)
         la, lb = (lam_a, lam_b) if w == load.w else default_lambdas(w)
         sol = solve_liftoff(step_load, f, min(n, COARSE_N), la, lb, w + e_extra, preformed,
-                            guess)
+                            guess, checks=False)
         if not sol.converged:
             return None
         guess = (sol.a, sol.b)

@@ -54,7 +54,6 @@ from functools import lru_cache
 
 import numpy as np
 
-from contactlab.receding.kernels import h_yxy, h_yyy
 from contactlab.receding.loading import Load
 
 #: geometric panels per finite segment and Gauss points per panel
@@ -74,16 +73,6 @@ def printed_cubic_coefficients(b: float, e: float, k2: float, kl: float) -> tupl
     r1 = -(b * k2 - 4.0 * e * k2 + 3.0 * e * e * kl) / (e * e * (b - e) ** 2)
     r2 = -(-b * k2 - 3.0 * e * k2 + 2.0 * e * e * kl) / (e * e * (e - b) ** 3)
     return r1, r2
-
-
-def _cauchy_part(d: np.ndarray) -> np.ndarray:
-    return 4.0 / (d * (d * d + 4.0))
-
-
-def _h_yyy_rest(d: np.ndarray) -> np.ndarray:
-    """H_yyy - C: smooth, decays like d^-3."""
-    q = 4.0 + d * d
-    return d * (-4.0 / q**2 - 64.0 / q**3)
 
 
 @lru_cache(maxsize=4)
@@ -112,6 +101,11 @@ def _tail(start: np.ndarray, scale: float = 2.0) -> tuple[np.ndarray, np.ndarray
     x = start[:, None] + scale * ((1.0 + u) / (1.0 - u))[None, :]
     w = np.broadcast_to(wu * 2.0 * scale / (1.0 - u) ** 2, x.shape)
     return x, w
+
+
+def _row_dot(w: np.ndarray, a: np.ndarray) -> np.ndarray:
+    """sum_k w[m, k] a[m, k] per row m; ``a`` may be one row shared by all."""
+    return np.einsum("mk,k->m", w, a[0]) if a.shape[0] == 1 else np.einsum("mk,mk->m", w, a)
 
 
 @dataclass(frozen=True)
@@ -170,33 +164,92 @@ class Preformed:
 
     def stresses(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(shear, normal), each (len(x), 2) for the [load, K] bases, in units of T."""
+        shear, normal = self._integrals(x, shear=True)
+        assert shear is not None
+        return shear, normal
+
+    def normal_stress(self, x: np.ndarray) -> np.ndarray:
+        """The normal part of ``stresses`` alone (the rows N = 0 of eq. 6.18)."""
+        return self._integrals(x, shear=False)[1]
+
+    def _integrals(self, x: np.ndarray, shear: bool) -> tuple[np.ndarray | None, np.ndarray]:
+        """(shear or None, normal) per basis density, eqs (6.10)-(6.11) by quadrature.
+
+        Panels on [b, e] graded towards x (or towards the nearer end when x lies outside),
+        panels on [e, x] for x > e and the tail beyond max(x, e); the points are grouped
+        by where they lie so that no group carries panels of zero length.
+        """
         x = np.atleast_1d(np.asarray(x, dtype=float))
         ax = np.abs(x)
         b, e = self.b, self.e
-        c1 = np.clip(ax, b, e)
-        c2 = np.maximum(ax, e)
-        full = np.full_like(ax, b)
-        parts = [_graded(full, c1, True), _graded(c1, np.full_like(ax, e), False),
-                 _graded(np.full_like(ax, e), c2, True), _tail(c2)]
-        xi = np.concatenate([p[0] for p in parts], axis=1)
-        om = np.concatenate([p[1] for p in parts], axis=1)
-        shape = xi.shape
-        a_xi = self.basis(xi.ravel()).reshape(*shape, 2)
+        normal = np.zeros((ax.size, 2))
+        out = np.zeros((ax.size, 2))
+        for rows in (ax < b, (ax >= b) & (ax <= e), ax > e):
+            if not rows.any():
+                continue
+            xr = ax[rows]
+            # panels with fixed ends are shared by all rows (one row of nodes)
+            lo, hi = np.full(1, b), np.full(1, e)
+            if xr[0] < b:
+                inner, outer = [_graded(lo, hi, False)], [_tail(hi)]
+            elif xr[0] <= e:
+                inner = [_graded(np.full_like(xr, b), xr, True),
+                         _graded(xr, np.full_like(xr, e), False)]
+                outer = [_tail(hi)]
+            else:
+                inner, outer = [_graded(lo, hi, True)], [_graded(np.full_like(xr, e), xr, True),
+                                                         _tail(xr)]
+            normal[rows], shear_rows = self._sums(xr, inner, outer, shear)
+            if shear_rows is not None:
+                out[rows] = shear_rows
+        if not shear:
+            return None, normal / np.pi
+        sign = np.where(x < 0, -1.0, 1.0)[:, None]
+        return sign * out / np.pi, normal / np.pi
+
+    def _sums(self, ax: np.ndarray, inner: list, outer: list, shear: bool,
+              ) -> tuple[np.ndarray, np.ndarray | None]:
+        """pi sigma_yy^A and pi sigma_xy^A (or None) at the points ax >= 0, from the nodes
+        and weights (one row, or one per point) of the panels on [b, e] (``inner``) and
+        beyond e (``outer``)."""
+        r = self.coefficients
         a_x = self.basis(ax)  # (m, 2)
-        d = ax[:, None] - xi
-        dp = ax[:, None] + xi
-        with np.errstate(divide="ignore", invalid="ignore"):
-            cp = _cauchy_part(d)
-        cp = np.where(np.abs(d) < 1e-13, 0.0, cp)
-        smooth_n = _h_yyy_rest(d) - h_yyy(dp)
-        kern_s = h_yxy(d) - h_yxy(dp)
-        # the Cauchy part against A(xi) - A(x): zero at d = 0 in the limit times finite
-        normal = np.einsum("mk,mkj->mj", om * cp, a_xi - a_x[:, None, :])
-        normal += np.einsum("mk,mkj->mj", om * smooth_n, a_xi)
-        gap = ax - b
+        normal = np.zeros((ax.size, 2))
+        out = np.zeros((ax.size, 2)) if shear else None
+        cauchy_total = np.zeros(ax.size)
+        for (xi, om), cubic in [(p, True) for p in inner] + [(p, False) for p in outer]:
+            # the basis densities at the nodes: the cubics on [b, e], g and -1 beyond e
+            if cubic:
+                h = xi - self.b
+                h2, h3 = h * h, h * h * h
+                a_xi = [r[0, 0] * h2 + r[0, 1] * h3, r[1, 0] * h2 + r[1, 1] * h3]
+            else:
+                a_xi = [self.load.remote_g(xi.ravel()).reshape(xi.shape), -np.ones_like(xi)]
+            # kernels with the powers of 1/(4 + d^2) shared (kernels.py, App. B.1)
+            d = ax[:, None] - xi
+            dp = ax[:, None] + xi
+            iq = 1.0 / (4.0 + d * d)
+            ip = 1.0 / (4.0 + dp * dp)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                cp = 4.0 * iq / d  # C(d) = 4 / (d (d^2 + 4))
+            cp = np.where(np.abs(d) < 1e-13, 0.0, cp)
+            # (H_yyy - C)(d) - H_yyy(d + 2 xi)
+            smooth_n = d * iq * iq * (-4.0 - 64.0 * iq) - (1.0 / dp - dp * ip * (
+                1.0 + ip * (4.0 + 64.0 * ip)))
+            # the Cauchy part against A(xi) - A(x): sum C A(xi) - A(x) sum C
+            w_c = om * cp
+            cauchy_total += w_c.sum(axis=1)
+            w_t = w_c + om * smooth_n
+            for j in (0, 1):
+                normal[:, j] += _row_dot(w_t, a_xi[j])
+            if out is not None:
+                # H_yxy(d) - H_yxy(d + 2 xi), H_yxy = 8 (3/q^2 - 16/q^3)
+                w_s = om * 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
+                for j in (0, 1):
+                    out[:, j] += _row_dot(w_s, a_xi[j])
+        normal -= a_x * cauchy_total[:, None]
+        gap = ax - self.b
         with np.errstate(divide="ignore"):
             log_term = np.where(gap != 0.0, 0.5 * np.log(gap * gap / (gap * gap + 4.0)), 0.0)
         normal += a_x * log_term[:, None]
-        shear = np.einsum("mk,mkj->mj", om * kern_s, a_xi)
-        sign = np.where(x < 0, -1.0, 1.0)[:, None]
-        return sign * shear / np.pi, normal / np.pi
+        return normal, out

@@ -97,15 +97,6 @@ def _chebyshev_outer(t: np.ndarray, n: int) -> np.ndarray:
     return out
 
 
-def _sine_sum(alpha: np.ndarray, n: int) -> np.ndarray:
-    """sum_{j=1}^{n} sin(j alpha) = sin(n alpha/2) sin((n+1) alpha/2) / sin(alpha/2)."""
-    half = 0.5 * alpha
-    den = np.sin(half)
-    small = np.abs(den) < 1e-12
-    out = np.sin(n * half) * np.sin((n + 1) * half) / np.where(small, 1.0, den)
-    return np.where(small, 0.0, out)
-
-
 @lru_cache(maxsize=64)
 def _collocation_cauchy(n: int) -> np.ndarray:
     """At the collocation points t_k the exact transform is w_i / (pi (t_k - s_i))."""
@@ -122,27 +113,42 @@ def cauchy_matrix(t: np.ndarray, n: int) -> np.ndarray:
     [-1, 1]). On the interval this is the principal value.
 
     The product of the closed forms with the U-coefficients of phi,
-    M[k, i] = (2/(N+1)) sin(theta_i) sum_{j=1}^{N} G_j(t_k) sin(j theta_i), is summed in
-    closed form (no matrix product, so no BLAS threads in the inner loop of a root finder):
-    for |t| <= 1, G_j = cos(j phi) and the sum is a pair of Dirichlet-type sine sums; for
-    |t| > 1, G_j = z^j and it is the imaginary part of a geometric series in z e^{i theta}.
+    M[k, i] = (2/(N+1)) sin(theta_i) sum_{j=1}^{N} G_j(t_k) sin(j theta_i), sums in closed
+    form (G_j = cos(j phi) with t = cos(phi) on the interval, z^j off it): with
+    sin((N+1) theta_i) = 0 and cos((N+1) theta_i) = (-1)^i it is
+
+        M[k, i] = (w_i / pi) (1 - (-1)^i G_{N+1}(t_k)) / (t_k - s_i),
+
+    the classical Gauss-Chebyshev sum at the collocation points (G_{N+1}(t_k) = 0), a few
+    operations per entry and no matrix product (no BLAS threads in a root finder's inner
+    loop). Where t_k is within 1e-2 of a node the numerator cancels, and the equivalent
+    -(w_i / pi) sin^2((N+1) delta/2) / (sin((phi + theta_i)/2) sin(delta/2)),
+    delta = phi - theta_i, is used instead (it tends to 0 at t_k = s_i).
     """
     rule = bounded_rule(n)
     t = np.asarray(t, dtype=float).ravel()
     if t.size == n + 1 and np.allclose(t, rule.t, rtol=0.0, atol=1e-12):
         return _collocation_cauchy(n).copy()
-    theta = rule.theta[None, :]
-    scale = (2.0 / (n + 1)) * np.sin(theta)
-    out = np.empty((t.size, n))
+    g = np.empty_like(t)
     inside = np.abs(t) <= 1.0
-    if inside.any():
-        phi = np.arccos(t[inside])[:, None]
-        out[inside] = scale * 0.5 * (_sine_sum(theta + phi, n) + _sine_sum(theta - phi, n))
-    if (~inside).any():
-        to = t[~inside]
-        z = np.sign(to) / (np.abs(to) + np.sqrt(to * to - 1.0))  # |z| < 1
-        q = z[:, None] * np.exp(1j * theta)
-        out[~inside] = scale * (q * (1.0 - q**n) / (1.0 - q)).imag
+    g[inside] = np.cos((n + 1) * np.arccos(t[inside]))
+    to = t[~inside]
+    g[~inside] = (np.sign(to) / (np.abs(to) + np.sqrt(to * to - 1.0))) ** (n + 1)  # |z| < 1
+    alternating = np.where(np.arange(1, n + 1) % 2 == 1, -1.0, 1.0)  # (-1)^i
+    diff = t[:, None] - rule.s[None, :]
+    near = (np.abs(diff) < 1e-2) & inside[:, None]  # off the interval z^(N+1) < 1 is exact
+    weights = rule.w / np.pi
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = weights[None, :] * (1.0 - alternating[None, :] * g[:, None]) / diff
+    k, i = np.nonzero(near)
+    if k.size:
+        phi = np.arccos(t[k])
+        delta = phi - rule.theta[i]
+        half = np.sin(0.5 * delta)
+        safe = np.where(half == 0.0, 1.0, half)
+        value = -weights[i] * np.sin(0.5 * (n + 1) * delta) ** 2 / (
+            np.sin(0.5 * (phi + rule.theta[i])) * safe)
+        out[k, i] = np.where(half == 0.0, 0.0, value)
     return out
 
 

@@ -7,8 +7,11 @@ plus side conditions (closure of the slip or separation, eqs 5.7, 5.20, 5.21). F
 we solve a square subset exactly and return the equations left over; the transition points
 are roots of those (thesis §5.2: "discard one equation ... check the discarded equation
 and the side condition"). The thesis minimised the leftovers with a simplex search
-(fminsearch); a Newton-type root finder (MINPACK hybrd) on the same functions converges in
-a few dozen linear solves.
+(fminsearch); a Newton-type root finder on the same functions converges in a few linear
+solves: a secant (Broyden) Newton iteration first, started from a finite-difference
+Jacobian or from one passed in (e.g. the coarse-N Jacobian of an N-continuation), and
+MINPACK hybrd from the same guess when that iteration stalls. The system at the root is
+returned with it, so callers need not assemble it again.
 """
 
 from __future__ import annotations
@@ -63,6 +66,10 @@ class RootResult:
     nfev: int
     message: str
     history: list[str] = field(default_factory=list)
+    #: the system assembled at ``params`` (None when it could not be assembled)
+    system: LinearSystem | None = None
+    #: secant estimate of d(residual)/d(params) at the root (None after hybrd)
+    jacobian: np.ndarray | None = None
 
     @property
     def residual_norm(self) -> float:
@@ -77,56 +84,153 @@ def find_transitions(
     accept: float = 1e-8,
     maxfev: int = 200,
     valid: Callable[[np.ndarray], bool] | None = None,
+    jacobian: np.ndarray | None = None,
 ) -> RootResult:
     """Roots of the leftover equations of ``assemble(params)``, trying each guess in turn.
 
     ``assemble`` may raise ``ValueError`` or ``np.linalg.LinAlgError`` for parameters
     outside its domain; those count as large residuals. The first guess whose result has
     residual <= ``accept`` and passes ``valid`` (e.g. no zero-width zone) wins; otherwise
-    the best attempt is returned unconverged.
+    the best attempt is returned unconverged. ``jacobian`` (an estimate of the Jacobian
+    of the residuals in the parameters at the first guess, e.g. from a coarser N) saves
+    the finite differences of the first Newton iteration.
     """
     with single_thread(), warnings.catch_warnings():
         # near-singular squares occur on the way (e.g. nearly zero-width zones); the
         # residuals judge the result
         warnings.simplefilter("ignore", linalg.LinAlgWarning)
-        return _find(assemble, guesses, tol, accept, maxfev, valid)
+        return _find(assemble, guesses, tol, accept, maxfev, valid, jacobian)
 
 
-def _find(assemble, guesses, tol, accept, maxfev, valid) -> RootResult:
+class _Evaluations:
+    """The leftover residuals of ``assemble(p)``, remembering the systems of recent points."""
+
+    def __init__(self, assemble: Callable[[np.ndarray], LinearSystem], size: int) -> None:
+        self.assemble = assemble
+        self.size = size
+        self.count = 0
+        self.recent: dict[bytes, tuple[LinearSystem | None, np.ndarray, np.ndarray]] = {}
+
+    def full(self, p: np.ndarray) -> tuple[LinearSystem | None, np.ndarray, np.ndarray]:
+        """(system, phi, all leftover residuals) at p, assembled at most once per point."""
+        key = np.asarray(p, dtype=float).tobytes()
+        if key not in self.recent:
+            try:
+                system = self.assemble(p)
+                phi, res = system.solve()
+            except (ValueError, np.linalg.LinAlgError, FloatingPointError):
+                system, phi, res = None, np.array([]), np.full(self.size, np.inf)
+            self.count += 1
+            if len(self.recent) >= 4:
+                self.recent.pop(next(iter(self.recent)))
+            self.recent[key] = (system, phi, res)
+        return self.recent[key]
+
+    def __call__(self, p: np.ndarray) -> np.ndarray:
+        """The target residuals at p (1e3 where the system cannot be assembled or solved)."""
+        system, _, res = self.full(p)
+        if system is not None and system.targets is not None:
+            res = res[system.targets]
+        if system is None or res.size != self.size or not np.all(np.isfinite(res)):
+            res = np.full(self.size, 1e3)
+        return res
+
+
+def _differences(fun: Callable[[np.ndarray], np.ndarray], x: np.ndarray,
+                 r: np.ndarray) -> np.ndarray:
+    """Forward-difference Jacobian of fun at x (fun(x) = r), relative steps 1e-7."""
+    jacobian = np.empty((r.size, x.size))
+    for j in range(x.size):
+        h = 1e-7 * max(1.0, abs(x[j]))
+        step = x.copy()
+        step[j] += h
+        jacobian[:, j] = (fun(step) - r) / h
+    return jacobian
+
+
+def difference_jacobian(assemble: Callable[[np.ndarray], LinearSystem],
+                        params: np.ndarray) -> np.ndarray | None:
+    """Forward-difference Jacobian of the leftover (target) residuals of ``assemble`` at
+    ``params`` (None where a system cannot be assembled or solved), one BLAS thread."""
+    params = np.asarray(params, dtype=float)
+    fun = _Evaluations(assemble, params.size)
+    with single_thread(), warnings.catch_warnings():
+        warnings.simplefilter("ignore", linalg.LinAlgWarning)
+        r = fun(params)
+        jacobian = _differences(fun, params, r)
+    # a failed step shows as a residual of 1e3, i.e. a difference quotient of ~1e10
+    return jacobian if np.all(np.abs(jacobian) < 1e6) and np.all(r != 1e3) else None
+
+
+def _secant_newton(fun: _Evaluations, x: np.ndarray, jacobian: np.ndarray | None,
+                   xtol: float, accept: float, budget: int = 12,
+                   ) -> tuple[np.ndarray, np.ndarray | None, bool]:
+    """Newton's method with Broyden's rank-one Jacobian updates, from x.
+
+    The Jacobian starts from ``jacobian`` or forward differences. Steps are capped at 1 in
+    every (logarithmic) parameter and halved while they do not reduce the residual. Stops
+    when the residual is below ``accept`` and the next Newton step below ``xtol``
+    (relative, as MINPACK's xtol); returns (x, Jacobian, converged).
+    """
+    r = fun(x)
+    if np.all(r == 1e3):
+        return x, None, False
+    jacobian = np.array(_differences(fun, x, r) if jacobian is None else jacobian,
+                        dtype=float)
+    start = fun.count
+    while fun.count - start < budget:
+        try:
+            dx = -np.linalg.solve(jacobian, r)
+        except np.linalg.LinAlgError:
+            return x, None, False
+        if not np.all(np.isfinite(dx)):
+            return x, None, False
+        norm = float(np.max(np.abs(r)))
+        if norm <= accept and np.max(np.abs(dx)) <= xtol * max(1.0, float(np.max(np.abs(x)))):
+            return x, jacobian, True
+        dx *= min(1.0, 1.0 / float(np.max(np.abs(dx))))
+        for _ in range(4):
+            r_new = fun(x + dx)
+            if float(np.max(np.abs(r_new))) < norm:
+                break
+            dx *= 0.5
+        else:
+            return x, None, False
+        jacobian += np.outer(r_new - r - jacobian @ dx, dx) / float(dx @ dx)
+        x, r = x + dx, r_new
+    return x, None, False
+
+
+def _find(assemble, guesses, tol, accept, maxfev, valid, jacobian) -> RootResult:
     best: RootResult | None = None
     best_rank: tuple[bool, float] = (True, np.inf)
     history: list[str] = []
     total = 0
-    for guess in guesses:
+    for k, guess in enumerate(guesses):
         guess = np.asarray(guess, dtype=float)
-        size = guess.size
-
-        def fun(p: np.ndarray, size: int = size) -> np.ndarray:
-            try:
-                system = assemble(p)
-                res = system.solve()[1]
-                if system.targets is not None:
-                    res = res[system.targets]
-            except (ValueError, np.linalg.LinAlgError, linalg.LinAlgError, FloatingPointError):
-                res = np.full(size, 1e3)
-            if not np.all(np.isfinite(res)):
-                res = np.full(size, 1e3)
-            return res
-
+        fun = _Evaluations(assemble, guess.size)
+        x, jac, fast = _secant_newton(fun, guess, jacobian if k == 0 else None, tol, accept)
+        if fast and (valid is None or valid(x)):
+            system, phi, res = fun.full(x)
+            total += fun.count
+            history.append(f"guess {np.round(guess, 4).tolist()}: |r|="
+                           f"{float(np.max(np.abs(res))):.1e} in {fun.count} evaluations "
+                           "(secant Newton)")
+            best = RootResult(x, phi, res, True, fun.count, "secant Newton converged",
+                              system=system, jacobian=jac)
+            break
         sol = optimize.root(fun, guess, method="hybr", tol=tol, options={"maxfev": maxfev})
-        try:
-            phi, res = assemble(sol.x).solve()
-        except (ValueError, np.linalg.LinAlgError):
-            phi, res = np.array([]), np.full(guess.size, np.inf)
-        total += int(sol.nfev)
+        system, phi, res = fun.full(sol.x)
+        total += fun.count
         norm = float(np.max(np.abs(res))) if res.size else np.inf
         ok = valid is None or valid(sol.x)
         note = "" if ok else ", rejected"
         history.append(
-            f"guess {np.round(guess, 4).tolist()}: |r|={norm:.1e} in {sol.nfev} evaluations{note}"
+            f"guess {np.round(guess, 4).tolist()}: |r|={norm:.1e} in {fun.count} "
+            f"evaluations{note}"
         )
-        result = RootResult(sol.x, phi, res, bool(norm <= accept and ok), int(sol.nfev),
-                            str(sol.message))
+        result = RootResult(sol.x, phi, res, bool(norm <= accept and ok), fun.count,
+                            str(sol.message), system=system)
         rank = (not ok, norm)
         if best is None or rank < best_rank:
             best, best_rank = result, rank
