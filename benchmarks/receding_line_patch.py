@@ -26,17 +26,17 @@ def timed(fn, *args, **kwargs):
 
 
 def main() -> None:
-    solve_line(0.5, 64)  # warm the caches of the quadrature rules
+    solve_line(0.5, 64, 3.5, 5.0)  # warm the caches of the quadrature rules
     print("line load, N = 500, lambda = 3.5, e = 5")
     for f in (0.5, 0.3, 0.8):
-        sol, wall, cpu = timed(solve_line, f, 500)
+        sol, wall, cpu = timed(solve_line, f, 500, 3.5, 5.0)
         print(f"  cold f={f:<4} converged={sol.converged!s:<5} a={sol.a:.5f} b={sol.b:.5f} "
               f"K_T={sol.K_T:.5f} solves={sol.nfev:<3} wall {wall:6.3f} s cpu {cpu:6.3f} s")
-    seed = solve_line(0.5, 500)
-    sol, wall, cpu = timed(solve_line, 0.52, 500, guess=(seed.a, seed.b))
+    seed = solve_line(0.5, 500, 3.5, 5.0)
+    sol, wall, cpu = timed(solve_line, 0.52, 500, 3.5, 5.0, guess=(seed.a, seed.b))
     print(f"  warm f=0.52 (seeded by f=0.5) solves={sol.nfev} wall {wall:6.3f} s "
           f"cpu {cpu:6.3f} s")
-    sol, wall, cpu = timed(solve_line, 0.0, 500)
+    sol, wall, cpu = timed(solve_line, 0.0, 500, 3.5, 5.0)
     print(f"  frictionless f=0: b={sol.b:.5f} K_T={sol.K_T:.5f} wall {wall:6.3f} s")
 
     print("patches, N = 100, w/c = 1, f = 0.3")
@@ -63,7 +63,7 @@ def main() -> None:
     print("sweep: uniform patch, f = 0.3, w/c = 0.5 ... 20 (continuation in w)")
     from contactlab.receding.liftoff_sweep import sweep_patch
 
-    ds, wall, cpu = timed(sweep_patch, "uniform", [0.3], [0.5, 1, 2, 5, 10, 20], 100)
+    ds, wall, cpu = timed(sweep_patch, "uniform", [0.3], [0.5, 1, 2, 5, 10, 20], 100, 2.0, 5.0)
     print(f"  {int(ds['converged'].sum())}/{ds['converged'].size} converged, wall {wall:6.2f} s"
           f" cpu {cpu:6.2f} s, per point {wall / ds['converged'].size:5.2f} s")
 

@@ -10,10 +10,12 @@ from contactlab.receding.liftoff import CHECK_TOL, LiftoffSolution, critical_fri
 from contactlab.receding.line import solve_line
 from contactlab.receding.loading import make_load
 
+LAM, E = 3.5, 5.0  # map scale and end of the cubic of A_y, thesis sec. 6.4
+
 
 @pytest.fixture(scope="module")
 def sol() -> LiftoffSolution:
-    return solve_line(0.5, 100)
+    return solve_line(0.5, 100, LAM, E)
 
 
 def test_solution_and_contact_conditions(sol: LiftoffSolution) -> None:
@@ -70,13 +72,13 @@ def test_convergence_in_n_and_lambda() -> None:
     """a converges to 1e-4; b and K_T to ~1e-3 in N and ~3e-3 in lambda (the one-point
     condition B_yc(e) = 0 makes K_T depend slightly on where the nodes fall; lambda = 4
     is the worst of 2.5-4.5: b 0.007 low, K_T 0.004 high)."""
-    runs = {n: solve_line(0.5, n) for n in (64, 128, 256)}
+    runs = {n: solve_line(0.5, n, LAM, E) for n in (64, 128, 256)}
     for key, tol in (("a", 2e-4), ("b", 2e-3), ("K_T", 2e-3)):
         values = [getattr(runs[n], key) for n in (64, 128, 256)]
         assert abs(values[2] - values[1]) < tol and abs(values[1] - values[0]) < 2 * tol
     fine = runs[256]
     for lam in (3.0, 4.5):
-        other = solve_line(0.5, 256, lam=lam, guess=(fine.a, fine.b))
+        other = solve_line(0.5, 256, lam, E, guess=(fine.a, fine.b))
         assert other.converged
         assert other.a == pytest.approx(fine.a, abs=2e-4)
         assert other.b == pytest.approx(fine.b, abs=3e-3)
@@ -97,7 +99,7 @@ def test_zones_independent_of_load() -> None:
 def test_chaise_model_separation_tends_to_a_constant(sol: LiftoffSolution) -> None:
     from contactlab.receding.chaise import solve_chaise
 
-    chaise = solve_chaise(0.5, 100)
+    chaise = solve_chaise(0.5, 100, LAM, E)
     assert chaise.converged and chaise.b > sol.b
     g = chaise.separation(np.array([30.0, 60.0]))
     assert abs(g[1] - g[0]) < 0.05 * abs(g[0])
@@ -106,7 +108,7 @@ def test_chaise_model_separation_tends_to_a_constant(sol: LiftoffSolution) -> No
 
 
 def test_frictionless_limit() -> None:
-    zero = solve_line(0.0, 100)
+    zero = solve_line(0.0, 100, LAM, E)
     assert zero.converged and zero.regime == "frictionless"
     assert zero.b == pytest.approx(1.3243, abs=5e-4)
     assert zero.K_T == pytest.approx(0.2210, abs=5e-4)
@@ -119,7 +121,7 @@ def test_frictionless_limit() -> None:
 def test_critical_friction_and_no_stick_regime() -> None:
     crit = critical_friction(make_load("line"), 64, 3.5, 3.5, 5.0)
     assert crit["converged"] and 0.07 < crit["f_critical"] < 0.1
-    below = solve_line(0.5 * crit["f_critical"], 64)
+    below = solve_line(0.5 * crit["f_critical"], 64, LAM, E)
     assert not below.converged and below.regime == "no_stick" and np.isnan(below.a)
     with pytest.raises(ValueError, match="f must be >= 0"):
-        solve_line(-0.1, 64)
+        solve_line(-0.1, 64, LAM, E)

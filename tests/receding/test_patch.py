@@ -10,6 +10,8 @@ from contactlab.receding.liftoff import CHECK_TOL, solve_liftoff
 from contactlab.receding.loading import make_load
 from contactlab.receding.patch import slope_normalisations, solve_patch
 
+THESIS = (100, 2.0, 5.0)  # N, lambda_b, (e - w)/c of sec. 7.4
+
 
 @pytest.mark.parametrize("law", ["uniform", "hertz", "punch"])
 def test_three_laws(law: str) -> None:
@@ -70,18 +72,21 @@ def test_config_pressure_table_is_swept_like_a_named_law() -> None:
     """A user's shape given as a table in units of w reproduces the named laws it equals."""
     from contactlab.receding.liftoff_sweep import sweep_patch
 
-    uniform = sweep_patch("uniform", [0.3], [1.0, 2.5])
-    table = sweep_patch("table", [0.3], [1.0, 2.5], shape={"x": [0, 1], "p": [1, 1]})
+    uniform = sweep_patch("uniform", [0.3], [1.0, 2.5], *THESIS)
+    table = sweep_patch("table", [0.3], [1.0, 2.5], *THESIS, shape={"x": [0, 1], "p": [1, 1]})
     for name in ("a", "b", "K_T"):
         np.testing.assert_allclose(table[name].values, uniform[name].values, rtol=1e-9)
     xs = np.linspace(0.0, 1.0, 201)
-    hertz = sweep_patch("hertz", [0.3], [1.0])
-    shaped = sweep_patch("table", [0.3], [1.0], shape={"x": xs, "p": np.sqrt(1 - xs**2)})
+    hertz = sweep_patch("hertz", [0.3], [1.0], *THESIS)
+    shaped = sweep_patch("table", [0.3], [1.0], *THESIS,
+                         shape={"x": xs, "p": np.sqrt(1 - xs**2)})
     for name in ("a", "b", "K_T"):  # piecewise-linear sampling of the sqrt shape
         np.testing.assert_allclose(shaped[name].values, hertz[name].values, atol=5e-4)
     with pytest.raises(ValueError, match="pressure shape is needed"):
-        sweep_patch("table", [0.3], [1.0])
+        sweep_patch("table", [0.3], [1.0], *THESIS)
     with pytest.raises(ValueError, match="compressive"):
-        sweep_patch("table", [0.3], [1.0], shape={"x": [0, 0.5, 1], "p": [1, -0.5, 0]})
+        sweep_patch("table", [0.3], [1.0], *THESIS,
+                    shape={"x": [0, 0.5, 1], "p": [1, -0.5, 0]})
     with pytest.raises(ValueError, match="not symmetric"):
-        sweep_patch("table", [0.3], [1.0], shape={"x": [-1, 0, 0.5], "p": [0, 1, 0.5]})
+        sweep_patch("table", [0.3], [1.0], *THESIS,
+                    shape={"x": [-1, 0, 0.5], "p": [0, 1, 0.5]})

@@ -17,7 +17,7 @@ from contactlab.receding.liftoff import LiftoffSolution
 from contactlab.receding.line import solve_line
 
 
-def solve_chaise(f: float = 0.5, n: int = 500, lam: float = 3.5,
+def solve_chaise(f: float, n: int, lam: float, e: float,
                  guess: tuple[float, float] | None = None) -> LiftoffSolution:
     """The Chaise et al. model of the line load at friction f (tractions in P/c)."""
-    return solve_line(f, n, lam, guess=guess, preformed=False)
+    return solve_line(f, n, lam, e, guess=guess, preformed=False)

@@ -107,8 +107,7 @@ def check_f(f_values) -> np.ndarray:
     return f_values
 
 
-def sweep_line(f_values, n: int = 500, lam: float = 3.5, e: float = 5.0,
-               chaise: bool = True) -> xr.Dataset:
+def sweep_line(f_values, n: int, lam: float, e: float, chaise: bool) -> xr.Dataset:
     """The line load (ch. 6) at every f (dim f), and the Chaise et al. model (suffix
     ``_chaise``) for Figs 6.3, 6.5, 6.6."""
     f_values = check_f(f_values)
@@ -136,8 +135,8 @@ def sweep_line(f_values, n: int = 500, lam: float = 3.5, e: float = 5.0,
     return ds
 
 
-def sweep_patch(law: str, f_values, w_values, n: int = 100, lam_b: float = 2.0,
-                e_extra: float = 5.0, shape: dict | None = None) -> xr.Dataset:
+def sweep_patch(law: str, f_values, w_values, n: int, lam_b: float, e_extra: float,
+                shape: dict | None = None) -> xr.Dataset:
     """A pressure patch over (f, w_hat), with the thesis's lambda_a(w) (sec. 7.4).
 
     ``law="table"`` takes ``shape = {"x": [...], "p": [...]}``: a pressure shape with x

@@ -40,7 +40,7 @@ def line_guess(f: float) -> tuple[float, float]:
     return float(np.exp(np.interp(f, fs, np.log(a_s)))), float(np.interp(f, fs, b_s))
 
 
-def solve_line(f: float = 0.5, n: int = 500, lam: float = 3.5, e: float = 5.0,
+def solve_line(f: float, n: int, lam: float, e: float,
                guess: tuple[float, float] | None = None, preformed: bool = True,
                ) -> LiftoffSolution:
     """Line load at friction f (see module docstring); ``preformed=False`` is the
