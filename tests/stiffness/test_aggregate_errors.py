@@ -36,14 +36,15 @@ def test_pressure_conventions() -> None:
 
 
 def test_normal_load_margin_sec_2_5_2() -> None:
-    model = E.ErrorModel(piston_area_cm2=6.5, pressure_uncertainty_MPa=0.1)
+    model = E.ErrorModel(piston_area_cm2=6.5, pressure_uncertainty_MPa=0.1,
+                         tangential_pressure="divide")
     # 6.5 kN -> pn = 10 MPa: dP/P = sqrt(0.01^2 + 0.01^2) normal, sqrt(0.01^2 + 0.02^2) tangential
     assert E.normal_load_margin(6.5, model) == pytest.approx(6.5 * np.sqrt(2) * 0.01)
     assert E.normal_load_margin(-6.5, model, tangential=True) == pytest.approx(
         6.5 * np.hypot(0.01, 0.02))
     # thesis values: "within 5% (for loads above 2 kN)" (sec. 2.5.2) holds for pn = Pn/A;
     # with the pressure the published f margins imply (Pn A / 10) it would be 11%
-    thesis = E.ErrorModel()
+    thesis = E.ErrorModel(tangential_pressure="divide")
     assert E.normal_load_margin(2.0, thesis) / 2.0 < 0.05
     published = E.ErrorModel(tangential_pressure="multiply")
     assert E.normal_load_margin(2.0, published, tangential=True) / 2.0 > 0.1
@@ -51,7 +52,8 @@ def test_normal_load_margin_sec_2_5_2() -> None:
 
 
 def test_kn_margin_eq_2_8() -> None:
-    model = E.ErrorModel(piston_area_cm2=6.5, pressure_uncertainty_MPa=0.1)
+    model = E.ErrorModel(piston_area_cm2=6.5, pressure_uncertainty_MPa=0.1,
+                         tangential_pressure="divide")
     kn, dkn = E.kn_margin(0.5, 0.03, 0.5, 0.0, 6.5, model)
     assert kn == pytest.approx(0.5 * 6.0)
     dp = 6.5 * np.sqrt(2) * 0.01
@@ -77,7 +79,8 @@ def test_kt0_margin_eq_2_9() -> None:
 
 
 def test_friction_margin_eq_2_10_adds_one_percent_to_qs() -> None:
-    model = E.ErrorModel(piston_area_cm2=6.5, pressure_uncertainty_MPa=0.1)
+    model = E.ErrorModel(piston_area_cm2=6.5, pressure_uncertainty_MPa=0.1,
+                         tangential_pressure="divide")
     f, df = E.friction_margin(-2.0, 0.18, 6.5, model)
     assert f == pytest.approx(2.0 / 6.5)
     assert df == pytest.approx(f * np.hypot(0.09 + 0.01, np.hypot(0.01, 0.02)))
@@ -91,11 +94,11 @@ def test_coupling_margin_division_rule() -> None:
 
 def test_student_t_margin_sec_2_5_4() -> None:
     values = np.array([1.0, 2.0, 3.0, 4.0, 5.0])
-    mean, moe, n = E.student_t_margin(values)
+    mean, moe, n = E.student_t_margin(values, 0.95)
     assert (mean, n) == (3.0, 5)
     assert moe == pytest.approx(stats.t.ppf(0.975, 4) * np.sqrt(2.5) / np.sqrt(5))
     assert moe == pytest.approx(1.9632, abs=1e-4)
-    m1, d1, n1 = E.student_t_margin([2.0, np.nan])
+    m1, d1, n1 = E.student_t_margin([2.0, np.nan], 0.95)
     assert (m1, n1) == (2.0, 1) and np.isnan(d1)
 
 

@@ -23,6 +23,7 @@ from contactlab.report.stiffness_raw import recovery_table, summary_within_margi
 from contactlab.stiffness import demo
 from contactlab.stiffness.compare import THESIS_DISCREPANCIES
 from contactlab.stiffness.demo import DEMO_TESTS, generate_test, write_demo
+from contactlab.stiffness.errors import ErrorModel
 from contactlab.stiffness.process import load_inputs, process_test
 from contactlab.stiffness.raw_summary import summarize_raw
 
@@ -36,7 +37,9 @@ def raw_run(tmp_path_factory: pytest.TempPathFactory, repo: Path) -> dict[str, o
         designs.append(pd.read_csv(paths["design"], comment="#"))
         frames, rows, sources = load_inputs(paths["load_log"], paths["fields"])
         ds = process_test(test, frames, rows, max_normal_load_kN=NORMAL_LOAD_KN[test],
-                          nominal_area_mm2=20.0, sources=sources)
+                          nominal_area_mm2=20.0, grid_points=41,
+                          error_model=ErrorModel(tangential_pressure="divide"),
+                          confidence=0.95, sources=sources)
         results.append(write_netcdf(ds, root / f"{test}.nc"))
     tables = summarize_raw(results, repo / "config" / "tests.csv", root / "summary.nc",
                            tables_dir=root / "tables")

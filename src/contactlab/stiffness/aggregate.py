@@ -333,7 +333,7 @@ def beta_n_seq(normal: pd.DataFrame, seq: Mapping[str, float] | pd.Series | pd.D
 
 
 def mean_row_statistics(values: np.ndarray | list[float],
-                        confidence: float = 0.95) -> dict[str, float]:
+                        confidence: float) -> dict[str, float]:
     """Mean-row Kt0/An of one step from its per-row values (sec. 2.5.4, Tables A.4, ...).
 
     Returns Kt0_An_mean_row, its Student-t margin Kt0_An_mean_row_moe, the row extremes
@@ -350,8 +350,8 @@ def mean_row_statistics(values: np.ndarray | list[float],
     }
 
 
-def mean_row_summary(mean_row: pd.DataFrame, quantities: pd.DataFrame | None = None,
-                     confidence: float = 0.95) -> pd.DataFrame:
+def mean_row_summary(mean_row: pd.DataFrame, confidence: float,
+                     quantities: pd.DataFrame | None = None) -> pd.DataFrame:
     """Mean-row Kt0/An per step beside the fit Kt0/An, with the 95% limits (sec. 2.5.4).
 
     Adds ``Kt0_An_mean_row_lower``/``_upper`` (mean -/+ margin) and, with ``quantities``

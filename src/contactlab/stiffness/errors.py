@@ -89,7 +89,7 @@ __all__ = [
 
 @dataclass(frozen=True)
 class ErrorModel:
-    """Settings of the sec. 2.5 error model (thesis values by default).
+    """Settings of the sec. 2.5 error model (defaults: the config schema's, stiffness.errors).
 
     ``tangential_pressure`` is how the gauge reading pn used in the tangential-step load
     error is obtained from Pn: ``"divide"`` ``pn = Pn/A`` (the text of sec. 2.5.2) or
@@ -101,7 +101,7 @@ class ErrorModel:
     piston_area_rel_uncertainty: float = 0.01
     tangential_pressure_rel_extra: float = 0.01
     qs_rel_extra: float = 0.01
-    tangential_pressure: Literal["divide", "multiply"] = "divide"
+    tangential_pressure: Literal["divide", "multiply"] = "multiply"
 
     def __post_init__(self) -> None:
         if self.piston_area_cm2 <= 0:
@@ -249,7 +249,7 @@ def coupling_margin(kt0: ArrayLike, kt0_moe: ArrayLike, kn: ArrayLike,
     return cc, product_margin(cc, (kt0, kt0_moe), (kn, kn_moe))
 
 
-def student_t_margin(values: ArrayLike, confidence: float = 0.95) -> tuple[float, float, int]:
+def student_t_margin(values: ArrayLike, confidence: float) -> tuple[float, float, int]:
     """Mean, two-sided Student-t margin ``t(1-(1-c)/2, n-1) s/sqrt(n)`` and n (sec. 2.5.4).
 
     NaN values are dropped; s is the sample standard deviation (ddof = 1).

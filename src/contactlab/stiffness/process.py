@@ -83,14 +83,16 @@ def _attrs(long_name: str, units: str, **extra: object) -> dict[str, object]:
 
 def process_test(test: str, frames: pd.DataFrame, rows: xr.Dataset | None, *,
                  max_normal_load_kN: float, nominal_area_mm2: float,
-                 grid_points: int = 41, error_model: ErrorModel | None = None,
+                 grid_points: int, error_model: ErrorModel, confidence: float,
                  sources: dict[str, str] | None = None) -> xr.Dataset:
     """Fit every step of one test and build its CF-style result dataset.
+
+    ``confidence`` is that of the Student-t limits of the mean-row Kt0/An (sec. 2.5.4).
 
     Raises ValueError naming the test and step when a step has too few frames; a fit
     that does not converge is kept with ``converged = 0`` and its reason in ``fit_message``.
     """
-    em = error_model or ErrorModel()
+    em = error_model
     key = frames["kind"] + "/" + frames["direction"] + "/" + frames["step"].astype(str)
     order = list(dict.fromkeys(key))
     n_steps = len(order)
@@ -163,7 +165,7 @@ def process_test(test: str, frames: pd.DataFrame, rows: xr.Dataset | None, *,
             positive = bool(pars[i, 1] > 0) if np.isfinite(pars[i, 1]) else None
             _, b_r, c_r, _ = varpro_fit(xr_rows, yr, positive=positive)
             k0_rows[i, :n_rows] = -b_r * c_r * _PER_UM / area
-            stats = mean_row_statistics(k0_rows[i, :n_rows])
+            stats = mean_row_statistics(k0_rows[i, :n_rows], confidence)
             row_stats[i] = [stats["Kt0_An_mean_row"], stats["Kt0_An_mean_row_moe"],
                             stats["Kt0_An_row_max"], stats["Kt0_An_row_min"]]
 
@@ -232,8 +234,9 @@ def process_test(test: str, frames: pd.DataFrame, rows: xr.Dataset | None, *,
             "Kt0_An_mean_row": ("step", row_stats[:, 0],
                                 _attrs("mean-row Kt0/An (sec. 2.5.4)", "kN/mm3")),
             "Kt0_An_mean_row_moe": ("step", row_stats[:, 1],
-                                    _attrs("95% Student-t margin of the mean-row Kt0/An",
-                                           "kN/mm3")),
+                                    _attrs(f"{confidence * 100:g}% Student-t margin of the "
+                                           "mean-row Kt0/An", "kN/mm3",
+                                           confidence=confidence)),
             "Kt0_An_row_max": ("step", row_stats[:, 2],
                                _attrs("largest per-row Kt0/An", "kN/mm3")),
             "Kt0_An_row_min": ("step", row_stats[:, 3],
