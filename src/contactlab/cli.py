@@ -2,7 +2,9 @@
 
 Each branch module exposes ``register(subparsers)``; listing it in
 :data:`COMMAND_MODULES` adds its commands. Snakemake rules call these commands,
-so a user can run any step by hand with the same code.
+so a user can run any step by hand with the same code. Building the parser imports
+only the standard library (see :mod:`contactlab.cliutil`); each command imports the
+science it needs when it runs.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ import sys
 from collections.abc import Sequence
 
 from contactlab import __version__
+from contactlab.cliutil import Parser
 
 COMMAND_MODULES: tuple[str, ...] = (
     "contactlab.surfaces.cli",
@@ -23,15 +26,24 @@ COMMAND_MODULES: tuple[str, ...] = (
     "contactlab.report.cli",
 )
 
+DESCRIPTION = ("Contact mechanics of rough interfaces and receding contacts: one command "
+               "GROUP per branch of the workflow; the Snakemake rules call these commands.")
+EPILOG = """\
+Every GROUP and COMMAND has its own --help with a description, the options with their
+units and defaults, and examples, e.g. `contactlab receding --help`.
+Units are the thesis's: kN, um, mm, mm^2, kN/mm^3, 1/um; Part III lengths in units of
+the layer thickness c.
+"""
+
 #: Errors that mean bad input, reported as one line without a traceback.
 USER_ERRORS = (ValueError, KeyError, FileNotFoundError, OSError)
 
 
 def build_parser() -> argparse.ArgumentParser:
     """The top-level parser with every branch's sub-commands."""
-    parser = argparse.ArgumentParser(prog="contactlab", description=__doc__.splitlines()[0])
+    parser = Parser(prog="contactlab", description=DESCRIPTION, epilog=EPILOG)
     parser.add_argument("--version", action="version", version=f"contactlab {__version__}")
-    subparsers = parser.add_subparsers(dest="command", required=True)
+    subparsers = parser.add_subparsers(dest="command", required=True, metavar="GROUP")
     for name in COMMAND_MODULES:
         importlib.import_module(name).register(subparsers)
     return parser

@@ -6,6 +6,16 @@ import xarray as xr
 
 from contactlab.cli import main
 
+# the options the rules take from config/config.yaml (asperity section), at small sizes
+BEM = ["--f", "1", "--nu", "0.3", "--q-points", "11"]
+SINGLE = ["--nu", "0.3", "--q-points", "11", "--youngs-modulus", "2e6", "--sphere-radius",
+          "100", "--approach-fig-3-6", "0.01", "--approach-fig-3-8", "0.015",
+          "--yield-stress", "5000", "4000", "--shear-limit-stress", "4000", "5000"]
+MULTI = ["--m", "10", "--pt-over-pm", "10", "--s-max", "2", "--points", "11"]
+GRID = ["--pt-over-pd", "0.00125", "0.025", "--load-min", "1e-5", "--load-max", "0.05",
+        "--load-points", "4", "--area-min", "0.01", "--area-points", "4"]
+TRANSVERSE = ["--f", "1", "--tau-max", "0.86", "--nu", "0.3", "--tol", "1e-6"]
+
 
 def _run(argv, capsys):
     code = main(argv)
@@ -13,13 +23,13 @@ def _run(argv, capsys):
 
 
 @pytest.mark.parametrize("argv, message", [
-    (["grid", "--N", "1", "4"], "odd"),
-    (["grid", "--N", "3", "--pt-over-pd", "-0.01"], "positive"),
-    (["multi", "--laws", "uniform", "--pt-over-pm", "0.5"], "Pt/Pm"),
-    (["multi", "--tables", '{"t": {"P_over_Pm": [-1, 1], "n": [1, 1]}}'], "(0, 1]"),
-    (["bem", "--law", "shear_limit", "--tau-max", "0", "--cells", "8"], "tau_max"),
-    (["bem", "--law", "combined", "--tau-max", "-0.5", "--cells", "8"], "tau_max"),
-    (["grid-bem", "--N", "2", "--area-ratio", "0.2"], "odd"),
+    (["grid", *GRID, "--N", "1", "4"], "odd"),
+    (["grid", *GRID, "--N", "3", "--pt-over-pd", "-0.01"], "positive"),
+    (["multi", *MULTI, "--laws", "uniform", "--pt-over-pm", "0.5"], "Pt/Pm"),
+    (["multi", *MULTI, "--tables", '{"t": {"P_over_Pm": [-1, 1], "n": [1, 1]}}'], "(0, 1]"),
+    (["bem", *BEM, "--law", "shear_limit", "--tau-max", "0", "--cells", "8"], "tau_max"),
+    (["bem", *BEM, "--law", "combined", "--tau-max", "-0.5", "--cells", "8"], "tau_max"),
+    (["grid-bem", "--N", "2", "--area-ratio", "0.2", "--cells-per-spacing", "8"], "odd"),
 ])
 def test_bad_parameters_exit_2(tmp_path, capsys, argv, message):
     code, err = _run(["asperity", *argv, "--out", str(tmp_path / "x.nc")], capsys)
@@ -40,23 +50,21 @@ def _check_cf(path):
 def test_small_study_end_to_end(tmp_path, capsys):
     out = tmp_path
     for law, extra in (("coulomb", []), ("shear_limit", ["--tau-max", "0.86", "0.57"])):
-        assert main(["asperity", "bem", "--law", law, *extra, "--cells", "12",
-                     "--q-points", "11", "--out", str(out / f"{law}.nc")]) == 0
+        assert main(["asperity", "bem", "--law", law, *extra, "--cells", "12", *BEM,
+                     "--out", str(out / f"{law}.nc")]) == 0
     assert main(["asperity", "single", "--bem", str(out / "coulomb.nc"),
-                 str(out / "shear_limit.nc"), "--q-points", "11",
-                 "--out", str(out / "single.nc")]) == 0
+                 str(out / "shear_limit.nc"), *SINGLE, "--out", str(out / "single.nc")]) == 0
     ds = _check_cf(out / "single.nc")
     assert ds["displacement_ratio"].dims == ("law", "Q_ratio")
     assert {"stuck", "coulomb", "bem_coulomb", "bem_shear_limit_0.86"} <= set(
         ds["law"].values.tolist())
     assert ds["Q_ratio"].values[0] == 0 and ds["Q_ratio"].values[-1] == 1
-    assert main(["asperity", "multi", "--laws", "uniform", "--m", "10", "--pt-over-pm", "10",
-                 "--points", "11", "--out", str(out / "multi.nc")]) == 0
+    assert main(["asperity", "multi", "--laws", "uniform", *MULTI,
+                 "--out", str(out / "multi.nc")]) == 0
     ds = _check_cf(out / "multi.nc")
     assert ds["Q_ratio"].dims == ("law", "scaled_displacement")
     assert float(ds["S_n"].sel(law="single_asperity")) == 1.0
-    assert main(["asperity", "grid", "--N", "1", "3", "--load-points", "4", "--area-points", "4",
-                 "--out", str(out / "grid.nc")]) == 0
+    assert main(["asperity", "grid", "--N", "1", "3", *GRID, "--out", str(out / "grid.nc")]) == 0
     ds = _check_cf(out / "grid.nc")
     assert ds["u_cen_over_u_r"].dims == ("N", "Pt_over_Pd")
     assert np.allclose(ds["stiffness_fixed"], ds["stiffness_expanding"], rtol=1e-12)
@@ -68,8 +76,8 @@ def test_small_study_end_to_end(tmp_path, capsys):
                  "--out", str(out / "grid_bem.nc")]) == 0
     ds = _check_cf(out / "grid_bem.nc")
     assert ds["N"].values.tolist() == [1, 3]
-    assert main(["asperity", "transverse", "--fractions", "0.5", "--cells", "8",
-                 "--tol", "1e-6", "--out", str(out / "tr.nc")]) == 0
+    assert main(["asperity", "transverse", "--fractions", "0.5", "--cells", "8", *TRANSVERSE,
+                 "--out", str(out / "tr.nc")]) == 0
     _check_cf(out / "tr.nc")
     rep = out / "report"
     assert main(["asperity", "report", "single", str(out / "single.nc"), str(out / "tr.nc"),

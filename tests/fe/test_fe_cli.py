@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 import xarray as xr
 
 from contactlab.cli import main
@@ -14,7 +15,8 @@ def test_receding_compare_convergence_report(tmp_path: Path) -> None:
     run = tmp_path / "runs" / "uniform_coarse.nc"
     assert main(["fe", "receding", "--problem", "uniform", "--f", "0.3", "--w-hat", "2.5",
                  "--h", "0.1", "--length", "12.5", "--depth", "25", "--x-fine", "6",
-                 "--edges", "encastre", "--young", "20000", "--level", "coarse",
+                 "--edges", "encastre", "--young", "20000", "--increments", "1",
+                 "--level", "coarse",
                  "--out", str(run)]) == 0
     with xr.open_dataset(run) as ds:
         assert ds["N"].attrs["units"] == "1" and ds.attrs["problem"] == "uniform"
@@ -43,7 +45,8 @@ def test_receding_compare_convergence_report(tmp_path: Path) -> None:
 
 
 def test_bad_input_is_one_line_error(tmp_path: Path, capsys) -> None:
-    code = main(["fe", "compare", "--run", str(tmp_path / "missing.nc"),
-                 "--out", str(tmp_path / "x.nc")])
-    assert code == 2
+    with pytest.raises(SystemExit) as refused:  # while parsing the options
+        main(["fe", "compare", "--run", str(tmp_path / "missing.nc"), "--ddt-n", "20",
+              "--out", str(tmp_path / "x.nc")])
+    assert refused.value.code == 2
     assert "missing.nc" in capsys.readouterr().err

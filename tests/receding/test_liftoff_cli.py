@@ -16,44 +16,52 @@ import xarray as xr
 from contactlab.cli import main
 from contactlab.io import check_cf
 
+LINE = ["--lam", "3.5", "--e", "5"]  # config receding.line (thesis sec. 6.4)
+PATCH = ["--lam-b", "2", "--e-minus-w", "5"]  # config receding.patches (sec. 7.4)
+
 
 def test_cli_solve_json(capsys: pytest.CaptureFixture[str]) -> None:
     keys = ("problem", "f", "w_hat", "a", "b", "K_T", "converged", "residual",
             "remote_slip_error", "seconds")
     assert main(["receding", "solve", "--problem", "uniform", "--f", "0.3", "--w-hat", "2.5",
-                 "--n", "64", "--json"]) == 0
+                 "--n", "64", *PATCH, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert all(k in out for k in keys)
     assert out["problem"] == "uniform" and out["w_hat"] == 2.5 and out["converged"] is True
     assert 0 < out["a"] < out["b"] and out["K_T"] > 0
     assert main(["receding", "solve", "--problem", "line", "--f", "0.5", "--n", "64",
-                 "--json"]) == 0
+                 *LINE, "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["b"] == pytest.approx(1.80, abs=0.01) and abs(out["remote_slip_error"]) < 3e-3
-    for bad in (["--problem", "line", "--f", "-1"], ["--problem", "hertz", "--f", "0.3"],
-                ["--problem", "punch", "--f", "0.3", "--w-hat", "0"]):
-        assert main(["receding", "solve", *bad]) == 2
+    for bad in (["--problem", "line", "--f", "-1", *LINE],
+                ["--problem", "hertz", "--f", "0.3", *PATCH],
+                ["--problem", "punch", "--f", "0.3", "--w-hat", "0", *PATCH],
+                ["--problem", "line", "--f", "0.3"], ["--problem", "hertz", "--f", "0.3",
+                                                      "--w-hat", "1"]):
+        assert main(["receding", "solve", "--n", "64", *bad]) == 2
         assert "contactlab: error:" in capsys.readouterr().err
 
 
 def test_sweeps_gather_profile_report(tmp_path: Path) -> None:
     c0, c1 = tmp_path / "l0.nc", tmp_path / "l1.nc"
-    assert main(["receding", "line-sweep", "--f", "0.5", "--n", "40", "--out", str(c0)]) == 0
-    assert main(["receding", "line-sweep", "--f", "0.3", "0.0", "--n", "40",
-                 "--out", str(c1)]) == 0
+    assert main(["receding", "line-sweep", "--f", "0.5", "--n", "40", *LINE, "--chaise",
+                 "--out", str(c0)]) == 0
+    assert main(["receding", "line-sweep", "--f", "0.3", "0.0", "--n", "40", *LINE,
+                 "--chaise", "--out", str(c1)]) == 0
     line = tmp_path / "line.nc"
     assert main(["receding", "liftoff-gather", str(c0), str(c1), "--out", str(line)]) == 0
     p0 = tmp_path / "u0.nc"
     assert main(["receding", "patch-sweep", "--problem", "uniform", "--f", "0.3", "0.5",
-                 "--w-hat", "1", "2.5", "--n", "40", "--out", str(p0)]) == 0
+                 "--w-hat", "1", "2.5", "--n", "40", *PATCH, "--out", str(p0)]) == 0
     uniform = tmp_path / "uniform.nc"
     assert main(["receding", "liftoff-gather", str(p0), "--out", str(uniform)]) == 0
     prof_line = tmp_path / "line_f0.5.nc"
     assert main(["receding", "liftoff-profile", "--problem", "line", "--f", "0.3", "--n",
-                 "40", "--chaise", "--x-max", "8", "--out", str(prof_line)]) == 0
+                 "40", *LINE, "--chaise", "--x-max", "8", "--out", str(prof_line)]) == 0
     prof_patch = tmp_path / "patch.nc"
     assert main(["receding", "liftoff-profile", "--problem", "uniform", "--f", "0.3",
-                 "--w-hat", "1", "--n", "40", "--x-max", "8", "--out", str(prof_patch)]) == 0
+                 "--w-hat", "1", "--n", "40", *PATCH, "--no-chaise", "--x-max", "8",
+                 "--out", str(prof_patch)]) == 0
     with xr.open_dataset(line) as ds:
         check_cf(ds)
         assert list(ds["f"].values) == [0.0, 0.3, 0.5]

@@ -66,14 +66,15 @@ def test_cli_solve_and_errors(capsys: pytest.CaptureFixture[str], tmp_path: Path
     assert out["b"] == pytest.approx(0.4759, abs=1e-3)
     assert out["a3"] == pytest.approx(2.9841, abs=1e-3)
     assert out["residual"] < 1e-8
-    assert main(["receding", "solve", "--w-hat", "1.0", "--f", "0.3"]) == 0
+    assert main(["receding", "solve", "--w-hat", "1.0", "--f", "0.3", "--n", "100"]) == 0
     assert "slip" in capsys.readouterr().out
     for bad in (["--w-hat", "0"], ["--f", "-0.1"], ["--n", "3"]):
-        assert main([*args, *bad]) == 2
+        assert main([*args, "--n", "100", *bad]) == 2
         assert "contactlab: error:" in capsys.readouterr().err
     missing = tmp_path / "nope.nc"
-    assert main(["receding", "gap-gather", str(missing), "--out", str(tmp_path / "g.nc")]) == 2
-    assert "nope.nc" in capsys.readouterr().err
+    with pytest.raises(SystemExit) as refused:  # while parsing, before any import
+        main(["receding", "gap-gather", str(missing), "--out", str(tmp_path / "g.nc")])
+    assert refused.value.code == 2 and "nope.nc" in capsys.readouterr().err
 
 
 def test_cli_chain(tmp_path: Path) -> None:
@@ -89,7 +90,7 @@ def test_cli_chain(tmp_path: Path) -> None:
     assert main(["receding", "gap-regimes", "--sweep", str(gap), "--out", str(regimes)]) == 0
     profile = tmp_path / "p.nc"
     assert main(["receding", "gap-profile", "--w-hat", "2.5", "--f", "0.5", "--n", "20",
-                 "--out", str(profile)]) == 0
+                 "--x-max", "6", "--out", str(profile)]) == 0
     section = tmp_path / "report" / "sections" / "50_receding_gap.html"
     assert main(["receding", "report", "--sweep", str(gap), "--regimes", str(regimes),
                  "--profiles", str(profile), "--report-dir", str(tmp_path / "report"),

@@ -24,6 +24,11 @@ from contactlab.stiffness.tables import TABLE_COLUMNS, build_tables
 from contactlab.testsheet import read_test_sheet
 
 MODEL = ErrorModel(tangential_pressure="multiply")
+#: the config's settings of ``stiffness summarize-published`` (config/config.yaml)
+PUBLISHED_OPTIONS = ["--kt0-threshold", "0.5", "--piston-area-cm2", "6.5",
+                     "--pressure-uncertainty-MPa", "0.135", "--piston-area-rel-uncertainty",
+                     "0.01", "--tangential-pressure-rel-extra", "0.01", "--qs-rel-extra",
+                     "0.01", "--tangential-pressure", "multiply"]
 
 
 @pytest.fixture(scope="module")
@@ -110,7 +115,7 @@ def test_bad_input_names_the_problem(sheet) -> None:
 
 
 def test_mean_row_statistics_on_simple_numbers() -> None:
-    stats = mean_row_statistics([10.0, 12.0, 14.0, np.nan])
+    stats = mean_row_statistics([10.0, 12.0, 14.0, np.nan], 0.95)
     assert stats["Kt0_An_mean_row"] == pytest.approx(12.0)
     assert stats["Kt0_An_mean_row_moe"] == pytest.approx(4.302653 * 2.0 / np.sqrt(3), rel=1e-6)
     assert (stats["Kt0_An_row_max"], stats["Kt0_An_row_min"], stats["n_rows"]) == (14.0, 10.0, 3)
@@ -119,7 +124,7 @@ def test_mean_row_statistics_on_simple_numbers() -> None:
 def test_mean_row_summary_puts_fit_and_rows_side_by_side(sheet) -> None:
     inputs = published_inputs()
     q = step_quantities(inputs["steps"], sheet, MODEL)
-    out = mean_row_summary(inputs["mean_row"], q)
+    out = mean_row_summary(inputs["mean_row"], 0.95, q)
     assert len(out) == len(inputs["mean_row"])
     assert out["Kt0_An"].notna().all()
     assert (out["Kt0_An_mean_row_upper"] > out["Kt0_An_mean_row_lower"]).all()
@@ -148,16 +153,17 @@ def test_summary_dataset_is_cf(built, sheet) -> None:
 def test_cli_summarize_published(tmp_path, repo) -> None:
     out = tmp_path / "summary.nc"
     code = main(["stiffness", "summarize-published", "--tests", str(repo / "config/tests.csv"),
-                 "--out", str(out), "--tables-dir", str(tmp_path / "tables")])
+                 *PUBLISHED_OPTIONS, "--out", str(out), "--tables-dir", str(tmp_path / "tables")])
     assert code == 0
     for number in TABLE_COLUMNS:
         assert (tmp_path / "tables" / f"table_{number}_from_published_steps.csv").is_file()
     with xr.open_dataset(out) as ds:
         assert ds.attrs["tangential_pressure"] == "multiply"
         assert "Seq" not in ds  # no --seq given
-    bad = main(["stiffness", "summarize-published", "--tests", str(tmp_path / "none.csv"),
-                "--out", str(out)])
-    assert bad == 2
+    with pytest.raises(SystemExit) as bad:  # refused while parsing: no such test sheet
+        main(["stiffness", "summarize-published", "--tests", str(tmp_path / "none.csv"),
+              *PUBLISHED_OPTIONS, "--out", str(out)])
+    assert bad.value.code == 2
 
 
 def test_report_section_from_published_steps(tmp_path, repo) -> None:
@@ -166,7 +172,8 @@ def test_report_section_from_published_steps(tmp_path, repo) -> None:
                  "--out", str(seq)]) == 0
     summary, tables = tmp_path / "summary.nc", tmp_path / "report" / "tables"
     assert main(["stiffness", "summarize-published", "--tests", str(repo / "config/tests.csv"),
-                 "--seq", str(seq), "--out", str(summary), "--tables-dir", str(tables)]) == 0
+                 "--seq", str(seq), *PUBLISHED_OPTIONS, "--out", str(summary),
+                 "--tables-dir", str(tables)]) == 0
     out = tmp_path / "report" / "sections" / "20_stiffness_published.html"
     assert main(["stiffness", "report-published", "--summary", str(summary),
                  "--tables-dir", str(tables), "--report-dir", str(tmp_path / "report"),

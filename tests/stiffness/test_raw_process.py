@@ -10,8 +10,15 @@ import pytest
 
 from contactlab.cli import main
 from contactlab.io import write_netcdf
+from contactlab.stiffness.errors import ErrorModel
 from contactlab.stiffness.process import flagged_steps, process_test, step_tables
 from contactlab.stiffness.raw_summary import raw_tables
+
+#: the settings these tests were written with (the text's pressure rule, 95% limits)
+SETTINGS = {"error_model": ErrorModel(tangential_pressure="divide"), "confidence": 0.95}
+ERROR_OPTIONS = ["--piston-area-cm2", "6.5", "--pressure-uncertainty-MPa", "0.135",
+                 "--piston-area-rel-uncertainty", "0.01", "--tangential-pressure-rel-extra",
+                 "0.01", "--qs-rel-extra", "0.01", "--tangential-pressure", "divide"]
 
 
 def frames_table() -> pd.DataFrame:
@@ -35,7 +42,7 @@ def frames_table() -> pd.DataFrame:
 
 def test_result_has_fits_curves_and_flags(tmp_path: Path) -> None:
     ds = process_test("T", frames_table(), None, max_normal_load_kN=4.0,
-                      nominal_area_mm2=20.0, grid_points=11)
+                      nominal_area_mm2=20.0, grid_points=11, **SETTINGS)
     write_netcdf(ds, tmp_path / "T.nc")  # CF attributes complete
     assert ds["beta"].values[0] == pytest.approx(0.503, rel=1e-6)
     assert ds["beta"].values[1] == pytest.approx(-0.516, rel=1e-6)
@@ -51,7 +58,7 @@ def test_result_has_fits_curves_and_flags(tmp_path: Path) -> None:
 
 def test_flagged_step_stays_out_of_the_means(tmp_path: Path) -> None:
     ds = process_test("RU1", frames_table(), None, max_normal_load_kN=4.0,
-                      nominal_area_mm2=20.0)
+                      nominal_area_mm2=20.0, grid_points=41, **SETTINGS)
     write_netcdf(ds, tmp_path / "RU1.nc")
     sheet = pd.DataFrame({"id": ["RU1"], "group": ["ground"], "max_normal_load_kN": [4.0],
                           "nominal_area_mm2": [20.0]}).set_index("id", drop=False)
@@ -64,16 +71,20 @@ def test_too_few_frames_in_a_step_names_test_and_step() -> None:
     frames = frames_table()
     frames = frames[~((frames["step"] == 2) & (frames.index % 10 > 2))]
     with pytest.raises(ValueError, match=r"test T, tangential loading step 2: too few points"):
-        process_test("T", frames, None, max_normal_load_kN=4.0, nominal_area_mm2=20.0)
+        process_test("T", frames, None, max_normal_load_kN=4.0, nominal_area_mm2=20.0,
+                     grid_points=41, **SETTINGS)
 
 
 def test_command_line_reports_bad_input_in_one_line(tmp_path: Path, capsys) -> None:
     log = tmp_path / "log.csv"
     log.write_text("frame,step,kind,direction,Pn,Qt\n1,1,normal,loading,-1,0\n"
                    "1,1,normal,loading,-2,0\n")
+    fields = tmp_path / "fields.nc"
+    fields.touch()  # never read: the load log fails first
     status = main(["stiffness", "process", "--test", "T", "--load-log", str(log),
-                   "--fields", str(tmp_path / "none.nc"), "--max-normal-load-kN", "4",
-                   "--nominal-area-mm2", "20", "--out", str(tmp_path / "T.nc")])
+                   "--fields", str(fields), "--max-normal-load-kN", "4",
+                   "--nominal-area-mm2", "20", "--grid-points", "41", *ERROR_OPTIONS,
+                   "--confidence", "0.95", "--out", str(tmp_path / "T.nc")])
     assert status == 2
     err = capsys.readouterr().err.strip()
     assert err.count("\n") == 0 and "log.csv" in err and "frame 1" in err

@@ -188,7 +188,8 @@ def test_cli_refuses_a_corrupt_scan_in_one_line(tmp_path: Path) -> None:
     )
     run = subprocess.run(
         [sys.executable, "-m", "contactlab", "surfaces", "texture", "--sheet", str(sheet),
-         "--out-dir", str(tmp_path / "out"), "--max-undefined-fraction", "0.05"],
+         "--out-dir", str(tmp_path / "out"), "--max-undefined-fraction", "0.05",
+         "--bins", "80"],
         capture_output=True, text=True, check=False,
     )
     assert run.returncode == 2

@@ -5,9 +5,16 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-import xarray as xr
+from contactlab.cliutil import add_command, add_group, input_file
 
-from contactlab.io import stamp, write_netcdf
+EXAMPLES = """\
+  contactlab fe receding --problem uniform --f 0.3 --w-hat 2.5 --h 0.1 --length 12.5 \\
+      --depth 25 --x-fine 6 --edges encastre --young 20000 --increments 1 --out run.nc
+  contactlab fe compare --run run.nc --ddt-n 100 --out results/fe/uniform.nc
+  contactlab fe asperity --yield-stress 3000 --out results/fe/asperity/sy3000.nc
+Needs CalculiX `ccx` (Debian package calculix-ccx). Receding-contact lengths are in units
+of the strip thickness c; the asperity model is in mm and N/mm^2.
+"""
 
 
 def _layer_rows(h: float, rows: int | None) -> int:
@@ -19,6 +26,7 @@ def _receding(args: argparse.Namespace) -> None:
     from contactlab.fe.deck import RecedingModel
     from contactlab.fe.mesh2d import StripBlockGeometry
     from contactlab.fe.receding import run_receding
+    from contactlab.io import stamp, write_netcdf
 
     model = RecedingModel(
         problem=args.problem, w=args.w_hat, f=args.f, young=args.young, poisson=args.poisson,
@@ -39,8 +47,11 @@ def _receding(args: argparse.Namespace) -> None:
 
 
 def _compare(args: argparse.Namespace) -> None:
+    import xarray as xr
+
     from contactlab.fe.compare import agreement
     from contactlab.fe.ddt import reference
+    from contactlab.io import stamp, write_netcdf
 
     with xr.open_dataset(args.run) as fe:
         fe = fe.load()
@@ -59,7 +70,10 @@ def _compare(args: argparse.Namespace) -> None:
 
 
 def _convergence(args: argparse.Namespace) -> None:
+    import xarray as xr
+
     from contactlab.fe.compare import convergence
+    from contactlab.io import stamp, write_netcdf
 
     runs = []
     for path in args.runs:
@@ -78,6 +92,7 @@ def _convergence(args: argparse.Namespace) -> None:
 
 def _asperity(args: argparse.Namespace) -> None:
     from contactlab.fe.asperity import AsperityModel, run_asperity
+    from contactlab.io import stamp, write_netcdf
 
     model = AsperityModel(
         young=args.young, poisson=args.poisson, radius=args.radius, approach=args.approach,
@@ -97,7 +112,10 @@ def _asperity(args: argparse.Namespace) -> None:
 
 
 def _asperity_gather(args: argparse.Namespace) -> None:
+    import xarray as xr
+
     from contactlab.fe.asperity import gather
+    from contactlab.io import stamp, write_netcdf
 
     runs = []
     for path in args.runs:
@@ -122,75 +140,116 @@ def _report(args: argparse.Namespace) -> None:
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``fe`` command group."""
-    parser = subparsers.add_parser("fe", help="finite element cross-checks (CalculiX)")
-    commands = parser.add_subparsers(dest="fe_command", required=True)
+    commands = add_group(
+        subparsers, "fe", help="finite element cross-checks (CalculiX)",
+        description="Finite element cross-checks with CalculiX: plane-strain strip-on-block "
+                    "receding contacts against the distributed-dislocation solutions "
+                    "(ch. 8) and the elastic-perfectly plastic stuck asperity (sec. 3.2.2).",
+        examples=EXAMPLES)
 
-    rec = commands.add_parser("receding", help="run one plane-strain receding-contact model")
-    rec.add_argument("--problem", choices=("gap", "line", "uniform"), required=True)
+    rec = add_command(
+        commands, "receding", help="run one plane-strain receding-contact model",
+        description="Mesh (gmsh), solve (ccx) and post-process one plane-strain receding "
+                    "contact model (sec. 8.2): interface tractions, separation and slip.")
+    rec.add_argument("--problem", choices=("gap", "line", "uniform"), required=True,
+                     help="gap (Fig. 8.1), line load (Fig. 8.7) or uniform patch (Fig. 8.13)")
     rec.add_argument("--f", type=float, required=True, help="friction coefficient")
-    rec.add_argument("--w-hat", type=float, default=2.5, help="patch edge w/c (gap, uniform)")
+    rec.add_argument("--w-hat", type=float, required=True,
+                     help="patch edge w/c (gap, uniform; ignored for line)")
     rec.add_argument("--h", type=float, required=True, help="interface element size h/c")
-    rec.add_argument("--length", type=float, default=20.0, help="strip length of the half"
-                     " model over c (the full strip is twice as long)")
-    rec.add_argument("--depth", type=float, default=20.0, help="block depth over c")
-    rec.add_argument("--x-fine", type=float, default=5.0, help="end of the uniform mesh / c")
-    rec.add_argument("--edges", choices=("roller", "encastre"), default="roller")
-    rec.add_argument("--young", type=float, default=200_000.0, help="N/mm^2")
-    rec.add_argument("--poisson", type=float, default=0.3)
-    rec.add_argument("--layer-rows", type=int, default=None)
-    rec.add_argument("--growth", type=float, default=1.15)
-    rec.add_argument("--increments", type=int, default=1)
+    rec.add_argument("--length", type=float, required=True,
+                     help="strip length of the half model over c (the full strip is twice "
+                          "as long)")
+    rec.add_argument("--depth", type=float, required=True, help="block depth over c")
+    rec.add_argument("--x-fine", type=float, required=True,
+                     help="end of the uniform interface mesh over c")
+    rec.add_argument("--edges", choices=("roller", "encastre"), required=True,
+                     help="block far edge free on rollers (Fig. 8.1) or encastre")
+    rec.add_argument("--young", type=float, required=True,
+                     help="Young's modulus E, N/mm^2 (results are normalised)")
+    rec.add_argument("--poisson", type=float, default=0.3, help="Poisson's ratio")
+    rec.add_argument("--layer-rows", type=int, default=None,
+                     help="element rows through the strip (default: about 0.4 c/h, >= 8)")
+    rec.add_argument("--growth", type=float, default=1.15,
+                     help="element growth ratio away from the fine mesh")
+    rec.add_argument("--increments", type=int, required=True,
+                     help="load increments (config fe.increments)")
     rec.add_argument("--level", default="", help="name of the mesh level (metadata)")
-    rec.add_argument("--threads", type=int, default=1)
+    rec.add_argument("--threads", type=int, default=1, help="ccx threads")
     rec.add_argument("--keep", default=None, help="keep the ccx work directory here")
-    rec.add_argument("--out", type=Path, required=True)
+    rec.add_argument("--out", type=Path, required=True, help="netCDF output")
     rec.set_defaults(func=_receding)
 
-    cmp_ = commands.add_parser("compare", help="FE against the distributed-dislocation solution")
-    cmp_.add_argument("--run", type=Path, required=True, help="output of `fe receding`")
-    cmp_.add_argument("--ddt-n", type=int, default=100, help="Gauss-Chebyshev points N")
+    cmp_ = add_command(
+        commands, "compare", help="FE against the distributed-dislocation solution",
+        description="Transition points and interface profiles of an FE run beside the "
+                    "distributed-dislocation solution of the same problem, with agreement "
+                    "measures.")
+    cmp_.add_argument("--run", type=input_file, required=True, help="output of `fe receding`")
+    cmp_.add_argument("--ddt-n", type=int, required=True,
+                      help="Gauss-Chebyshev points N of the reference (config fe.ddt_n)")
     cmp_.add_argument("--ddt-file", type=Path, default=None,
                       help="receding results file to use when no solver API exists")
-    cmp_.add_argument("--out", type=Path, required=True)
+    cmp_.add_argument("--out", type=Path, required=True, help="netCDF output")
     cmp_.set_defaults(func=_compare)
 
-    conv = commands.add_parser("convergence", help="stack runs on refined meshes (sec. 8.3)")
-    conv.add_argument("runs", nargs="+", type=Path)
-    conv.add_argument("--out", type=Path, required=True)
+    conv = add_command(
+        commands, "convergence", help="stack runs on refined meshes (sec. 8.3)",
+        description="Transition points of runs of one problem on successively refined "
+                    "meshes, stacked along h (mesh convergence, sec. 8.3).")
+    conv.add_argument("runs", nargs="+", type=input_file, help="outputs of `fe receding`")
+    conv.add_argument("--out", type=Path, required=True, help="netCDF output")
     conv.set_defaults(func=_convergence)
 
-    asp = commands.add_parser("asperity", help="elastic-plastic stuck asperity (sec. 3.2.2)")
+    asp = add_command(
+        commands, "asperity", help="elastic-plastic stuck asperity (sec. 3.2.2)",
+        description="3D half model of a sphere on a block (C3D10), elastic-perfectly "
+                    "plastic, pressed and then sheared while stuck (Fig. 3.8).")
     asp.add_argument("--yield-stress", type=float, required=True,
                      help="von Mises yield stress, N/mm^2; 0 for the elastic model")
-    asp.add_argument("--young", type=float, default=2.0e6, help="N/mm^2")
-    asp.add_argument("--poisson", type=float, default=0.3)
+    asp.add_argument("--young", type=float, default=2.0e6, help="Young's modulus, N/mm^2")
+    asp.add_argument("--poisson", type=float, default=0.3, help="Poisson's ratio")
     asp.add_argument("--radius", type=float, default=100.0, help="sphere radius, mm")
     asp.add_argument("--approach", type=float, default=0.015, help="normal displacement, mm")
     asp.add_argument("--tangential", type=float, default=0.01,
                      help="tangential displacement of the top, mm")
-    asp.add_argument("--half-width", type=float, default=10.0, help="mm")
+    asp.add_argument("--half-width", type=float, default=10.0, help="model half-width, mm")
     asp.add_argument("--height", type=float, default=10.0, help="height of each body, mm")
-    asp.add_argument("--h-contact", type=float, default=0.25, help="element size at contact")
-    asp.add_argument("--h-far", type=float, default=3.0, help="element size far away")
-    asp.add_argument("--friction", type=float, default=5.0, help="f standing for stuck")
-    asp.add_argument("--normal-increments", type=int, default=4)
-    asp.add_argument("--tangential-increments", type=int, default=10)
-    asp.add_argument("--threads", type=int, default=1)
-    asp.add_argument("--keep", default=None)
-    asp.add_argument("--out", type=Path, required=True)
+    asp.add_argument("--h-contact", type=float, default=0.25,
+                     help="element size at the contact, mm")
+    asp.add_argument("--h-far", type=float, default=3.0, help="element size far away, mm")
+    asp.add_argument("--friction", type=float, default=5.0,
+                     help="friction coefficient standing for a stuck interface")
+    asp.add_argument("--normal-increments", type=int, default=4,
+                     help="increments of the normal load step")
+    asp.add_argument("--tangential-increments", type=int, default=10,
+                     help="increments of the tangential load step")
+    asp.add_argument("--threads", type=int, default=1, help="ccx threads")
+    asp.add_argument("--keep", default=None, help="keep the ccx work directory here")
+    asp.add_argument("--out", type=Path, required=True, help="netCDF output")
     asp.set_defaults(func=_asperity)
 
-    gat = commands.add_parser("asperity-gather", help="join asperity runs (Fig. 3.8)")
-    gat.add_argument("runs", nargs="+", type=Path)
-    gat.add_argument("--bem", type=Path, default=None, help="results/asperity/single.nc")
-    gat.add_argument("--out", type=Path, required=True)
+    gat = add_command(
+        commands, "asperity-gather", help="join asperity runs (Fig. 3.8)",
+        description="Delta_x/Delta_n against Q/Q_n of the asperity runs beside the elastic "
+                    "stuck, Cattaneo-Mindlin (eq. 3.5) and BEM curves (Fig. 3.8).")
+    gat.add_argument("runs", nargs="+", type=input_file, help="outputs of `fe asperity`")
+    gat.add_argument("--bem", type=input_file, default=None,
+                     help="results/asperity/single.nc (BEM curves)")
+    gat.add_argument("--out", type=Path, required=True, help="netCDF output")
     gat.set_defaults(func=_asperity_gather)
 
-    rep = commands.add_parser("report", help="the report section of the FE cross-checks")
-    rep.add_argument("--results", nargs="+", type=Path, required=True,
+    rep = add_command(
+        commands, "report", help="the report section of the FE cross-checks",
+        description="HTML report fragment: FE against DDT (Figs 8.3-8.19), agreement, "
+                    "convergence and, when given, Fig. 3.8.")
+    rep.add_argument("--results", nargs="+", type=input_file, required=True,
                      help="results/fe/{gap,line,uniform}.nc")
-    rep.add_argument("--convergence", nargs="*", type=Path, default=[])
-    rep.add_argument("--asperity", type=Path, default=None)
-    rep.add_argument("--report-dir", type=Path, default=Path("results/report"))
-    rep.add_argument("--out", type=Path, required=True)
+    rep.add_argument("--convergence", nargs="*", type=input_file, default=[],
+                     help="results/fe/convergence_<problem>.nc")
+    rep.add_argument("--asperity", type=input_file, default=None,
+                     help="results/fe/asperity_plastic.nc")
+    rep.add_argument("--report-dir", type=Path, default=Path("results/report"),
+                     help="report directory receiving tables/ and figures/")
+    rep.add_argument("--out", type=Path, required=True, help="section HTML fragment")
     rep.set_defaults(func=_report)

@@ -1,14 +1,8 @@
 """``contactlab receding ...``: the gap problem of ch. 5 from the command line.
 
-    contactlab receding solve --problem gap --f 0.5 --w-hat 2.5 --n 100 --json
-    contactlab receding gap-sweep --w-hat 1 2 --f 0.3 0.5 --n 100 --out chunk.nc
-    contactlab receding gap-gather chunk*.nc --out gap.nc
-    contactlab receding gap-regimes --sweep gap.nc --out gap_regimes.nc
-    contactlab receding gap-profile --w-hat 2.5 --f 0.5 --out profile.nc
-    contactlab receding report --sweep gap.nc --regimes gap_regimes.nc --profiles p.nc ...
-
-The solves are small dense systems: set OPENBLAS_NUM_THREADS=1 (the workflow rules do) so
-that parallel jobs do not fight over BLAS threads.
+Examples in :data:`EXAMPLES`. The solves are small dense systems: set
+OPENBLAS_NUM_THREADS=1 (the workflow rules do) so that parallel jobs do not fight over
+BLAS threads.
 """
 
 from __future__ import annotations
@@ -17,18 +11,36 @@ import argparse
 import json
 import time
 from pathlib import Path
+from typing import Any
 
-import numpy as np
-import xarray as xr
+from contactlab.cliutil import add_command, add_group, check_memory, input_file
 
-from contactlab.io import concat_chunks, stamp, write_netcdf
+EXAMPLES = """\
+  contactlab receding solve --problem gap --f 0.5 --w-hat 2.5 --n 100 --json
+  contactlab receding gap-sweep --w-hat 1 2 --f 0.3 0.5 --n 100 --out chunk.nc
+  contactlab receding gap-gather chunk*.nc --out gap.nc
+  contactlab receding gap-regimes --sweep gap.nc --out gap_regimes.nc
+  contactlab receding gap-profile --w-hat 2.5 --f 0.5 --n 100 --x-max 6 --out profile.nc
+  contactlab receding line-sweep --f 0.5 0.3 --n 500 --lam 3.5 --e 5 --chaise --out l.nc
+  contactlab receding liftoff-profile --problem uniform --f 0.3 --w-hat 1 --n 100 \\
+      --lam-b 2 --e-minus-w 5 --no-chaise --x-max 12 --out profile.nc
+Lengths are in units of the layer thickness c (w/c, x/c), tractions in units of the
+applied pressure or load; N is the number of Gauss-Chebyshev points.
+"""
 
 SOURCE = ("distributed dislocations, thesis ch. 5 (eqs 5.1-5.28, App. B.1); "
           "Gauss-Chebyshev quadrature, MINPACK root finding on the leftover equations")
 
 
-def solution_summary(sol, seconds: float, problem: str = "gap") -> dict:
+def gap_memory(n: int) -> float:
+    """Bytes the gap problem needs at N points (about 200 N^2, measured at N = 100-800)."""
+    return 200.0 * n * n
+
+
+def solution_summary(sol: Any, seconds: float, problem: str = "gap") -> dict:
     """The JSON object of ``contactlab receding solve`` (NaN -> null)."""
+    import numpy as np
+
     summary = {
         "problem": problem, "f": sol.f, "w_hat": sol.w, "N": sol.n, "regime": sol.regime,
         "a1": sol.a1, "a2": sol.a2, "a3": sol.a3, "b": sol.b,
@@ -41,8 +53,6 @@ def solution_summary(sol, seconds: float, problem: str = "gap") -> dict:
 
 
 def _solve(args: argparse.Namespace) -> None:
-    from contactlab.receding.gap import solve_gap
-
     if args.problem != "gap":
         from contactlab.receding.liftoff_cli import run_solve
 
@@ -50,8 +60,9 @@ def _solve(args: argparse.Namespace) -> None:
         return
     if args.w_hat is None:
         raise ValueError("problem gap needs --w-hat (gap half-width w/c)")
-    if args.n is None:
-        args.n = 100
+    check_memory("--n", args.n, gap_memory(args.n))
+    from contactlab.receding.gap import solve_gap
+
     start = time.perf_counter()
     sol = solve_gap(args.w_hat, args.f, args.n)
     summary = solution_summary(sol, time.perf_counter() - start, args.problem)
@@ -66,6 +77,10 @@ def _solve(args: argparse.Namespace) -> None:
 
 
 def _sweep(args: argparse.Namespace) -> None:
+    check_memory("--n", args.n, gap_memory(args.n))
+    import numpy as np
+
+    from contactlab.io import stamp, write_netcdf
     from contactlab.receding.sweep import sweep_dataset
 
     ds = sweep_dataset(np.asarray(args.w_hat), np.asarray(args.f), args.n,
@@ -78,6 +93,8 @@ def _sweep(args: argparse.Namespace) -> None:
 
 
 def _gather(args: argparse.Namespace) -> None:
+    from contactlab.io import concat_chunks, stamp, write_netcdf
+
     ds, parts = concat_chunks(args.chunks, "w_hat")
     if len({int(part.attrs.get("N", -1)) for part in parts}) != 1:
         raise ValueError(f"sweep chunks {', '.join(map(str, args.chunks))} differ in N")
@@ -88,6 +105,10 @@ def _gather(args: argparse.Namespace) -> None:
 
 
 def _regimes(args: argparse.Namespace) -> None:
+    import numpy as np
+    import xarray as xr
+
+    from contactlab.io import stamp, write_netcdf
     from contactlab.receding.gap import separation_onset
     from contactlab.receding.sweep import REGIME_ATTRS
 
@@ -112,6 +133,9 @@ def _regimes(args: argparse.Namespace) -> None:
 
 
 def _profile(args: argparse.Namespace) -> None:
+    check_memory("--n", args.n, gap_memory(args.n))
+    check_memory("--points", args.points, 8.0 * args.points * (args.n + 64))
+    from contactlab.io import stamp, write_netcdf
     from contactlab.receding.sweep import profile_dataset
 
     ds = profile_dataset(args.w_hat, args.f, args.n, args.x_max, args.points)
@@ -131,59 +155,98 @@ def _report(args: argparse.Namespace) -> None:
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``receding`` command group."""
-    parser = subparsers.add_parser("receding", help="frictional receding contacts (Part III)")
-    commands = parser.add_subparsers(dest="receding_command", required=True)
+    commands = add_group(
+        subparsers, "receding", help="frictional receding contacts (Part III)",
+        description="Frictional receding contacts of an elastic layer on a half-plane by "
+                    "distributed dislocations (thesis chs 4-7): the gap problem (ch. 5), the "
+                    "line load (ch. 6) and pressure patches (ch. 7).",
+        examples=EXAMPLES)
+    n_help = "Gauss-Chebyshev integration points N (even)"
 
-    solve = commands.add_parser("solve", help="one solution (printed, --json for JSON)")
+    solve = add_command(
+        commands, "solve", help="one solution (printed, --json for JSON)",
+        description="Solve one problem at one (f, w/c) and print the transition points, "
+                    "regime, residual and checks (--json: one JSON object).")
     solve.add_argument("--problem", choices=["gap", "line", "uniform", "hertz", "punch"],
                        default="gap",
                        help="gap: pressure on |x| >= w (ch. 5); line: line load (ch. 6); "
                             "uniform/hertz/punch: pressure patch on |x| <= w (ch. 7)")
-    solve.add_argument("--w-hat", type=float, default=None, help="w/c (not for line)")
-    solve.add_argument("--f", type=float, required=True, help="friction coefficient")
-    solve.add_argument("--n", type=int, default=None,
-                       help="integration points N (even; default 100, 500 for line)")
+    solve.add_argument("--w-hat", type=float, default=None,
+                       help="half-width w/c of the gap or patch (not for line)")
+    solve.add_argument("--f", type=float, required=True, help="friction coefficient f")
+    solve.add_argument("--n", type=int, required=True,
+                       help=n_help + " (thesis: gap and patches 100, line 500)")
+    solve.add_argument("--lam", type=float, default=None,
+                       help="line: map scale lambda (sec. 6.4; thesis 3.5)")
+    solve.add_argument("--e", type=float, default=None,
+                       help="line: end e/c of the cubic part of A_y (eq. 6.9; thesis 5)")
+    solve.add_argument("--lam-b", type=float, default=None,
+                       help="patches: map scale lambda_b (sec. 7.4; thesis 2)")
+    solve.add_argument("--e-minus-w", type=float, default=None,
+                       help="patches: (e - w)/c, end of the cubic of A_y (thesis 5)")
     solve.add_argument("--json", action="store_true", help="print one JSON object")
     solve.set_defaults(func=_solve)
 
-    sweep = commands.add_parser("gap-sweep", help="transition points over (f, w/c) at one N")
-    sweep.add_argument("--w-hat", type=float, nargs="+", required=True)
-    sweep.add_argument("--f", type=float, nargs="+", required=True)
-    sweep.add_argument("--n", type=int, default=100)
+    sweep = add_command(
+        commands, "gap-sweep", help="transition points over (f, w/c) at one N",
+        description="Transition points a1, a2, b, a3 and the regime of the gap problem on a "
+                    "grid of (f, w/c), with the thresholds f_stick and f_sep per w/c.")
+    sweep.add_argument("--w-hat", type=float, nargs="+", required=True,
+                       help="gap half-widths w/c")
+    sweep.add_argument("--f", type=float, nargs="+", required=True,
+                       help="friction coefficients f")
+    sweep.add_argument("--n", type=int, required=True, help=n_help)
     sweep.add_argument("--no-thresholds", action="store_true",
                        help="skip f_stick/f_sep per w/c")
-    sweep.add_argument("--out", type=Path, required=True)
+    sweep.add_argument("--out", type=Path, required=True, help="netCDF output (one chunk)")
     sweep.set_defaults(func=_sweep)
 
-    gather = commands.add_parser("gap-gather", help="join sweep chunks along w")
-    gather.add_argument("chunks", type=Path, nargs="+")
-    gather.add_argument("--out", type=Path, required=True)
+    gather = add_command(
+        commands, "gap-gather", help="join sweep chunks along w",
+        description="Join gap-sweep chunks (same N) along w/c into one sweep file.")
+    gather.add_argument("chunks", type=input_file, nargs="+", help="gap-sweep chunk files")
+    gather.add_argument("--out", type=Path, required=True, help="netCDF output")
     gather.set_defaults(func=_gather)
 
-    regimes = commands.add_parser("gap-regimes", help="regime map (Fig. 5.4) from a sweep")
-    regimes.add_argument("--sweep", type=Path, required=True)
-    regimes.add_argument("--out", type=Path, required=True)
+    regimes = add_command(
+        commands, "gap-regimes", help="regime map (Fig. 5.4) from a sweep",
+        description="Regime map of the gap problem (Fig. 5.4): f_stick(w), f_sep(w) and the "
+                    "w/c of separation onset, from a sweep with thresholds.")
+    regimes.add_argument("--sweep", type=input_file, required=True,
+                         help="gathered sweep (results/receding/gap.nc)")
+    regimes.add_argument("--out", type=Path, required=True, help="netCDF output")
     regimes.set_defaults(func=_regimes)
 
-    profile = commands.add_parser("gap-profile", help="tractions, densities, displacements")
-    profile.add_argument("--w-hat", type=float, required=True)
-    profile.add_argument("--f", type=float, required=True)
-    profile.add_argument("--n", type=int, default=100)
-    profile.add_argument("--x-max", type=float, default=6.0, help="profile on [-x_max, x_max]")
-    profile.add_argument("--points", type=int, default=601)
-    profile.add_argument("--out", type=Path, required=True)
+    profile = add_command(
+        commands, "gap-profile", help="tractions, densities, displacements",
+        description="Interface tractions, dislocation densities, slip and separation of the "
+                    "gap problem at one (w/c, f) (Figs 5.6-5.8).")
+    profile.add_argument("--w-hat", type=float, required=True, help="gap half-width w/c")
+    profile.add_argument("--f", type=float, required=True, help="friction coefficient f")
+    profile.add_argument("--n", type=int, required=True, help=n_help)
+    profile.add_argument("--x-max", type=float, required=True,
+                         help="profile on x/c in [-x_max, x_max] (config "
+                              "receding.gap.profile_x_max)")
+    profile.add_argument("--points", type=int, default=601, help="points of the profile")
+    profile.add_argument("--out", type=Path, required=True, help="netCDF output")
     profile.set_defaults(func=_profile)
 
     from contactlab.receding import liftoff_cli
 
     liftoff_cli.register(commands)
 
-    report = commands.add_parser("report", help="report section of the gap problem")
-    report.add_argument("--sweep", type=Path, required=True, help="gap.nc (main N)")
-    report.add_argument("--compare", type=Path, nargs="*", default=[],
+    report = add_command(
+        commands, "report", help="report section of the gap problem",
+        description="HTML report fragment of the gap problem: Figs 5.4-5.8 and tables.")
+    report.add_argument("--sweep", type=input_file, required=True,
+                        help="gathered sweep at the main N (gap.nc)")
+    report.add_argument("--compare", type=input_file, nargs="*", default=[],
                         help="sweeps at other N for Fig. 5.5")
-    report.add_argument("--regimes", type=Path, required=True)
-    report.add_argument("--profiles", type=Path, nargs="+", required=True)
-    report.add_argument("--report-dir", type=Path, default=Path("results/report"))
-    report.add_argument("--out", type=Path, required=True)
+    report.add_argument("--regimes", type=input_file, required=True,
+                        help="regime map (gap_regimes.nc)")
+    report.add_argument("--profiles", type=input_file, nargs="+", required=True,
+                        help="gap-profile files")
+    report.add_argument("--report-dir", type=Path, default=Path("results/report"),
+                        help="report directory receiving tables/ and figures/")
+    report.add_argument("--out", type=Path, required=True, help="section HTML fragment")
     report.set_defaults(func=_report)

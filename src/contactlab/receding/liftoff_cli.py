@@ -1,12 +1,18 @@
 """Command line of the lifting-off problems (chs 6-7), registered by ``receding.cli``.
 
-    contactlab receding solve --problem line --f 0.5 --n 500 --json
-    contactlab receding solve --problem hertz --f 0.3 --w-hat 1 --n 100 --json
-    contactlab receding line-sweep --f 0.5 0.3 --n 500 --out chunk.nc
-    contactlab receding patch-sweep --problem uniform --f 0.3 --w-hat 1 2 --out chunk.nc
+    contactlab receding solve --problem line --f 0.5 --n 500 --lam 3.5 --e 5 --json
+    contactlab receding solve --problem hertz --f 0.3 --w-hat 1 --n 100 --lam-b 2 \\
+        --e-minus-w 5 --json
+    contactlab receding line-sweep --f 0.5 0.3 --n 500 --lam 3.5 --e 5 --chaise --out c.nc
+    contactlab receding patch-sweep --problem uniform --f 0.3 --w-hat 1 2 --n 100 \\
+        --lam-b 2 --e-minus-w 5 --out chunk.nc
     contactlab receding liftoff-gather chunk*.nc --out results/receding/line.nc
-    contactlab receding liftoff-profile --problem line --f 0.5 --out profile.nc
+    contactlab receding liftoff-profile --problem line --f 0.5 --n 500 --lam 3.5 --e 5 \\
+        --chaise --x-max 12 --out profile.nc
     contactlab receding liftoff-report --line line.nc --patches uniform.nc ... --out s.html
+
+The science parameters (N, lambda, e, lambda_b, (e - w)/c) have no defaults here: the
+config (``receding.line``, ``receding.patches``) is their one home and the rules pass them.
 """
 
 from __future__ import annotations
@@ -16,10 +22,9 @@ import json
 import sys
 import time
 from pathlib import Path
+from typing import Any
 
-import numpy as np
-
-from contactlab.io import concat_chunks, stamp, write_netcdf
+from contactlab.cliutil import add_command, check_memory, input_file
 
 SOURCE = ("distributed dislocations with a preformed climb distribution, thesis chs 6-7 "
           "(eqs 6.3-6.32, 7.1-7.39, App. B); Gauss-Chebyshev on semi-infinite maps, "
@@ -27,22 +32,47 @@ SOURCE = ("distributed dislocations with a preformed climb distribution, thesis 
 PROBLEMS = ("line", "uniform", "hertz", "punch")
 
 
-def solve_problem(problem: str, f: float, w_hat: float | None, n: int | None,
-                  lam: float | None = None, e: float | None = None, chaise: bool = False):
-    """One solution of a named problem with the thesis defaults for what is not given."""
-    from contactlab.receding.line import solve_line
-    from contactlab.receding.patch import solve_patch
+def liftoff_memory(n: int) -> float:
+    """Bytes a line or patch solution needs at N points (about 250 N^2, measured)."""
+    return 250.0 * n * n
 
-    if problem == "line":
-        return solve_line(f, n or 500, lam or 3.5, e or 5.0, preformed=not chaise)
+
+def solve_problem(problem: str, f: float, w_hat: float | None, n: int, *,
+                  lam: float | None = None, e: float | None = None,
+                  lam_b: float | None = None, e_minus_w: float | None = None,
+                  chaise: bool = False) -> Any:
+    """One solution of a named problem; the line needs ``lam`` and ``e``, a patch
+    ``w_hat``, ``lam_b`` and ``e_minus_w`` (lambda_a follows sec. 7.4 from w)."""
     if problem not in PROBLEMS:
         raise ValueError(f"unknown problem {problem!r}; use one of {', '.join(PROBLEMS)}")
+    check_memory("--n", n, liftoff_memory(n))
+    if problem == "line":
+        if lam is None or e is None:
+            raise ValueError("problem line needs --lam and --e (config receding.line)")
+        from contactlab.receding.line import solve_line
+
+        return solve_line(f, n, lam, e, preformed=not chaise)
     if w_hat is None:
         raise ValueError(f"problem {problem} needs --w-hat (patch half-width w/c)")
-    return solve_patch(problem, f, w_hat, n or 100, lam_a=lam, e=e, preformed=not chaise)
+    if lam_b is None or e_minus_w is None:
+        raise ValueError(f"problem {problem} needs --lam-b and --e-minus-w "
+                         "(config receding.patches)")
+    from contactlab.receding.patch import solve_patch
+
+    return solve_patch(problem, f, w_hat, n, lam_b=lam_b, e=w_hat + e_minus_w,
+                       preformed=not chaise)
 
 
-def summary(sol, seconds: float) -> dict:
+def _solve_args(args: argparse.Namespace, chaise: bool = False) -> Any:
+    """:func:`solve_problem` with the command's options."""
+    return solve_problem(args.problem, args.f, args.w_hat, args.n, lam=args.lam, e=args.e,
+                         lam_b=args.lam_b, e_minus_w=args.e_minus_w, chaise=chaise)
+
+
+def summary(sol: Any, seconds: float) -> dict:
+    """The JSON object of ``contactlab receding solve`` for a line or patch (NaN -> null)."""
+    import numpy as np
+
     rel = sol.remote_slip() if (sol.converged and sol.preformed_used) else {}
     out = {
         "problem": sol.problem, "f": sol.f, "w_hat": sol.load.w, "N": sol.n,
@@ -58,8 +88,9 @@ def summary(sol, seconds: float) -> dict:
 
 
 def run_solve(args: argparse.Namespace) -> None:
+    """``receding solve`` of a line or patch problem."""
     start = time.perf_counter()
-    sol = solve_problem(args.problem, args.f, args.w_hat, args.n)
+    sol = _solve_args(args)
     out = summary(sol, time.perf_counter() - start)
     if args.json:
         print(json.dumps(out))
@@ -77,10 +108,14 @@ def _log_time(ds, start: float) -> None:
 
 
 def _line_sweep(args: argparse.Namespace) -> None:
+    check_memory("--n", args.n, liftoff_memory(args.n))
+    import numpy as np
+
+    from contactlab.io import stamp, write_netcdf
     from contactlab.receding.liftoff_sweep import sweep_line
 
     start = time.perf_counter()
-    ds = sweep_line(np.asarray(args.f), args.n, args.lam, args.e, chaise=not args.no_chaise)
+    ds = sweep_line(np.asarray(args.f), args.n, args.lam, args.e, chaise=args.chaise)
     _log_time(ds, start)
     stamp(ds, title=f"Line load on a layer (thesis ch. 6): a, b, K_T over f, N = {args.n}",
           source=SOURCE, history=f"contactlab receding line-sweep --f "
@@ -89,6 +124,10 @@ def _line_sweep(args: argparse.Namespace) -> None:
 
 
 def _patch_sweep(args: argparse.Namespace) -> None:
+    check_memory("--n", args.n, liftoff_memory(args.n))
+    import numpy as np
+
+    from contactlab.io import stamp, write_netcdf
     from contactlab.receding.liftoff_sweep import sweep_patch
 
     shape = None
@@ -111,6 +150,8 @@ def _patch_sweep(args: argparse.Namespace) -> None:
 
 
 def _gather(args: argparse.Namespace) -> None:
+    from contactlab.io import concat_chunks, stamp, write_netcdf
+
     ds, parts = concat_chunks(args.chunks, "f")
     if len({part.attrs.get("problem") for part in parts}) != 1:
         raise ValueError(f"sweep chunks {', '.join(map(str, args.chunks))} mix problems")
@@ -121,11 +162,12 @@ def _gather(args: argparse.Namespace) -> None:
 
 
 def _profile(args: argparse.Namespace) -> None:
+    check_memory("--points", args.points, 128.0 * args.points * args.n)
+    sol = _solve_args(args)
+    chaise = _solve_args(args, chaise=True) if args.chaise else None
+    from contactlab.io import stamp, write_netcdf
     from contactlab.receding.liftoff_sweep import profile_dataset
 
-    sol = solve_problem(args.problem, args.f, args.w_hat, args.n)
-    chaise = solve_problem(args.problem, args.f, args.w_hat, args.n, chaise=True) \
-        if args.chaise else None
     ds = profile_dataset(sol, args.x_max, args.points, chaise)
     stamp(ds, title=f"{args.problem} (thesis chs 6-7): interface profiles at f = {args.f}"
                     + (f", w/c = {args.w_hat}" if args.w_hat else ""), source=SOURCE,
@@ -142,49 +184,91 @@ def _report(args: argparse.Namespace) -> None:
 
 def register(commands: argparse._SubParsersAction) -> None:
     """Add the chs 6-7 subcommands to the ``receding`` group."""
-    sweep = commands.add_parser("line-sweep", help="line load (ch. 6) over f, with Chaise")
-    sweep.add_argument("--f", type=float, nargs="+", required=True)
-    sweep.add_argument("--n", type=int, default=500)
-    sweep.add_argument("--lam", type=float, default=3.5, help="map scale lambda (sec. 6.4)")
-    sweep.add_argument("--e", type=float, default=5.0, help="end e/c of the cubic of A_y")
-    sweep.add_argument("--no-chaise", action="store_true", help="skip the Chaise model")
-    sweep.add_argument("--out", type=Path, required=True)
+    n_help = "Gauss-Chebyshev points N_a = N_b (even)"
+    lam_help = "map scale lambda of T(s) = gamma + lambda log(2/(1-s)) (sec. 6.4)"
+    e_help = "end e/c of the cubic part of the preformed climb A_y (eq. 6.9)"
+    chaise_help = "also solve the bounded-bounded-only model of Chaise et al. (Figs 6.5-6.6)"
+
+    sweep = add_command(
+        commands, "line-sweep", help="line load (ch. 6) over f, with Chaise",
+        description="Stick and separation points a, b and the slope K_T of the line load "
+                    "on a layer over friction coefficients f (ch. 6, Figs 6.3, 7.6).")
+    sweep.add_argument("--f", type=float, nargs="+", required=True,
+                       help="friction coefficients f (0 = frictionless limit)")
+    sweep.add_argument("--n", type=int, required=True, help=n_help)
+    sweep.add_argument("--lam", type=float, required=True, help=lam_help)
+    sweep.add_argument("--e", type=float, required=True, help=e_help)
+    sweep.add_argument("--chaise", action=argparse.BooleanOptionalAction, required=True,
+                       help=chaise_help)
+    sweep.add_argument("--out", type=Path, required=True, help="netCDF output (one chunk)")
     sweep.set_defaults(func=_line_sweep)
 
-    patch = commands.add_parser("patch-sweep", help="pressure patch (ch. 7) over (f, w/c)")
-    patch.add_argument("--problem", choices=(*PROBLEMS[1:], "table"), required=True)
+    patch = add_command(
+        commands, "patch-sweep", help="pressure patch (ch. 7) over (f, w/c)",
+        description="a, b and K_T of a pressure patch on |x| <= w (uniform A1, hertz A2, "
+                    "punch A3, or a table) over (f, w/c), lambda_a from w as in sec. 7.4.")
+    patch.add_argument("--problem", choices=(*PROBLEMS[1:], "table"), required=True,
+                       help="pressure law of the patch")
     patch.add_argument("--table-x", type=float, nargs="+", default=None,
                        help="problem table: points x/w of the pressure shape (0..1 or -1..1)")
     patch.add_argument("--table-p", type=float, nargs="+", default=None,
-                       help="problem table: pressure shape at those points (>= 0)")
-    patch.add_argument("--f", type=float, nargs="+", required=True)
-    patch.add_argument("--w-hat", type=float, nargs="+", required=True)
-    patch.add_argument("--n", type=int, default=100)
-    patch.add_argument("--lam-b", type=float, default=2.0)
-    patch.add_argument("--e-minus-w", type=float, default=5.0, help="(e - w)/c")
-    patch.add_argument("--out", type=Path, required=True)
+                       help="problem table: relative pressure at those points (>= 0)")
+    patch.add_argument("--f", type=float, nargs="+", required=True,
+                       help="friction coefficients f (0 = frictionless limit)")
+    patch.add_argument("--w-hat", type=float, nargs="+", required=True,
+                       help="patch half-widths w/c")
+    patch.add_argument("--n", type=int, required=True, help=n_help)
+    patch.add_argument("--lam-b", type=float, required=True,
+                       help="map scale lambda_b (sec. 7.4)")
+    patch.add_argument("--e-minus-w", type=float, required=True,
+                       help="(e - w)/c: end of the cubic part of A_y beyond the patch edge")
+    patch.add_argument("--out", type=Path, required=True, help="netCDF output (one chunk)")
     patch.set_defaults(func=_patch_sweep)
 
-    gather = commands.add_parser("liftoff-gather", help="join line/patch chunks along f")
-    gather.add_argument("chunks", type=Path, nargs="+")
-    gather.add_argument("--out", type=Path, required=True)
+    gather = add_command(
+        commands, "liftoff-gather", help="join line/patch chunks along f",
+        description="Join line-sweep or patch-sweep chunks of one problem along f.")
+    gather.add_argument("chunks", type=input_file, nargs="+", help="sweep chunk files")
+    gather.add_argument("--out", type=Path, required=True, help="netCDF output")
     gather.set_defaults(func=_gather)
 
-    profile = commands.add_parser("liftoff-profile", help="profiles of a line/patch solution")
-    profile.add_argument("--problem", choices=PROBLEMS, required=True)
-    profile.add_argument("--f", type=float, required=True)
-    profile.add_argument("--w-hat", type=float, default=None)
-    profile.add_argument("--n", type=int, default=None)
-    profile.add_argument("--x-max", type=float, default=12.0)
-    profile.add_argument("--points", type=int, default=481)
-    profile.add_argument("--chaise", action="store_true", help="add the Chaise model")
-    profile.add_argument("--out", type=Path, required=True)
+    profile = add_command(
+        commands, "liftoff-profile", help="profiles of a line/patch solution",
+        description="Densities, tractions, separation and slip along the interface of one "
+                    "line-load or patch solution (Figs 6.4-6.6, 7.2-7.4, 7.8), with the "
+                    "Chaise model's when --chaise. The line needs --lam and --e, a patch "
+                    "--w-hat, --lam-b and --e-minus-w.")
+    profile.add_argument("--problem", choices=PROBLEMS, required=True,
+                         help="line load or pressure law of the patch")
+    profile.add_argument("--f", type=float, required=True, help="friction coefficient f")
+    profile.add_argument("--w-hat", type=float, default=None,
+                         help="patch half-width w/c (patches only)")
+    profile.add_argument("--n", type=int, required=True, help=n_help)
+    profile.add_argument("--lam", type=float, default=None, help="line: " + lam_help)
+    profile.add_argument("--e", type=float, default=None, help="line: " + e_help)
+    profile.add_argument("--lam-b", type=float, default=None,
+                         help="patches: map scale lambda_b (sec. 7.4)")
+    profile.add_argument("--e-minus-w", type=float, default=None,
+                         help="patches: (e - w)/c, end of the cubic part of A_y")
+    profile.add_argument("--x-max", type=float, required=True,
+                         help="profile on 0 <= x/c <= w/c + x_max (config profile_x_max)")
+    profile.add_argument("--points", type=int, default=481, help="points of the profile")
+    profile.add_argument("--chaise", action=argparse.BooleanOptionalAction, required=True,
+                         help=chaise_help)
+    profile.add_argument("--out", type=Path, required=True, help="netCDF output")
     profile.set_defaults(func=_profile)
 
-    report = commands.add_parser("liftoff-report", help="report section of chs 6-7")
-    report.add_argument("--line", type=Path, required=True)
-    report.add_argument("--patches", type=Path, nargs="+", required=True)
-    report.add_argument("--profiles", type=Path, nargs="+", required=True)
-    report.add_argument("--report-dir", type=Path, default=Path("results/report"))
-    report.add_argument("--out", type=Path, required=True)
+    report = add_command(
+        commands, "liftoff-report", help="report section of chs 6-7",
+        description="HTML report fragment of the line load and pressure patches: Figs "
+                    "6.3-6.6 and 7.2-7.10 and tables.")
+    report.add_argument("--line", type=input_file, required=True,
+                        help="line-load sweep (results/receding/line.nc)")
+    report.add_argument("--patches", type=input_file, nargs="+", required=True,
+                        help="patch sweeps (results/receding/<law>.nc)")
+    report.add_argument("--profiles", type=input_file, nargs="+", required=True,
+                        help="liftoff-profile files")
+    report.add_argument("--report-dir", type=Path, default=Path("results/report"),
+                        help="report directory receiving tables/ and figures/")
+    report.add_argument("--out", type=Path, required=True, help="section HTML fragment")
     report.set_defaults(func=_report)

@@ -10,10 +10,11 @@ import argparse
 import json
 from pathlib import Path
 
-from contactlab.report.index import build_index
+from contactlab.cliutil import add_command, add_group, input_file
 
 
 def _index(args: argparse.Namespace) -> None:
+    from contactlab.report.index import build_index
     from contactlab.study import provenance
 
     changes = json.loads(args.changes) if args.changes else {}
@@ -22,13 +23,20 @@ def _index(args: argparse.Namespace) -> None:
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``report`` command group."""
-    parser = subparsers.add_parser("report", help="the report page")
-    commands = parser.add_subparsers(dest="report_command", required=True)
-    index = commands.add_parser("index", help="assemble index.html from section fragments")
-    index.add_argument("sections", nargs="+", type=Path)
-    index.add_argument("--title", default="contactlab report")
-    index.add_argument("--intro", default="")
+    commands = add_group(
+        subparsers, "report", help="the report page",
+        description="Assemble the report page from the section fragments that each branch "
+                    "writes with its own report command.",
+        examples="  contactlab report index results/report/sections/*.html "
+                 "--title 'my study' --out results/report/index.html\n")
+    index = add_command(commands, "index", help="assemble index.html from section fragments",
+                        description="Stitch HTML section fragments, in the order given, "
+                                    "into one report page headed by the run's provenance.")
+    index.add_argument("sections", nargs="+", type=input_file, help="section HTML fragments")
+    index.add_argument("--title", default="contactlab report",
+                       help="page title (config report.title)")
+    index.add_argument("--intro", default="", help="introductory paragraph")
     index.add_argument("--changes", default="",
                        help="JSON {key: [default, study]} of what a named study changes")
-    index.add_argument("--out", type=Path, required=True)
+    index.add_argument("--out", type=Path, required=True, help="HTML page to write")
     index.set_defaults(func=_index)

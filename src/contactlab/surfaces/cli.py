@@ -6,7 +6,7 @@ import argparse
 import time
 from pathlib import Path
 
-from contactlab.io import stamp, write_netcdf
+from contactlab.cliutil import add_command, add_group, input_dir, input_file
 
 
 def _demo_scans(args: argparse.Namespace) -> None:
@@ -19,6 +19,7 @@ def _demo_scans(args: argparse.Namespace) -> None:
 
 
 def _texture(args: argparse.Namespace) -> None:
+    from contactlab.io import stamp, write_netcdf
     from contactlab.surfaces.sheet import read_surface_sheet
     from contactlab.surfaces.texture import surface_dataset, surface_texture
 
@@ -55,12 +56,11 @@ def _texture(args: argparse.Namespace) -> None:
 def _texture_summary(args: argparse.Namespace) -> None:
     import xarray as xr
 
+    from contactlab.io import stamp, write_netcdf
     from contactlab.surfaces.texture import summary_dataset
 
     datasets = []
     for path in args.surfaces:
-        if not Path(path).is_file():
-            raise FileNotFoundError(f"{path}: surface result not found")
         with xr.open_dataset(path) as ds:
             datasets.append(ds.load())
     summary = summary_dataset(datasets)
@@ -72,6 +72,7 @@ def _texture_summary(args: argparse.Namespace) -> None:
 
 
 def _seq(args: argparse.Namespace) -> None:
+    from contactlab.io import stamp, write_netcdf
     from contactlab.surfaces.roughness import published_roughness
     from contactlab.surfaces.seq import add_beta_n, add_scan_seq, seq_dataset
     from contactlab.testsheet import read_test_sheet
@@ -107,52 +108,88 @@ def _report(args: argparse.Namespace) -> None:
 
 def register(subparsers: argparse._SubParsersAction) -> None:
     """Add the ``surfaces`` command group."""
-    parser = subparsers.add_parser("surfaces", help="surface texture and Seq")
-    commands = parser.add_subparsers(dest="surfaces_command", required=True)
+    commands = add_group(
+        subparsers, "surfaces", help="surface texture and Seq (thesis sec. 2.3.4)",
+        description="Surface texture of the specimens and pads from profilometer scans "
+                    "(ISO 25178-2, ISO 4287) and the equivalent roughness Seq (eq. 2.1) of "
+                    "each test's interface. Heights and roughness in um.",
+        examples="  contactlab surfaces demo-scans --sheet config/surfaces.csv "
+                 "--out-dir results/surfaces/demo_scans --seed 20150901\n"
+                 "  contactlab surfaces texture --sheet config/surfaces.csv "
+                 "--out-dir results/surfaces --bins 80 --max-undefined-fraction 0.01\n"
+                 "  contactlab surfaces texture-summary results/surfaces/pad.nc "
+                 "results/surfaces/rough_specimen.nc --out results/surfaces/texture.nc\n"
+                 "  contactlab surfaces seq --tests config/tests.csv "
+                 "--texture results/surfaces/texture.nc --out results/surfaces/seq.nc\n")
+    published = "directory of the transcribed thesis tables (default: the packaged copy)"
 
-    demo = commands.add_parser(
-        "demo-scans", help="write SYNTHETIC scans with the published statistics (X3P)")
-    demo.add_argument("--sheet", type=Path, required=True, help="surface sheet (CSV)")
+    demo = add_command(
+        commands, "demo-scans", help="write SYNTHETIC scans with the published statistics (X3P)",
+        description="Write SYNTHETIC areal and profile scans (X3P) whose Sa, Sq and Str "
+                    "match the published Tables A.1, A.26, A.27 and 2.6; for trying the "
+                    "workflow without the thesis's measurements.")
+    demo.add_argument("--sheet", type=input_file, required=True,
+                      help="surface sheet (CSV) naming each surface's scan files")
     demo.add_argument("--out-dir", type=Path, required=True,
                       help="write the sheet's scans that lie in this directory")
-    demo.add_argument("--seed", type=int, default=0, help="random seed")
-    demo.add_argument("--published-dir", type=Path, default=None, help="published tables")
+    demo.add_argument("--seed", type=int, required=True,
+                      help="random seed (config surfaces.demo_seed)")
+    demo.add_argument("--published-dir", type=input_dir, default=None, help=published)
     demo.set_defaults(func=_demo_scans)
 
-    texture = commands.add_parser(
-        "texture", help="texture parameters of each surface's scans (<surface>.nc)")
-    texture.add_argument("--sheet", type=Path, required=True, help="surface sheet (CSV)")
+    texture = add_command(
+        commands, "texture", help="texture parameters of each surface's scans (<surface>.nc)",
+        description="Undefined points filled (harmonic interpolation, up to a limit), form "
+                    "removal, Gaussian filter (ISO 16610-21/61) and the areal and profile "
+                    "parameters Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz (um) of every "
+                    "surface in the sheet, one <surface>.nc each.")
+    texture.add_argument("--sheet", type=input_file, required=True,
+                         help="surface sheet (CSV)")
     texture.add_argument("--out-dir", type=Path, required=True,
                          help="directory for <surface>.nc")
     texture.add_argument("--surface", action="append", default=None,
                          help="only this surface (repeatable; default: every surface)")
-    texture.add_argument("--bins", type=int, default=80, help="height histogram bins")
+    texture.add_argument("--bins", type=int, required=True,
+                         help="bins of the stored height histogram (config "
+                              "surfaces.histogram_bins)")
     texture.add_argument("--max-undefined-fraction", type=float, required=True,
                          help="largest fraction of undefined points of a scan that is filled "
-                              "(harmonic interpolation); more is refused")
+                              "(harmonic interpolation), in [0, 1); more is refused")
     texture.set_defaults(func=_texture)
 
-    summary = commands.add_parser(
-        "texture-summary", help="gather <surface>.nc files into one table (texture.nc)")
-    summary.add_argument("surfaces", type=Path, nargs="+", help="<surface>.nc files")
+    summary = add_command(
+        commands, "texture-summary", help="gather <surface>.nc files into one table (texture.nc)",
+        description="Gather the parameters of the <surface>.nc files of `surfaces texture` "
+                    "into one table (Tables A.1, A.26, A.27, 2.6).")
+    summary.add_argument("surfaces", type=input_file, nargs="+", help="<surface>.nc files")
     summary.add_argument("--out", type=Path, required=True, help="netCDF output")
     summary.set_defaults(func=_texture_summary)
 
-    seq = commands.add_parser("seq", help="Seq of each test's interface")
-    seq.add_argument("--tests", type=Path, required=True, help="test sheet (config/tests.csv)")
-    seq.add_argument("--published-dir", type=Path, default=None, help="published tables")
-    seq.add_argument("--texture", type=Path, default=None,
+    seq = add_command(
+        commands, "seq", help="Seq of each test's interface",
+        description="Equivalent roughness Seq = sqrt(Sq1^2 + Sq2^2) (eq. 2.1, um) of each "
+                    "test's imaged interface from the published Sq and, with --texture, from "
+                    "the scans; with beta_n Seq of Tables 2.3 and 2.10.")
+    seq.add_argument("--tests", type=input_file, required=True,
+                     help="test sheet (config/tests.csv)")
+    seq.add_argument("--published-dir", type=input_dir, default=None, help=published)
+    seq.add_argument("--texture", type=input_file, default=None,
                      help="texture summary (results/surfaces/texture.nc) for Seq from scans")
     seq.add_argument("--out", type=Path, required=True, help="netCDF output")
     seq.set_defaults(func=_seq)
 
-    report = commands.add_parser("report", help="report section: texture and Seq vs published")
-    report.add_argument("--seq", type=Path, required=True, help="results/surfaces/seq.nc")
-    report.add_argument("--texture", type=Path, default=None,
-                        help="results/surfaces/texture.nc")
-    report.add_argument("--surface-dir", type=Path, default=None,
+    report = add_command(
+        commands, "report", help="report section: texture and Seq vs published",
+        description="HTML report fragment with the texture tables (A.1, A.26, A.27, 2.6), "
+                    "Seq beside Tables 2.3 and 2.10, height maps, profiles and spectra.")
+    report.add_argument("--seq", type=input_file, required=True,
+                        help="Seq results (results/surfaces/seq.nc)")
+    report.add_argument("--texture", type=input_file, default=None,
+                        help="texture summary (results/surfaces/texture.nc)")
+    report.add_argument("--surface-dir", type=input_dir, default=None,
                         help="directory of the <surface>.nc files (pictures)")
-    report.add_argument("--published-dir", type=Path, default=None, help="published tables")
-    report.add_argument("--report-dir", type=Path, default=Path("results/report"))
+    report.add_argument("--published-dir", type=input_dir, default=None, help=published)
+    report.add_argument("--report-dir", type=Path, default=Path("results/report"),
+                        help="report directory receiving tables/ and figures/")
     report.add_argument("--out", type=Path, required=True, help="section HTML fragment")
     report.set_defaults(func=_report)

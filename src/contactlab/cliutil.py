@@ -1,0 +1,103 @@
+"""Shared pieces of the ``contactlab`` command line, standard library only.
+
+The parser is built for every call, even ``--help``, so nothing here (or in the branches'
+``register`` functions) may import numpy, xarray or the science modules; the command
+functions import what they need when they run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+from pathlib import Path
+from typing import Any
+
+#: Negative numbers in any notation (``-1``, ``-.5``, ``-1e-5``, ``-2.5E+3``, ``-inf``).
+NEGATIVE_NUMBER = re.compile(
+    r"^-(\d+\.?\d*(e[-+]?\d+)?|\.\d+(e[-+]?\d+)?|inf|infinity)$", re.IGNORECASE)
+
+GIB = 2.0**30
+
+
+class HelpFormatter(argparse.RawDescriptionHelpFormatter):
+    """Keeps the line breaks of descriptions and examples; appends each option's default."""
+
+    def _get_help_string(self, action: argparse.Action) -> str | None:
+        text = action.help or ""
+        if ("%(default)" in text or action.required or not action.option_strings
+                or action.default in (None, False, [], argparse.SUPPRESS)):
+            return text
+        return text + " (default: %(default)s)"
+
+
+class Parser(argparse.ArgumentParser):
+    """The one parser class of the command line (sub-parsers inherit it).
+
+    Values that look like negative numbers in any notation are values, not options, and
+    help shows defaults and keeps the examples' layout.
+    """
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("formatter_class", HelpFormatter)
+        super().__init__(*args, **kwargs)
+        self._negative_number_matcher = NEGATIVE_NUMBER
+
+
+def add_group(subparsers: argparse._SubParsersAction, name: str, help: str,
+              description: str, examples: str) -> argparse._SubParsersAction:
+    """Add a command group ``name`` with an examples epilog; return its sub-command action."""
+    parser = subparsers.add_parser(name, help=help, description=description,
+                                   epilog="examples:\n" + examples)
+    return parser.add_subparsers(dest=f"{name}_command", required=True, metavar="COMMAND")
+
+
+def add_command(commands: argparse._SubParsersAction, name: str, help: str,
+                description: str | None = None) -> argparse.ArgumentParser:
+    """Add one sub-command; its description is ``description`` or, if not given, ``help``."""
+    return commands.add_parser(name, help=help, description=description or help)
+
+
+def _existing(text: str, want_file: bool | None) -> Path:
+    path = Path(text)
+    if not path.exists():
+        raise argparse.ArgumentTypeError(f"{text}: no such file or directory")
+    if want_file is True and path.is_dir():
+        raise argparse.ArgumentTypeError(f"{text} is a directory, not a file")
+    if want_file is False and not path.is_dir():
+        raise argparse.ArgumentTypeError(f"{text} is not a directory")
+    if not os.access(path, os.R_OK | (os.X_OK if path.is_dir() else 0)):
+        raise argparse.ArgumentTypeError(f"{text} is not readable")
+    return path
+
+
+def input_file(text: str) -> Path:
+    """``type=`` of an input file option: it must exist, be readable and not a directory."""
+    return _existing(text, want_file=True)
+
+
+def input_dir(text: str) -> Path:
+    """``type=`` of an input directory option: it must exist and be a readable directory."""
+    return _existing(text, want_file=False)
+
+
+def input_path(text: str) -> Path:
+    """``type=`` of an input that may be a file or a directory (e.g. a DaVis set)."""
+    return _existing(text, want_file=None)
+
+
+def memory_limit() -> float:
+    """Physical memory of this machine in bytes (the size guard's ceiling)."""
+    return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
+
+
+def check_memory(option: str, value: object, nbytes: float) -> None:
+    """Refuse ``option value`` before allocating when it needs more memory than there is.
+
+    ``nbytes`` is the caller's estimate of the largest working set of the command.
+    """
+    limit = memory_limit()
+    if nbytes > limit:
+        raise ValueError(
+            f"{option} {value} needs about {nbytes / GIB:.1f} GiB of memory, more than the "
+            f"{limit / GIB:.1f} GiB of this machine; use a smaller {option}")
