@@ -182,7 +182,7 @@ rule receding_line_chunk:
         n=LINE["n"],
         lam=LINE["lambda"],
         e=LINE["e"],
-        chaise=[] if LINE["chaise"] else ["--no-chaise"],
+        chaise=["--chaise"] if LINE["chaise"] else ["--no-chaise"],
     log:
         logs("receding/line_{chunk}.log"),
     shell:
@@ -289,13 +289,17 @@ rule receding_line_profile:
         result("receding/profiles/line_f{f}.nc"),
     params:
         n=LINE["n"],
+        lam=LINE["lambda"],
+        e=LINE["e"],
+        chaise=["--chaise"] if LINE["chaise"] else ["--no-chaise"],
         x_max=LINE["profile_x_max"],
     log:
         logs("receding/line_profile_f{f}.log"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding liftoff-profile --problem line --f {wildcards.f:q}"
-        " --n {params.n:q} --x-max {params.x_max:q} --chaise --out {output:q} 2> {log:q}"
+        " --n {params.n:q} --lam {params.lam:q} --e {params.e:q} {params.chaise:q}"
+        " --x-max {params.x_max:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_patch_profile:
@@ -309,13 +313,16 @@ rule receding_patch_profile:
         w=lambda wc: liftoff_profile_point(PATCHES["profiles"], wc.point)["w"],
         f=lambda wc: liftoff_profile_point(PATCHES["profiles"], wc.point)["f"],
         n=PATCHES["n"],
+        lam_b=PATCHES["lambda_b"],
+        e_minus_w=PATCHES["e_minus_w"],
         x_max=PATCHES["profile_x_max"],
     log:
         logs("receding/{point}.log"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding liftoff-profile --problem {params.law:q}"
-        " --w-hat {params.w:q} --f {params.f:q} --n {params.n:q} --x-max {params.x_max:q}"
+        " --w-hat {params.w:q} --f {params.f:q} --n {params.n:q} --lam-b {params.lam_b:q}"
+        " --e-minus-w {params.e_minus_w:q} --no-chaise --x-max {params.x_max:q}"
         " --out {output:q} 2> {log:q}"
 
 

@@ -70,13 +70,14 @@ rule stiffness_process:
         area=lambda wc: float(TESTS.loc[wc.test, "nominal_area_mm2"]),
         grid=_RAW["grid_points"],
         errors=_ERROR_OPTIONS,
+        confidence=_ERR["confidence"],
     log:
         logs("stiffness/process_{test}.log"),
     shell:
         "contactlab stiffness process --test {wildcards.test:q} --load-log {input.load_log:q}"
         " {params.data:q} --max-normal-load-kN {params.load:q}"
         " --nominal-area-mm2 {params.area:q} --grid-points {params.grid:q} {params.errors:q}"
-        " --out {output:q} 2> {log:q}"
+        " --confidence {params.confidence:q} --out {output:q} 2> {log:q}"
 
 
 rule stiffness_figures:
