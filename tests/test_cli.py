@@ -8,6 +8,7 @@ import inspect
 import os
 import pkgutil
 import re
+import shlex
 import subprocess
 import sys
 from collections.abc import Iterator
@@ -86,6 +87,21 @@ def test_every_command_has_a_description_and_every_option_help() -> None:
                 missing.append(f"{' '.join(path)} {action.option_strings or action.dest}")
     assert not missing, missing
     assert len(list(walk(build_parser()))) >= 43  # 6 groups, 37 commands
+
+
+def test_every_example_parses(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The examples in the groups' help are complete commands (input files not checked)."""
+    import contactlab.cliutil
+
+    monkeypatch.setattr(contactlab.cliutil, "_existing", lambda text, want_file: Path(text))
+    examples = []
+    for _, parser in walk(build_parser()):
+        text = (parser.epilog or "").replace("\\\n", " ")
+        examples += [shlex.split(line)[1:] for line in text.splitlines()
+                     if line.startswith("  contactlab ")]
+    assert len(examples) >= 20
+    for argv in examples:
+        build_parser().parse_args(argv)
 
 
 def test_help_shows_defaults_but_not_for_required_options(

@@ -20,8 +20,14 @@ NEGATIVE_NUMBER = re.compile(
 GIB = 2.0**30
 
 
-class HelpFormatter(argparse.RawDescriptionHelpFormatter):
-    """Keeps the line breaks of descriptions and examples; appends each option's default."""
+class HelpFormatter(argparse.HelpFormatter):
+    """Wraps one-line descriptions, keeps the lines of multi-line text (examples) as they
+    are, and appends each option's default to its help."""
+
+    def _fill_text(self, text: str, width: int, indent: str) -> str:
+        if "\n" in text:
+            return "".join(indent + line for line in text.splitlines(keepends=True))
+        return super()._fill_text(text, width, indent)
 
     def _get_help_string(self, action: argparse.Action) -> str | None:
         text = action.help or ""

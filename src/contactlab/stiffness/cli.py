@@ -28,7 +28,10 @@ EXAMPLES = """\
       --qs-rel-extra 0.01 --tangential-pressure multiply --confidence 0.95 \\
       --out results/stiffness/RU1.nc
   contactlab stiffness summarize-published --tests config/tests.csv --kt0-threshold 0.5 \\
-      --piston-area-cm2 6.5 ... --out results/stiffness/summary_from_published_steps.nc
+      --piston-area-cm2 6.5 --pressure-uncertainty-MPa 0.135 \\
+      --piston-area-rel-uncertainty 0.01 --tangential-pressure-rel-extra 0.01 \\
+      --qs-rel-extra 0.01 --tangential-pressure multiply \\
+      --out results/stiffness/summary_from_published_steps.nc
 """
 
 
