@@ -226,6 +226,18 @@ def schema(repo: Path) -> dict:
     return yaml.safe_load((repo / "workflow/schemas/config.schema.yaml").read_text())
 
 
+def test_an_omitted_stiffness_section_gets_the_schema_defaults(repo: Path) -> None:
+    """The stiffness options have no CLI default, so the schema must fill them in."""
+    from snakemake.utils import validate
+
+    config = yaml.safe_load((repo / "config/config.yaml").read_text())
+    config["stiffness"] = {}
+    validate(config, str(repo / "workflow/schemas/config.schema.yaml"))
+    assert config["stiffness"]["errors"]["confidence"] == 0.95
+    assert config["stiffness"]["raw"]["tangential_pressure"] == "multiply"
+    assert config["stiffness"]["published_steps"]["kt0_margin_threshold"] == 0.5
+
+
 def test_cli_defaults_are_none_or_the_schema_default(schema: dict) -> None:
     options = [(path, a) for path, p in commands() for a in p._actions if a.option_strings]
     wrong = []
