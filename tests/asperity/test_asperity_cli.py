@@ -11,7 +11,7 @@ BEM = ["--f", "1", "--nu", "0.3", "--q-points", "11"]
 SINGLE = ["--nu", "0.3", "--q-points", "11", "--youngs-modulus", "2e6", "--sphere-radius",
           "100", "--approach-fig-3-6", "0.01", "--approach-fig-3-8", "0.015",
           "--yield-stress", "5000", "4000", "--shear-limit-stress", "4000", "5000"]
-MULTI = ["--m", "10", "--pt-over-pm", "10", "--s-max", "2", "--points", "11"]
+MULTI = ["--m", "10", "--pt-over-pm", "10", "--s-max", "2", "--points", "11", "--tables", "{}"]
 GRID = ["--pt-over-pd", "0.00125", "0.025", "--load-min", "1e-5", "--load-max", "0.05",
         "--load-points", "4", "--area-min", "0.01", "--area-points", "4"]
 TRANSVERSE = ["--f", "1", "--tau-max", "0.86", "--nu", "0.3", "--tol", "1e-6"]

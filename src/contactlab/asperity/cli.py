@@ -218,8 +218,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--m", type=int, required=True, help="number of load levels m")
     p.add_argument("--pt-over-pm", type=float, required=True,
                    help="total over largest asperity load Pt/Pm (>= 1)")
-    p.add_argument("--tables", default="{}",
-                   help="JSON of user load tables: name -> {P_over_Pm: [...], n: [...]}")
+    p.add_argument("--tables", required=True,
+                   help="JSON of user load tables: name -> {P_over_Pm: [...], n: [...]}, "
+                        "'{}' for none (config asperity.multi.tables)")
     p.add_argument("--s-max", type=float, required=True,
                    help="largest scaled displacement Delta_x/Delta_n S(n)")
     p.add_argument("--points", type=int, required=True,
