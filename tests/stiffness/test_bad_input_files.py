@@ -23,6 +23,13 @@ COMMENTS = "# test T, normal loading\n# loads in kN\n"  # frame k is on line k +
 HEADER = "frame,step,kind,direction,Pn,Qt\n"
 
 
+#: the options the rule takes from the config (the schema's defaults)
+SETTINGS = ["--grid-points", "41", "--piston-area-cm2", "6.5", "--pressure-uncertainty-MPa",
+            "0.135", "--piston-area-rel-uncertainty", "0.01", "--tangential-pressure-rel-extra",
+            "0.01", "--qs-rel-extra", "0.01", "--tangential-pressure", "multiply",
+            "--confidence", "0.95"]
+
+
 def log_rows() -> list[str]:
     """Eight frames of one normal loading step, -Pn rising from 0.5 to 4 kN."""
     return [f"{k},1,normal,loading,{-0.5 * k:g},0" for k in range(1, FRAMES + 1)]
@@ -152,7 +159,7 @@ def test_bad_file_is_refused_in_one_line_and_nothing_is_written(
         else:
             (tmp_path / name).write_text(content)
     status = main(["stiffness", "process", "--test", "T", "--load-log", "log.csv", *options,
-                   "--max-normal-load-kN", "4", "--nominal-area-mm2", "20",
+                   "--max-normal-load-kN", "4", "--nominal-area-mm2", "20", *SETTINGS,
                    "--out", "results/stiffness/T.nc"])
     err = capsys.readouterr().err.strip()
     assert status == 2, err
@@ -172,7 +179,7 @@ def test_good_files_pass(tmp_path: Path, monkeypatch) -> None:
         out = f"results/{fields}.T.nc"
         assert main(["stiffness", "process", "--test", "T", "--load-log", "log.csv",
                      "--fields", fields, "--max-normal-load-kN", "4",
-                     "--nominal-area-mm2", "20", "--out", out]) == 0
+                     "--nominal-area-mm2", "20", *SETTINGS, "--out", out]) == 0
         with xr.open_dataset(out) as ds:
             np.testing.assert_allclose(ds["uc"].values, contact_displacement(), atol=1e-5)
             assert float(ds["beta"][0]) == pytest.approx(0.503, rel=1e-3)
