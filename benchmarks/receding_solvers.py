@@ -33,15 +33,16 @@ PROBLEMS: dict[str, tuple[Callable[[], object], int, float | None]] = {
     "gap N=100 w=2.5 f=0.5 (separation)": (lambda: solve_gap(2.5, 0.5, 100), 7, 0.030),
     "gap N=100 w=1.0 f=0.3 (slip)": (lambda: solve_gap(1.0, 0.3, 100), 7, 0.030),
     "gap N=100 w=4.0 f=1.0 (separation, far seed)": (lambda: solve_gap(4.0, 1.0, 100), 7, 0.030),
-    "line N=500 f=0.5": (lambda: solve_line(0.5, 500), 3, 0.300),
-    "line N=500 f=0.5 Chaise": (lambda: solve_line(0.5, 500, preformed=False), 3, 0.300),
+    "line N=500 f=0.5": (lambda: solve_line(0.5, 500, 3.5, 5.0), 3, 0.300),
+    "line N=500 f=0.5 Chaise": (lambda: solve_line(0.5, 500, 3.5, 5.0, preformed=False), 3, 0.300),
     "uniform N=100 w=1 f=0.3": (lambda: solve_patch("uniform", 0.3, 1.0, 100), 5, 0.050),
     "hertz N=100 w=1 f=0.3": (lambda: solve_patch("hertz", 0.3, 1.0, 100), 5, 0.050),
     "punch N=100 w=1 f=0.3": (lambda: solve_patch("punch", 0.3, 1.0, 100), 5, 0.050),
     "uniform N=100 w=20 f=0.3": (lambda: solve_patch("uniform", 0.3, 20.0, 100), 5, 0.050),
     "uniform sweep N=100, 3 f x 8 w (per point)": (
         lambda: sweep_patch("uniform", [0.1, 0.5, 1.0],
-                            [0.25, 0.5, 1.0, 2.0, 2.5, 5.0, 10.0, 20.0], 100), 1, None),
+                            [0.25, 0.5, 1.0, 2.0, 2.5, 5.0, 10.0, 20.0], 100, 2.0, 5.0),
+        1, None),
 }
 #: points of the sweep above, to print its time per point
 SWEEP_POINTS = 24
@@ -63,7 +64,7 @@ def main(argv: list[str]) -> None:
     record = "--record" in argv
     before = json.loads(BEFORE.read_text()) if BEFORE.exists() and not record else {}
     figures: dict[str, dict[str, float]] = {}
-    solve_line(0.5, 64)  # warm-up: quadrature rules and load tables
+    solve_line(0.5, 64, 3.5, 5.0)  # warm-up: quadrature rules and load tables
     solve_gap(2.5, 0.5, 100)
     print(f"{'problem':<44} {'before':>8} {'after':>8} {'ratio':>6} {'target':>7}  wall")
     for name, (solve, repeats, target) in PROBLEMS.items():

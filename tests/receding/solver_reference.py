@@ -87,7 +87,8 @@ def compute(group: str) -> dict[str, Any]:
             out[f"w={w} f={f} N={n}"] = gap_record(solve_gap(w, f, n))
     elif group == "line":
         for f, pre in LINE_POINTS:
-            out[f"f={f} preformed={pre}"] = liftoff_record(solve_line(f, 500, preformed=pre))
+            sol = solve_line(f, 500, 3.5, 5.0, preformed=pre)
+            out[f"f={f} preformed={pre}"] = liftoff_record(sol)
     elif group == "patch":
         for law, f, w in PATCH_POINTS:
             out[f"{law} f={f} w={w}"] = liftoff_record(solve_patch(law, f, w, 100))
@@ -100,13 +101,13 @@ def compute(group: str) -> dict[str, Any]:
             out[f"gap threshold w={w}"] = {
                 "f_sep": _num(thr.f_sep), "f_slip_last": _num(thr.f_slip_last),
                 "n_centre": _num(thr.n_centre), "converged": bool(thr.converged)}
-        ds = sweep_line(LINE_SWEEP_F, 500)
+        ds = sweep_line(LINE_SWEEP_F, 500, 3.5, 5.0, True)
         out["line sweep"] = _dataset_records(ds, [
             "a", "b", "K_T", "converged", "admissible", "regime",
             "a_chaise", "b_chaise", "converged_chaise", "admissible_chaise",
             "regime_chaise"])
         for law, fs, ws in PATCH_SWEEPS:
-            ds = sweep_patch(law, fs, ws, 100)
+            ds = sweep_patch(law, fs, ws, 100, 2.0, 5.0)
             out[f"{law} sweep"] = _dataset_records(ds, [
                 "a", "b", "K_T", "converged", "admissible", "regime"])
     else:
