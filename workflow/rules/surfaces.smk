@@ -49,6 +49,8 @@ rule surface_texture:
         out_dir=lambda wildcards, output: Path(output.summary).parent,
     log:
         logs("surfaces/texture.log"),
+    benchmark:
+        logs("benchmarks/surface_texture.tsv"),
     shell:
         "contactlab surfaces texture --sheet {input.sheet:q} --out-dir {params.out_dir:q}"
         " --summary {output.summary:q} --bins {params.bins:q} > {log:q} 2>&1"
@@ -121,3 +123,10 @@ rule report_surfaces:
 
 ALL_TARGETS.extend([result("surfaces/seq.nc"), result("surfaces/texture.nc")])
 REPORT_SECTIONS.append(result("report/sections/10_surfaces.html"))
+
+
+# Seconds-long gathers, light solves and reports: on a cluster they run in the
+# Snakemake process itself instead of queueing as jobs of their own.
+localrules:
+    seq,
+    report_surfaces,
