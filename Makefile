@@ -6,11 +6,13 @@ PY := $(VENV)/bin/python
 export PATH := $(abspath $(VENV))/bin:$(PATH)
 STAMP := $(VENV)/.installed
 JOBS ?= 2
+# the Snakefile is at the top level, so Snakemake does not find workflow/profiles/default
+SNAKEMAKE := $(VENV)/bin/snakemake --workflow-profile workflow/profiles/default
 
 .PHONY: all test env ccx lint report lock rulegraph clean
 
 all: $(STAMP)
-	$(VENV)/bin/snakemake -j$(JOBS) all
+	$(SNAKEMAKE) -j$(JOBS) all
 
 test: $(STAMP)
 	$(PY) -m pytest -n $(JOBS) tests
@@ -35,8 +37,8 @@ lint: $(STAMP)
 	$(VENV)/bin/snakemake --lint
 
 report: $(STAMP)
-	$(VENV)/bin/snakemake -j$(JOBS) all
-	$(VENV)/bin/snakemake --report results/report/snakemake-report.zip
+	$(SNAKEMAKE) -j$(JOBS) all
+	$(SNAKEMAKE) --report results/report/snakemake-report.zip
 
 lock:
 	uv pip compile --python-version 3.11 --generate-hashes --custom-compile-command "make lock" requirements.in -o environment.lock
