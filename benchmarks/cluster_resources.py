@@ -7,7 +7,8 @@ study are kept in ``docs/cluster/benchmarks/``; this script turns them into the
 
 * ``mem_mb``: twice the largest resident set of the rule's jobs, rounded up to 250 MB,
   at least 500 MB;
-* ``runtime`` (minutes): five times the largest CPU time, rounded up, at least 5 min.
+* ``runtime`` (minutes): five times the largest CPU time, rounded up, at least 5 min
+  (times ``UNMEASURED_FACTOR`` where the rule's slowest jobs were not measured).
   CPU time, not wall time: the measurements ran on a shared, overloaded machine where wall
   time says more about the neighbours than about the job.
 
@@ -31,6 +32,9 @@ RULES = sorted(["receding_gap_chunk", "receding_line_chunk", "receding_patch_chu
                 "receding_table_chunk", "fe_receding", "fe_asperity", "asperity_bem",
                 "asperity_grid_bem", "asperity_transverse", "stiffness_process",
                 "surface_texture"], key=len, reverse=True)
+#: jobs slower than the measured one of their rule, by the README's timings: the plastic
+#: asperity models take up to 330 s against 127 s for the elastic one measured here
+UNMEASURED_FACTOR = {"fe_asperity": 330 / 127}
 
 
 def rule_of(path: Path) -> str:
@@ -53,17 +57,18 @@ def measurements(folder: Path = MEASURED) -> dict[str, list[dict[str, float]]]:
     return rows
 
 
-def resources(rows: list[dict[str, float]]) -> dict[str, int]:
+def resources(rows: list[dict[str, float]], factor: float = 1.0) -> dict[str, int]:
     """``mem_mb`` and ``runtime`` (minutes) for a rule from its measured jobs."""
     rss = max(r["max_rss"] for r in rows)
-    cpu = max(r["cpu_time"] for r in rows)
+    cpu = max(r["cpu_time"] for r in rows) * factor
     return {"mem_mb": max(500, 250 * math.ceil(2 * rss / 250)),
             "runtime": max(5, math.ceil(5 * cpu / 60))}
 
 
 def derived(folder: Path = MEASURED) -> dict[str, dict[str, int]]:
     """Rule -> resources, for every rule with a measurement."""
-    return {rule: resources(rows) for rule, rows in sorted(measurements(folder).items())}
+    return {rule: resources(rows, UNMEASURED_FACTOR.get(rule, 1.0))
+            for rule, rows in sorted(measurements(folder).items())}
 
 
 def main(argv: list[str]) -> None:
