@@ -73,8 +73,9 @@ def _timing_free(ds: xr.Dataset) -> xr.Dataset:
 
 
 def _attrs(ds: xr.Dataset) -> dict:
-    """The dataset's attributes as plain values (arrays as lists), without ``history``."""
-    return {k: np.asarray(v).tolist() for k, v in ds.attrs.items() if k != "history"}
+    """Attributes as plain values (arrays as lists), without ``history`` and timings."""
+    return {k: np.asarray(v).tolist() for k, v in ds.attrs.items()
+            if k != "history" and "seconds" not in k}
 
 
 def _slurm_jobs(log: str) -> dict[str, str]:
