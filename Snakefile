@@ -32,6 +32,10 @@ include: "workflow/rules/fe.smk"
 include: "workflow/rules/report.smk"
 
 
+localrules:
+    all,
+
+
 rule all:
     """Every result of the default study and the report page."""
     default_target: True

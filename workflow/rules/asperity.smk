@@ -27,6 +27,8 @@ rule asperity_bem:
         q_points=ASPERITY["q_ratio_points"],
     log:
         logs("asperity/bem_{law}.log"),
+    benchmark:
+        logs("benchmarks/asperity_bem_{law}.tsv"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab asperity bem --law {wildcards.law:q} {params.taus:q}"
@@ -47,6 +49,8 @@ rule asperity_transverse:
         nu=ASPERITY["nu"],
     log:
         logs("asperity/transverse.log"),
+    benchmark:
+        logs("benchmarks/asperity_transverse.tsv"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab asperity transverse --fractions {params.fractions:q}"
@@ -135,6 +139,8 @@ rule asperity_grid_bem:
         ),
     log:
         logs("asperity/grid_bem_N{n}.log"),
+    benchmark:
+        logs("benchmarks/asperity_grid_bem_N{n}.tsv"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab asperity grid-bem --N {wildcards.n:q} --area-ratio {params.area:q}"
@@ -256,3 +262,15 @@ REPORT_SECTIONS.extend(
         result("report/sections/30_asperity_3_grid.html"),
     ]
 )
+
+
+# Seconds-long gathers, light solves and reports: on a cluster they run in the
+# Snakemake process itself instead of queueing as jobs of their own.
+localrules:
+    asperity_single,
+    asperity_multi,
+    asperity_grid,
+    asperity_grid_bem_merge,
+    asperity_report_single,
+    asperity_report_multi,
+    asperity_report_grid,

@@ -23,6 +23,8 @@ rule fe_receding:
         args=lambda wc: fe_wf.receding_args(FE, wc.problem, wc.level),
     log:
         logs("fe/receding_{problem}_{level}.log"),
+    benchmark:
+        logs("benchmarks/fe_receding_{problem}_{level}.tsv"),
     threads: 1
     shell:
         "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1"
@@ -75,6 +77,8 @@ rule fe_asperity:
         args=lambda wc: fe_wf.asperity_args(FE),
     log:
         logs("fe/asperity_sy{sy}.log"),
+    benchmark:
+        logs("benchmarks/fe_asperity_sy{sy}.tsv"),
     threads: 1
     shell:
         "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1"
@@ -139,3 +143,12 @@ if FE_ON:
     ALL_TARGETS.extend(FE_CONVERGENCE)
     ALL_TARGETS.extend([result("fe/asperity_plastic.nc")] if FE_ASPERITY else [])
     REPORT_SECTIONS.append(result("report/sections/70_fe.html"))
+
+
+# Seconds-long gathers, light solves and reports: on a cluster they run in the
+# Snakemake process itself instead of queueing as jobs of their own.
+localrules:
+    fe_compare,
+    fe_convergence,
+    fe_asperity_gather,
+    report_fe,

@@ -32,6 +32,8 @@ rule receding_gap_chunk:
         thresholds=lambda wc: [] if int(wc.n) == RECEDING["n"] else ["--no-thresholds"],
     log:
         logs("receding/gap_N{n}_{chunk}.log"),
+    benchmark:
+        logs("benchmarks/receding_gap_chunk_N{n}_{chunk}.tsv"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding gap-sweep --w-hat {params.w:q} --f {params.f:q}"
@@ -185,6 +187,8 @@ rule receding_line_chunk:
         chaise=["--chaise"] if LINE["chaise"] else ["--no-chaise"],
     log:
         logs("receding/line_{chunk}.log"),
+    benchmark:
+        logs("benchmarks/receding_line_chunk_{chunk}.tsv"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding line-sweep --f {params.f:q} --n {params.n:q}"
@@ -218,6 +222,8 @@ rule receding_patch_chunk:
         e_minus_w=PATCHES["e_minus_w"],
     log:
         logs("receding/patch_{law}_{chunk}.log"),
+    benchmark:
+        logs("benchmarks/receding_patch_chunk_{law}_{chunk}.tsv"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding patch-sweep --problem {wildcards.law:q}"
@@ -260,6 +266,8 @@ rule receding_table_chunk:
         e_minus_w=PATCHES["e_minus_w"],
     log:
         logs("receding/table_{name}_{chunk}.log"),
+    benchmark:
+        logs("benchmarks/receding_table_chunk_{name}_{chunk}.tsv"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding patch-sweep --problem table"
@@ -416,3 +424,19 @@ ALL_TARGETS.extend(
     ]
 )
 REPORT_SECTIONS.append(result("report/sections/51_receding_line_patch.html"))
+
+
+# Seconds-long gathers, light solves and reports: on a cluster they run in the
+# Snakemake process itself instead of queueing as jobs of their own.
+localrules:
+    receding_gap_gather,
+    receding_gap_gather_compare,
+    receding_gap_regimes,
+    receding_gap_profile,
+    report_receding_gap,
+    receding_line_gather,
+    receding_patch_gather,
+    receding_table_gather,
+    receding_line_profile,
+    receding_patch_profile,
+    report_receding_line_patch,

@@ -18,3 +18,9 @@ rule report_index:
     shell:
         "contactlab report index {input:q} --title {params.title:q}"
         " --changes {params.changes:q} --out {output:q} 2> {log:q}"
+
+
+# Seconds-long gathers, light solves and reports: on a cluster they run in the
+# Snakemake process itself instead of queueing as jobs of their own.
+localrules:
+    report_index,

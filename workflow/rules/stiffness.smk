@@ -73,6 +73,8 @@ rule stiffness_process:
         confidence=_ERR["confidence"],
     log:
         logs("stiffness/process_{test}.log"),
+    benchmark:
+        logs("benchmarks/stiffness_process_{test}.tsv"),
     shell:
         "contactlab stiffness process --test {wildcards.test:q} --load-log {input.load_log:q}"
         " {params.data:q} --max-normal-load-kN {params.load:q}"
@@ -174,3 +176,11 @@ ALL_TARGETS.extend(expand(result("stiffness/{test}.nc"), test=RAW_TESTS))
 ALL_TARGETS.append(result("stiffness/summary.nc"))
 ALL_TARGETS.extend(RAW_TABLES)
 REPORT_SECTIONS.append(result("report/sections/21_stiffness_raw.html"))
+
+
+# Seconds-long gathers, light solves and reports: on a cluster they run in the
+# Snakemake process itself instead of queueing as jobs of their own.
+localrules:
+    stiffness_figures,
+    stiffness_summary,
+    report_stiffness_raw,

@@ -85,3 +85,10 @@ ALL_TARGETS.extend(
     [result("stiffness/summary_from_published_steps.nc"), *STIFFNESS_PUBLISHED_TABLES]
 )
 REPORT_SECTIONS.append(result("report/sections/20_stiffness_published.html"))
+
+
+# Seconds-long gathers, light solves and reports: on a cluster they run in the
+# Snakemake process itself instead of queueing as jobs of their own.
+localrules:
+    stiffness_summary_from_published_steps,
+    report_stiffness_published,

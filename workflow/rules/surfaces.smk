@@ -57,6 +57,8 @@ rule surface_texture:
         out_dir=lambda wildcards, output: Path(output[0]).parent,
     log:
         logs("surfaces/texture/{surface}.log"),
+    benchmark:
+        logs("benchmarks/surface_texture_{surface}.tsv"),
     shell:
         "contactlab surfaces texture --sheet {params.sheet:q} --surface {wildcards.surface:q}"
         " --out-dir {params.out_dir:q} --bins {params.bins:q}"
@@ -142,3 +144,10 @@ rule report_surfaces:
 
 ALL_TARGETS.extend([result("surfaces/seq.nc"), result("surfaces/texture.nc")])
 REPORT_SECTIONS.append(result("report/sections/10_surfaces.html"))
+
+
+# Seconds-long gathers, light solves and reports: on a cluster they run in the
+# Snakemake process itself instead of queueing as jobs of their own.
+localrules:
+    seq,
+    report_surfaces,

@@ -1,0 +1,86 @@
+"""Slurm resources of the heavy rules from Snakemake benchmark files.
+
+The heavy rules write ``benchmark:`` files (``logs/benchmarks/<rule>_<wildcards>.tsv``,
+columns ``s``, ``max_rss`` in MB, ``cpu_time`` in s, ...). The measured files of the default
+study are kept in ``docs/cluster/benchmarks/``; this script turns them into the
+``set-resources`` block of ``workflow/profiles/slurm/config.yaml``:
+
+* ``mem_mb``: twice the largest resident set of the rule's jobs, rounded up to 250 MB,
+  at least 500 MB;
+* ``runtime`` (minutes): five times the largest CPU time, rounded up, at least 5 min
+  (times ``UNMEASURED_FACTOR`` where the rule's slowest jobs were not measured).
+  CPU time, not wall time: the measurements ran on a shared, overloaded machine where wall
+  time says more about the neighbours than about the job.
+
+    python benchmarks/cluster_resources.py [docs/cluster/benchmarks]
+
+prints a table of the measurements and the YAML block; tests/test_slurm_profile.py checks
+that the profile holds exactly these numbers.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+MEASURED = ROOT / "docs" / "cluster" / "benchmarks"
+#: rule names, longest first, so that a file name maps to the rule that wrote it
+RULES = sorted(["receding_gap_chunk", "receding_line_chunk", "receding_patch_chunk",
+                "receding_table_chunk", "fe_receding", "fe_asperity", "asperity_bem",
+                "asperity_grid_bem", "asperity_transverse", "stiffness_process",
+                "surface_texture"], key=len, reverse=True)
+#: jobs slower than the measured one of their rule, by the README's timings: the plastic
+#: asperity models take up to 330 s against 127 s for the elastic one measured here
+UNMEASURED_FACTOR = {"fe_asperity": 330 / 127}
+
+
+def rule_of(path: Path) -> str:
+    """The rule whose benchmark file ``path`` is (its name starts with the rule's)."""
+    for rule in RULES:
+        if path.stem == rule or path.stem.startswith(rule + "_"):
+            return rule
+    raise ValueError(f"{path}: no heavy rule writes a benchmark file of this name")
+
+
+def measurements(folder: Path = MEASURED) -> dict[str, list[dict[str, float]]]:
+    """Rule -> one row per benchmark file: job, wall s, max_rss MB, cpu_time s."""
+    rows: dict[str, list[dict[str, float]]] = {}
+    for path in sorted(folder.glob("*.tsv")):
+        with path.open(newline="") as stream:
+            last = list(csv.DictReader(stream, delimiter="\t"))[-1]
+        rows.setdefault(rule_of(path), []).append(
+            {"job": path.stem, "s": float(last["s"]), "max_rss": float(last["max_rss"]),
+             "cpu_time": float(last["cpu_time"])})
+    return rows
+
+
+def resources(rows: list[dict[str, float]], factor: float = 1.0) -> dict[str, int]:
+    """``mem_mb`` and ``runtime`` (minutes) for a rule from its measured jobs."""
+    rss = max(r["max_rss"] for r in rows)
+    cpu = max(r["cpu_time"] for r in rows) * factor
+    return {"mem_mb": max(500, 250 * math.ceil(2 * rss / 250)),
+            "runtime": max(5, math.ceil(5 * cpu / 60))}
+
+
+def derived(folder: Path = MEASURED) -> dict[str, dict[str, int]]:
+    """Rule -> resources, for every rule with a measurement."""
+    return {rule: resources(rows, UNMEASURED_FACTOR.get(rule, 1.0))
+            for rule, rows in sorted(measurements(folder).items())}
+
+
+def main(argv: list[str]) -> None:
+    folder = Path(argv[0]) if argv else MEASURED
+    print(f"{'job':42s} {'wall s':>8s} {'cpu s':>8s} {'max_rss MB':>11s}")
+    for rows in measurements(folder).values():
+        for r in rows:
+            print(f"{r['job']:42s} {r['s']:8.1f} {r['cpu_time']:8.2f} {r['max_rss']:11.1f}")
+    print("\nset-resources:")
+    for rule, res in derived(folder).items():
+        print(f"  {rule}: {{mem_mb: {res['mem_mb']}, runtime: {res['runtime']}}}")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

@@ -1,0 +1,128 @@
+"""A study through a real Slurm cluster (issue 13): the one-node cluster of .ci/slurm-local.
+
+The test starts slurmctld, slurmd and munged (root needed), runs a reduced study with
+``--profile workflow/profiles/slurm`` and checks that the heavy jobs went through
+``sbatch`` (the Slurm job ids the plugin logs, each COMPLETED in ``squeue``), that the
+gathers and reports ran as local rules, and that every result equals that of a local run
+of the same study. Without root it skips locally; in CI (``CI`` set) it fails instead.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+from conftest import REPO, copy_workflow
+
+SLURM_LOCAL = REPO / ".ci" / "slurm-local"
+
+#: A few jobs of every branch: two gap and two line chunks, one patch and one table
+#: chunk, two BEM grids, one BEM family, one FE model, one stiffness test, the scans.
+TARGETS = [
+    "results/receding/gap.nc",
+    "results/receding/line.nc",
+    "results/receding/uniform.nc",
+    "results/receding/table_parabolic.nc",
+    "results/asperity/grid_bem.nc",
+    "results/asperity/bem/coulomb.nc",
+    "results/fe/runs/gap_coarse.nc",
+    "results/stiffness/RU1.nc",
+    "results/surfaces/texture.nc",
+]
+#: rules that must have been cluster jobs, and gathers that must have run locally
+REMOTE_RULES = {"receding_gap_chunk", "receding_line_chunk", "receding_patch_chunk",
+                "receding_table_chunk", "asperity_grid_bem", "asperity_bem", "fe_receding",
+                "stiffness_process", "surface_texture"}
+LOCAL_RULES = {"receding_gap_gather", "receding_line_gather", "receding_patch_gather",
+               "receding_table_gather", "asperity_grid_bem_merge"}
+
+
+def _slurm_answers() -> bool:
+    if shutil.which("sinfo") is None:
+        return False
+    return subprocess.run(["sinfo", "-h"], capture_output=True, check=False).returncode == 0
+
+
+@pytest.fixture(scope="module")
+def slurm_cluster():
+    """The local one-node Slurm, started for this module (stopped again if we started it)."""
+    if os.geteuid() != 0:
+        reason = "the local Slurm needs root to install slurm-wlm/munge and start daemons"
+        if os.environ.get("CI"):
+            pytest.fail(f"{reason}; CI must run the tests as root")
+        pytest.skip(reason)
+    was_running = _slurm_answers()
+    start = subprocess.run([str(SLURM_LOCAL), "start"], capture_output=True, text=True,
+                           check=False)
+    assert start.returncode == 0, start.stdout + start.stderr
+    yield
+    if not was_running:
+        subprocess.run([str(SLURM_LOCAL), "stop"], capture_output=True, check=False)
+
+
+def _timing_free(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` without wall-clock diagnostics (solver and ccx seconds differ run to run)."""
+    timing = [name for name in ds.data_vars if "seconds" in name or "wall" in name]
+    return ds.drop_vars(timing)
+
+
+def _attrs(ds: xr.Dataset) -> dict:
+    """Attributes as plain values (arrays as lists), without ``history`` and timings."""
+    return {k: np.asarray(v).tolist() for k, v in ds.attrs.items()
+            if k != "history" and "seconds" not in k}
+
+
+def _slurm_jobs(log: str) -> dict[str, str]:
+    """Slurm job id -> Snakemake job id (or group id), from the plugin's submission lines."""
+    return {slurm: job for job, slurm in
+            re.findall(r"Job (\S+) has been submitted with SLURM jobid (\d+)", log)}
+
+
+@pytest.mark.slow
+def test_study_through_slurm_equals_the_local_run(tmp_path: Path, slurm_cluster,
+                                                  snakemake) -> None:
+    local = copy_workflow(_mkdir(tmp_path / "local"))
+    cluster = copy_workflow(_mkdir(tmp_path / "cluster"))
+
+    run = snakemake(local, "-j2", "--", *TARGETS)
+    assert run.returncode == 0, run.stderr[-3000:]
+    # the profile as users run it; only the status polls are made quicker for the test
+    run = snakemake(cluster, "--profile", "workflow/profiles/slurm",
+                    "--slurm-init-seconds-before-status-checks", "2",
+                    "--seconds-between-status-checks", "2", "--", *TARGETS)
+    log = run.stdout + run.stderr
+    assert run.returncode == 0, log[-3000:]
+
+    # every heavy job went through sbatch: its Slurm id is known to squeue as COMPLETED,
+    # and the comment the plugin sets names its rule (or the group of its rules)
+    jobs = _slurm_jobs(log)
+    assert jobs, log[-3000:]
+    queue = subprocess.run(["squeue", "--states=all", "--noheader", "--format=%i|%T|%k",
+                            "--jobs", ",".join(jobs)],
+                           capture_output=True, text=True, check=True).stdout
+    seen = {line.split("|")[0]: line.split("|", 2)[1:] for line in queue.splitlines()}
+    assert set(seen) == set(jobs), (seen, jobs)
+    assert {state for state, _ in seen.values()} == {"COMPLETED"}, seen
+    comments = " ".join(comment for _, comment in seen.values())
+    assert all(rule in comments for rule in REMOTE_RULES), (REMOTE_RULES, comments)
+    ran_locally = set(re.findall(r"^localrule (\w+):$", log, re.M))
+    assert LOCAL_RULES <= ran_locally, ran_locally
+
+    for target in TARGETS:
+        if not target.endswith(".nc"):
+            continue
+        with xr.open_dataset(local / target) as a, xr.open_dataset(cluster / target) as b:
+            a, b = _timing_free(a.load()), _timing_free(b.load())
+        xr.testing.assert_allclose(a, b, rtol=1e-12, atol=0)
+        assert _attrs(a) == _attrs(b), target
+
+
+def _mkdir(path: Path) -> Path:
+    path.mkdir()
+    return path

@@ -1,0 +1,50 @@
+"""The Slurm profile: options the pinned Snakemake and plugin know, resources from measurement."""
+
+from __future__ import annotations
+
+import importlib.util
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import yaml
+
+
+def _load(path: Path):
+    spec = importlib.util.spec_from_file_location(path.stem, path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def _profile(repo: Path, name: str) -> dict:
+    return yaml.safe_load((repo / "workflow" / "profiles" / name / "config.yaml").read_text())
+
+
+def test_every_profile_option_exists_in_the_pinned_versions(repo: Path) -> None:
+    helptext = subprocess.run([sys.executable, "-m", "snakemake", "--help"], cwd=repo,
+                              capture_output=True, text=True, check=True).stdout
+    options = set(re.findall(r"(--[a-z][a-z0-9-]+)", helptext))
+    for name in ("default", "slurm"):
+        unknown = {f"--{key}" for key in _profile(repo, name)} - options
+        assert not unknown, f"{name} profile: {unknown}"
+
+
+def test_slurm_resources_are_those_derived_from_the_benchmark_files(repo: Path) -> None:
+    derive = _load(repo / "benchmarks" / "cluster_resources.py")
+    measured = derive.derived(repo / "docs" / "cluster" / "benchmarks")
+    profile = _profile(repo, "slurm")
+    assert profile["set-resources"] == measured
+
+
+def test_every_benchmarked_rule_is_measured_and_has_resources(repo: Path) -> None:
+    derive = _load(repo / "benchmarks" / "cluster_resources.py")
+    benchmarked = set()
+    for path in [repo / "Snakefile", *sorted((repo / "workflow" / "rules").glob("*.smk"))]:
+        text = path.read_text()
+        for rule, body in re.findall(r"^rule (\w+):\n((?:[ \t]+.*\n|\n)+)", text, re.M):
+            if re.search(r"^\s+benchmark:", body, re.M):
+                benchmarked.add(rule)
+    assert benchmarked == set(derive.RULES)
+    assert set(_profile(repo, "slurm")["set-resources"]) == benchmarked
