@@ -44,15 +44,15 @@ def main() -> None:
         size = sum(p.stat().st_size for p in written) / 1e6
         print(f"  {len(written)} scans, {size:.1f} MB")
         timed("read every scan (SurfaceTopography)",
-              lambda: [read_scan(p) for p in scan_paths(specs)])
+              lambda: [read_scan(p, 0.0) for p in scan_paths(specs)])
         areal = [s for s in specs if s.areal_scan is not None]
         profile = [s for s in specs if s.areal_scan is None]
         timed(f"process {len(areal)} surfaces with an areal scan",
-              lambda: [surface_texture(s) for s in areal])
+              lambda: [surface_texture(s, 80, 0.0) for s in areal])
         timed(f"process {len(profile)} profile-only surfaces",
-              lambda: [surface_texture(s) for s in profile])
+              lambda: [surface_texture(s, 80, 0.0) for s in profile])
         timed(f"process all {len(specs)} surfaces (read + parameters)",
-              lambda: [surface_texture(s) for s in specs])
+              lambda: [surface_texture(s, 80, 0.0) for s in specs])
 
 
 if __name__ == "__main__":

@@ -266,13 +266,8 @@ def science_callables() -> Iterator[tuple[str, object]]:
                     yield f"{module.__name__}.{name}", obj
 
 
-#: Known, reported, not yet fixed (the surfaces readers refuse any undefined point unless
-#: told otherwise, while the workflow fills up to the schema's 0.05); remove when fixed.
-KNOWN_SCIENCE_DEFAULTS = {
-    "contactlab.surfaces.scans.read_scan(max_undefined_fraction=0.0)",
-    "contactlab.surfaces.texture.SurfaceTexture(max_undefined_fraction=0.0)",
-    "contactlab.surfaces.texture.surface_texture(max_undefined_fraction=0.0)",
-}
+#: Science defaults that differ from the schema's and are accepted (none).
+KNOWN_SCIENCE_DEFAULTS: set[str] = set()
 
 
 def test_science_defaults_are_none_or_the_schema_default(schema: dict) -> None:

@@ -86,6 +86,8 @@ def check_named_study_beside_default(work: Path, snakemake) -> None:
     with xr.open_dataset(work / study / "receding" / "line.nc") as line:
         assert line.attrs["study"] == "e2e_study" and len(line.attrs["config_sha256"]) == 16
         assert float(line.attrs["lambda"]) == 4.0
+    with xr.open_dataset(work / study / "receding" / "profiles" / "line_f0.5.nc") as profile:
+        assert float(profile.attrs["lambda_a"]) == 4.0  # the profile follows the study too
     assert "ramp" in (work / study / "report" / "tables" / "receding_user_shapes.csv").read_text()
 
 

@@ -25,7 +25,7 @@ def processed(repo: Path, tmp_path_factory: pytest.TempPathFactory) -> pd.DataFr
     try:
         written = demo_scans(specs, Path("results/surfaces/demo_scans"), seed=20150901)
         assert len(written) == 56
-        textures = [surface_texture(spec) for spec in specs]
+        textures = [surface_texture(spec, 80, 0.0) for spec in specs]
     finally:
         os.chdir(cwd)
     datasets = [surface_dataset(texture) for texture in textures]

@@ -39,7 +39,8 @@ from contactlab.testsheet import read_test_sheet
 
 
 def test_scans_are_labelled_synthetic(processed: pd.DataFrame) -> None:
-    scan = read_scan(processed.attrs["work"] / "results/surfaces/demo_scans/RU1_pad_B_areal.x3p")
+    scan = read_scan(processed.attrs["work"] / "results/surfaces/demo_scans/RU1_pad_B_areal.x3p",
+                     0.0)
     assert scan.synthetic and "SYNTHETIC" in LABEL
     assert scan.dx == pytest.approx(2.01)
     assert scan.size_um[0] * scan.size_um[1] == pytest.approx(2e6, rel=0.01)  # 2 mm^2
@@ -105,7 +106,7 @@ def test_structured_100x_profiles_match_table_2_6(processed: pd.DataFrame) -> No
         assert o["lambda_c"] == row.lambda_c and o["sampling_length"] == 160.0
         with xr.open_dataset(work / f"{surface}.nc") as ds:
             assert int(ds["n_sampling_lengths"]) == 5 and float(ds["sampling_length"]) == 160.0
-        scan = read_scan(work / f"results/surfaces/demo_scans/{surface}_profile.x3p")
+        scan = read_scan(work / f"results/surfaces/demo_scans/{surface}_profile.x3p", 0.0)
         assert scan.dx == pytest.approx(row.profile_width / 1000)  # 167 nm pixels
         assert 1000 * o["Rq"] == pytest.approx(row.Rq, rel=0.01), row.test
         assert 1000 * o["Ra"] == pytest.approx(row.Ra, rel=0.03), row.test

@@ -86,7 +86,7 @@ def independent_str(z: np.ndarray, dx: float, dy: float, s: float = 0.2) -> floa
 
 def test_sdf_heights_by_hand() -> None:
     """sdf-1.sdf: 7 points x 4 profiles, X/Y/Z scale 1e-6 m, values printed in the file."""
-    scan = read_scan(DATA / "sdf-1.sdf")
+    scan = read_scan(DATA / "sdf-1.sdf", 0.0)
     assert scan.heights.shape == (7, 4) and scan.dx == scan.dy == pytest.approx(1.0)
     assert scan.heights[:, 0] == pytest.approx(
         [1.0, 0.99874, 0.99495, 0.98865, 0.97986, 0.96858, 1.0])  # first printed row, um
@@ -101,7 +101,7 @@ def test_al3d_heights_match_the_raw_depth_image() -> None:
     header = raw[:1261].decode("latin-1")
     assert "DepthImageOffset\0\0\0\0" "1261" in header and "PixelSizeXMeter" in header
     depth = np.frombuffer(raw[1261:1261 + 200 * 296 * 4], "<f4").reshape(296, 200)
-    scan = read_scan(DATA / "al3d-1.al3d")
+    scan = read_scan(DATA / "al3d-1.al3d", 0.0)
     assert scan.dx == scan.dy == pytest.approx(0.438027)
     np.testing.assert_allclose(scan.heights, depth.T * 1e6, rtol=1e-6)
     assert scan.instrument == "Alicona Imaging" and scan.filled_fraction == 0.0
@@ -110,8 +110,8 @@ def test_al3d_heights_match_the_raw_depth_image() -> None:
 def test_al3d_areal_parameters_against_an_independent_evaluation() -> None:
     """Sa, Sq, Sp within 1e-6 and Str within 0.1 % of the independent chain (lambda_c 25 um;
     observed 1e-11 and 7e-5: the two chains implement the same standard)."""
-    texture = surface_texture(areal_spec("alicona", "al3d-1.al3d", 25.0))
-    scan = read_scan(DATA / "al3d-1.al3d")
+    texture = surface_texture(areal_spec("alicona", "al3d-1.al3d", 25.0), 80, 0.0)
+    scan = read_scan(DATA / "al3d-1.al3d", 0.0)
     rough = independent_roughness(scan.heights, scan.dx, scan.dy, 25.0)
     v = texture.values
     assert v["Sa"] == pytest.approx(np.mean(np.abs(rough)), rel=1e-6)
@@ -126,7 +126,7 @@ def test_dektak_line_matches_the_instruments_export_and_profile_parameters() -> 
     to 0.5 pm, then Ra, Rq, Rz (lambda_c 8 um, sampling length 8 um, 10 % trimmed at each
     end) within 1e-6 of the direct-sum Gaussian filter applied to the exported column."""
     export = np.loadtxt(DATA / "opdx-3.txt")
-    scan = read_scan(DATA / "opdx-3.opdx")
+    scan = read_scan(DATA / "opdx-3.opdx", 0.0)
     assert scan.heights.shape == (3001, 1)
     assert scan.dx == pytest.approx((export[1, 0] - export[0, 0]) * 1e6, rel=1e-6)
     np.testing.assert_allclose(scan.heights[:, 0], export[:, 1] * 1e6, atol=5e-7)
@@ -150,7 +150,7 @@ def test_opd_undefined_points_are_filled_and_recorded() -> None:
     """The OPD crop has the 95-point cluster of undefined points of opd-1.opd (0.19 %):
     filled under the default 5 %, refused under 0.1 % naming file, fraction and setting."""
     path = DATA / "opd-1-crop.opd"
-    texture = surface_texture(areal_spec("wyko", "opd-1-crop.opd", 8.0),
+    texture = surface_texture(areal_spec("wyko", "opd-1-crop.opd", 8.0), 80,
                               max_undefined_fraction=0.05)
     assert texture.filled == {"areal": pytest.approx(95 / (256 * 192))}
     assert all(np.isfinite(texture.values[name]) for name in ("Sa", "Sq", "Sp", "Str"))
@@ -183,7 +183,7 @@ def test_filled_opd_heights_obey_the_maximum_principle() -> None:
 def test_x3p_whose_acf_does_not_decay_has_no_str() -> None:
     """MountainsMap X3P crop (320 x 320, 0.128 x 0.315 um pixels): along y the ACF stays
     above 0.2 over the search, so Str is NaN with a reason; the other parameters exist."""
-    texture = surface_texture(areal_spec("mountains", "x3p-2-crop.x3p", 25.0))
+    texture = surface_texture(areal_spec("mountains", "x3p-2-crop.x3p", 25.0), 80, 0.0)
     assert np.isnan(texture.values["Str"])
     assert "stays above s = 0.2 up to 20.43 um" in texture.undefined["Str"]
     assert "deg from x" in texture.undefined["Str"] and "Str < 0.0" in texture.undefined["Str"]
@@ -193,8 +193,8 @@ def test_x3p_whose_acf_does_not_decay_has_no_str() -> None:
 
 def test_mi_afm_file_reads_in_um() -> None:
     """mi-1.mi: 256 x 256 points over 20 um (AFM), heights already in um."""
-    scan = read_scan(DATA / "mi-1.mi")
+    scan = read_scan(DATA / "mi-1.mi", 0.0)
     assert scan.heights.shape == (256, 256)
     assert scan.size_um == pytest.approx((20.0, 20.0))
-    texture = surface_texture(areal_spec("afm", "mi-1.mi", 8.0))
+    texture = surface_texture(areal_spec("afm", "mi-1.mi", 8.0), 80, 0.0)
     assert 0 < texture.values["Sa"] < texture.values["Sq"] < texture.values["Sp"]

@@ -25,7 +25,7 @@ def write_x3p(path: Path, heights: np.ndarray, spacing: float, unit: str = "um")
 def test_x3p_round_trip_in_um(tmp_path: Path) -> None:
     """X3P stores metres; heights and spacing come back in um whatever unit was written."""
     heights = np.random.default_rng(0).normal(size=(40, 30))
-    scan = read_scan(write_x3p(tmp_path / "a.x3p", heights * 1e-3, 2.01e-3, unit="mm"))
+    scan = read_scan(write_x3p(tmp_path / "a.x3p", heights * 1e-3, 2.01e-3, unit="mm"), 0.0)
     assert scan.dx == pytest.approx(2.01) and scan.dy == pytest.approx(2.01)
     np.testing.assert_allclose(scan.heights, heights, rtol=1e-9, atol=1e-12)
     assert scan.size_um == pytest.approx((40 * 2.01, 30 * 2.01))
@@ -34,18 +34,18 @@ def test_x3p_round_trip_in_um(tmp_path: Path) -> None:
 
 def test_missing_scan_names_the_file(tmp_path: Path) -> None:
     with pytest.raises(FileNotFoundError, match=r"nowhere\.x3p"):
-        read_scan(tmp_path / "nowhere.x3p")
+        read_scan(tmp_path / "nowhere.x3p", 0.0)
 
 
 def test_corrupt_scan_is_refused_naming_the_file(tmp_path: Path) -> None:
     bad = tmp_path / "broken.x3p"
     bad.write_bytes(b"PK\x03\x04 this is not a zip archive")
     with pytest.raises(ValueError, match=r"broken\.x3p.*cannot read"):
-        read_scan(bad)
+        read_scan(bad, 0.0)
     garbage = tmp_path / "noise.dat"
     garbage.write_bytes(bytes(range(256)) * 10)
     with pytest.raises(ValueError, match=r"noise\.dat"):
-        read_scan(garbage)
+        read_scan(garbage, 0.0)
 
 
 def test_truncated_x3p_is_refused(tmp_path: Path) -> None:
@@ -53,7 +53,7 @@ def test_truncated_x3p_is_refused(tmp_path: Path) -> None:
     cut = tmp_path / "cut.x3p"
     cut.write_bytes(good.read_bytes()[: good.stat().st_size // 2])
     with pytest.raises(ValueError, match=r"cut\.x3p"):
-        read_scan(cut)
+        read_scan(cut, 0.0)
 
 
 def test_scan_without_or_with_an_unknown_unit_is_refused(tmp_path: Path) -> None:
@@ -61,12 +61,12 @@ def test_scan_without_or_with_an_unknown_unit_is_refused(tmp_path: Path) -> None
     plain = tmp_path / "plain.asc"
     np.savetxt(plain, np.zeros((20, 20)))
     with pytest.raises(ValueError, match=r"plain\.asc.*no length unit"):
-        read_scan(plain)
+        read_scan(plain, 0.0)
     odd = tmp_path / "odd_unit.asc"
     odd.write_text("# Width: 10 furlong\n# Height: 10 furlong\n# Value units: furlong\n"
                    + "\n".join(" ".join(["0.5"] * 10) for _ in range(10)))
     with pytest.raises(ValueError, match=r"odd_unit\.asc"):
-        read_scan(odd)
+        read_scan(odd, 0.0)
 
 
 def test_unknown_unit_from_reader_is_refused() -> None:
@@ -98,12 +98,12 @@ def test_undefined_points_are_filled_up_to_the_limit(tmp_path: Path) -> None:
                                          r"\(my setting\)"):
         read_scan(path, max_undefined_fraction=0.005, setting="my setting")
     with pytest.raises(ValueError, match=r"holes\.x3p.*more than the 0 % that are filled"):
-        read_scan(path)  # by default nothing is filled
-    assert read_scan(write_x3p(tmp_path / "full.x3p", plane, 1.0)).filled_fraction == 0.0
+        read_scan(path, 0.0)  # with a limit of 0 nothing is filled
+    assert read_scan(write_x3p(tmp_path / "full.x3p", plane, 1.0), 0.0).filled_fraction == 0.0
 
 
 def test_scan_smaller_than_the_cut_off_is_refused(tmp_path: Path) -> None:
-    small = read_scan(write_x3p(tmp_path / "small.x3p", np.zeros((300, 300)), 2.0))
+    small = read_scan(write_x3p(tmp_path / "small.x3p", np.zeros((300, 300)), 2.0), 0.0)
     with pytest.raises(ValueError, match=r"small\.x3p.*smaller than the cut-off"):
         areal_texture(small, 800.0)
     with pytest.raises(ValueError, match=r"small\.x3p.*smaller than the cut-off"):
@@ -116,7 +116,7 @@ def test_profile_lines_follow_the_stated_axis(tmp_path: Path) -> None:
     """Lines along y are columns of the height array; 5 evenly spaced, edges skipped."""
     x = np.arange(100)[:, None]
     y = np.arange(60)[None, :]
-    scan = read_scan(write_x3p(tmp_path / "lines.x3p", 1000.0 * x + y + 0.0, 1.0))
+    scan = read_scan(write_x3p(tmp_path / "lines.x3p", 1000.0 * x + y + 0.0, 1.0), 0.0)
     lines, spacing = profile_lines(scan, "y", 60.0)
     assert lines.shape == (60, 5) and spacing == pytest.approx(1.0)
     np.testing.assert_allclose(lines[:, 0] - lines[0, 0], np.arange(60))  # varies along y
@@ -131,7 +131,7 @@ def test_profile_texture_of_a_sine_scan(tmp_path: Path) -> None:
     spacing = 2.0
     x = np.arange(2600)[:, None] * spacing
     heights = 2.0 * np.sin(2 * np.pi * x / 40.0) + 0.001 * x + np.zeros((1, 12))
-    scan = read_scan(write_x3p(tmp_path / "sine.x3p", heights, spacing))
+    scan = read_scan(write_x3p(tmp_path / "sine.x3p", heights, spacing), 0.0)
     result = profile_texture(scan, "x", 5000.0, 800.0)
     v = result["values"]
     assert result["arrays"]["n_lines"] == 5
@@ -161,7 +161,7 @@ def test_areal_texture_of_crossed_sines(tmp_path: Path) -> None:
     heights = (amplitude * np.sin(2 * np.pi * s / wavelength)[:, None]
                + amplitude * np.sin(2 * np.pi * s / wavelength)[None, :]
                + 0.002 * s[:, None] - 0.001 * s[None, :])
-    scan = read_scan(write_x3p(tmp_path / "crossed.x3p", heights, spacing))
+    scan = read_scan(write_x3p(tmp_path / "crossed.x3p", heights, spacing), 0.0)
     v = areal_texture(scan, 800.0)["values"]
     assert v["Sq"] == pytest.approx(amplitude, rel=2e-3)
     # Sa of sin(a) + sin(b), a, b uniform: E|sin a + sin b| = 8/pi^2 A; sampled 20 times a
@@ -215,6 +215,6 @@ def test_demo_scan_files_are_byte_identical_for_equal_heights(tmp_path: Path,
     monkeypatch.setattr(time, "time", lambda: later)
     write_demo_scan(heights, 2.0, 2.0, tmp_path / "b.x3p")
     assert (tmp_path / "a.x3p").read_bytes() == (tmp_path / "b.x3p").read_bytes()
-    scan = read_scan(tmp_path / "b.x3p")
+    scan = read_scan(tmp_path / "b.x3p", 0.0)
     assert scan.synthetic
     np.testing.assert_allclose(scan.heights, heights, rtol=1e-6, atol=1e-6)

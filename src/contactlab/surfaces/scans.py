@@ -126,12 +126,12 @@ def fill_undefined(topography: Topography | UniformLineScan, path: Path, max_fra
     return np.asarray(holey.interpolate_undefined_data("harmonic").heights(), float), fraction
 
 
-def read_scan(path: str | Path, max_undefined_fraction: float = 0.0,
+def read_scan(path: str | Path, max_undefined_fraction: float,
               setting: str = "max_undefined_fraction") -> Scan:
     """Read one scan file (any SurfaceTopography format) as heights in um.
 
     Undefined points are filled (:func:`fill_undefined`) when they are at most
-    ``max_undefined_fraction`` of the scan (default 0: none allowed); ``setting``
+    ``max_undefined_fraction`` of the scan (0: none allowed); ``setting``
     names the option that changes the limit in the refusal. Raises
     FileNotFoundError for a missing file and ValueError, naming the file, for an
     unreadable or corrupt file, a missing physical size or unit, a non-uniform

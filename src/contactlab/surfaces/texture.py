@@ -77,7 +77,7 @@ class SurfaceTexture:
     synthetic: bool = False
     undefined: dict[str, str] = field(default_factory=dict)
     filled: dict[str, float] = field(default_factory=dict)
-    max_undefined_fraction: float = 0.0
+    max_undefined_fraction: float = field(kw_only=True)
 
 
 def _check_cut_off(extent_um: float, lambda_c: float, what: str, scan: Scan) -> None:
@@ -213,8 +213,8 @@ def profile_texture(scan: Scan, axis: str, length_um: float, lambda_c: float,
     return {"values": values, "undefined": dict(results[0].undefined), "arrays": arrays}
 
 
-def surface_texture(spec: SurfaceSpec, histogram_bins: int = 80,
-                    max_undefined_fraction: float = 0.0) -> SurfaceTexture:
+def surface_texture(spec: SurfaceSpec, histogram_bins: int,
+                    max_undefined_fraction: float) -> SurfaceTexture:
     """Everything the sheet asks for one surface.
 
     Scans with at most ``max_undefined_fraction`` undefined points are filled
