@@ -110,8 +110,10 @@ def test_single_target_builds_only_its_ancestors(workflow_copy: Path, snakemake)
          ["config/tests.csv", "RU1", "load_log", "data/RU1/log.csv"]),
         (("config/tests.csv", "RU2,ground,rough_specimen,B,RU2_pad,B,8,20",
           "RU2,ground,rough_specimen,B,RU2_pad,B,-8,20"),
-         ["config/tests.csv", "max_normal_load_kN", "-8"]),
+         ["config/tests.csv", "line 3 (test RU2)", "max_normal_load_kN", "-8"]),
         (("config/tests.csv", "id,group", "id,grup"), ["config/tests.csv", "grup"]),
+        (("config/tests.csv", "S2,structured", "S2,polished"),
+         ["config/tests.csv", "line 9 (test S2)", "column 'group'", "polished"]),
         (("config/config.yaml", None, ""), ["config/config.yaml", "empty"]),
         (("config/config.yaml", "tests: config/tests.csv", "tests: [config/tests.csv"),
          ["config/config.yaml", "line 5", "YAML"]),
@@ -122,6 +124,7 @@ def test_single_target_builds_only_its_ancestors(workflow_copy: Path, snakemake)
          ["config/e2e.yaml", "fe.problems.gap.level", "ultra", "coarse, medium"]),
     ],
     ids=["unknown-key", "wrong-type", "missing-file", "negative-load", "unknown-column",
+         "unknown-group",
          "empty-config", "yaml-syntax", "empty-range", "unknown-mesh-level"],
 )
 def test_malformed_config_fails_fast_and_writes_nothing(

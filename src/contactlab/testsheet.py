@@ -60,6 +60,29 @@ def read_test_sheet(path: str | Path) -> pd.DataFrame:
     return sheet
 
 
+def check_rows(sheet: pd.DataFrame, sheet_path: str | Path, schema: dict) -> None:
+    """Raise :class:`TestSheetError` naming line, test id, column and value of the first
+    cell (in sheet order) that breaks the row schema (``workflow/schemas/tests.schema.yaml``)."""
+    from jsonschema import Draft202012Validator
+
+    validator = Draft202012Validator(schema)
+    lines = sheet.attrs.get("line", {})
+    for test_id, row in sheet.iterrows():
+        record = {k: (None if pd.isna(v) else v) for k, v in row.items()}
+        for error in sorted(validator.iter_errors(record), key=lambda e: list(e.path)):
+            where = f"{sheet_path}: line {lines.get(test_id, '?')} (test {test_id})"
+            columns = ", ".join(schema.get("properties", {}))
+            if error.validator == "additionalProperties":
+                extra = sorted(set(record) - set(schema.get("properties", {})))
+                raise TestSheetError(f"{sheet_path}: line 1 (header): unknown column(s) "
+                                     f"{extra}; the columns are {columns}")
+            if error.validator == "required":
+                raise TestSheetError(f"{sheet_path}: line 1 (header): {error.message}; the "
+                                     f"columns are {columns}")
+            column = error.path[0] if error.path else ""
+            raise TestSheetError(f"{where}, column '{column}': {error.message}")
+
+
 def check_data_files(sheet: pd.DataFrame, sheet_path: str | Path, root: str | Path = ".",
                      generated: Collection[str] = ()) -> None:
     """Raise :class:`TestSheetError` if a data path in the sheet does not exist.

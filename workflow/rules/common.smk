@@ -13,7 +13,7 @@ from snakemake.utils import validate
 from contactlab.config_check import ConfigError, check_config, load_yaml_file
 from contactlab.stiffness.demo import demo_data_files
 from contactlab.study import changes, coerce, export_provenance, logs_dir, results_dir
-from contactlab.testsheet import TestSheetError, check_data_files, read_test_sheet
+from contactlab.testsheet import TestSheetError, check_data_files, check_rows, read_test_sheet
 
 
 def _config_files():
@@ -72,12 +72,10 @@ PROVENANCE = export_provenance(STUDY, config, workflow.basedir)
 
 try:
     TESTS = read_test_sheet(config["tests"])
-    validate(TESTS, "../schemas/tests.schema.yaml")
+    check_rows(TESTS, config["tests"], _load_yaml("workflow/schemas/tests.schema.yaml"))
     check_data_files(TESTS, config["tests"], generated=demo_data_files())
 except TestSheetError as exc:
     raise WorkflowError(str(exc)) from None
-except WorkflowError as exc:
-    raise WorkflowError(f"invalid test sheet {config['tests']}:\n{exc}") from None
 
 TEST_IDS = list(TESTS["id"])
 PUBLISHED = Path(config["published_dir"])
