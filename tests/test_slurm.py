@@ -18,8 +18,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import REPO, copy_workflow
 
+REPO = Path(__file__).resolve().parents[1]
 SLURM_LOCAL = REPO / ".ci" / "slurm-local"
 
 #: A few jobs of every branch: two gap and two line chunks, one patch and one table
@@ -85,10 +85,12 @@ def _slurm_jobs(log: str) -> dict[str, str]:
 
 
 @pytest.mark.slow
-def test_study_through_slurm_equals_the_local_run(tmp_path: Path, slurm_cluster,
-                                                  snakemake) -> None:
-    local = copy_workflow(_mkdir(tmp_path / "local"))
-    cluster = copy_workflow(_mkdir(tmp_path / "cluster"))
+def test_study_through_slurm_equals_the_local_run(
+        workflow_copy: Path, slurm_cluster, snakemake,
+        tmp_path_factory: pytest.TempPathFactory) -> None:
+    local = workflow_copy
+    cluster = tmp_path_factory.mktemp("cluster") / "workflow"
+    shutil.copytree(local, cluster)  # the same clean copy of the workflow, twice
 
     run = snakemake(local, "-j2", "--", *TARGETS)
     assert run.returncode == 0, run.stderr[-3000:]
@@ -122,7 +124,3 @@ def test_study_through_slurm_equals_the_local_run(tmp_path: Path, slurm_cluster,
         xr.testing.assert_allclose(a, b, rtol=1e-12, atol=0)
         assert _attrs(a) == _attrs(b), target
 
-
-def _mkdir(path: Path) -> Path:
-    path.mkdir()
-    return path

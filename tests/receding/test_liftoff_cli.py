@@ -106,4 +106,5 @@ def test_receding_liftoff_rules_plan(workflow_copy: Path) -> None:
     assert jobs == {"receding_line_chunk": "2", "receding_line_gather": "1",
                     "receding_patch_chunk": "3", "receding_patch_gather": "3",
                     "receding_line_profile": "1", "receding_patch_profile": "1",
-                    "report_receding_line_patch": "1"}
+                    "receding_table_chunk": "1", "receding_table_gather": "1",
+                    "report_receding_line_patch": "1"}  # the user's shape is in the section
