@@ -141,18 +141,28 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike[str],
     return Path(path)
 
 
+def load_datasets(paths: Sequence[str | os.PathLike[str]], what: str = "result file"
+                  ) -> list[xr.Dataset]:
+    """Every netCDF file of ``paths`` read into memory, in order (files closed again).
+
+    Raises FileNotFoundError naming ``what`` and the path for a missing file.
+    """
+    datasets = []
+    for path in paths:
+        if not Path(path).exists():
+            raise FileNotFoundError(f"{what} {path} not found")
+        with xr.open_dataset(path) as ds:
+            datasets.append(ds.load())
+    return datasets
+
+
 def concat_chunks(paths: list[str | os.PathLike[str]], dim: str) -> tuple[xr.Dataset,
                                                                         list[xr.Dataset]]:
     """Join the chunk files of a split sweep along ``dim``; also return the chunks.
 
     Raises FileNotFoundError for a missing chunk and ValueError if chunks overlap in ``dim``.
     """
-    parts = []
-    for path in paths:
-        if not Path(path).exists():
-            raise FileNotFoundError(f"sweep chunk {path} not found")
-        with xr.open_dataset(path) as part:
-            parts.append(part.load())
+    parts = load_datasets(paths, "sweep chunk")
     ds = xr.concat(parts, dim=dim, data_vars="minimal", coords="minimal",
                    combine_attrs="drop_conflicts").sortby(dim)
     if ds[dim].to_index().has_duplicates:

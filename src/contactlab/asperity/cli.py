@@ -48,15 +48,11 @@ def _transverse(args: argparse.Namespace) -> None:
 
 
 def _single(args: argparse.Namespace) -> None:
-    import xarray as xr
 
     from contactlab.asperity.datasets import q_ratio_grid, single_dataset
-    from contactlab.io import stamp, write_netcdf
+    from contactlab.io import load_datasets, stamp, write_netcdf
 
-    bem = []
-    for path in args.bem:
-        with xr.open_dataset(path) as ds:
-            bem.append(ds.load())
+    bem = load_datasets(args.bem, "BEM family")
     ds = single_dataset(q_ratio_grid(args.q_points), bem, args.nu, args.youngs_modulus,
                         args.sphere_radius,
                         {"fig_3_6": args.approach_fig_3_6, "fig_3_8": args.approach_fig_3_8},
@@ -111,12 +107,9 @@ def _merge_grid_bem(args: argparse.Namespace) -> None:
     import numpy as np
     import xarray as xr
 
-    from contactlab.io import stamp, write_netcdf
+    from contactlab.io import load_datasets, stamp, write_netcdf
 
-    parts = []
-    for path in args.inputs:
-        with xr.open_dataset(path) as ds:
-            parts.append(ds.load())
+    parts = load_datasets(args.inputs, "BEM grid")
     names = {v for ds in parts for v in ds.data_vars}
     for i, ds in enumerate(parts):
         for v in names - set(ds.data_vars):

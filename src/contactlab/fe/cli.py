@@ -70,15 +70,11 @@ def _compare(args: argparse.Namespace) -> None:
 
 
 def _convergence(args: argparse.Namespace) -> None:
-    import xarray as xr
 
     from contactlab.fe.compare import convergence
-    from contactlab.io import stamp, write_netcdf
+    from contactlab.io import load_datasets, stamp, write_netcdf
 
-    runs = []
-    for path in args.runs:
-        with xr.open_dataset(path) as ds:
-            runs.append(ds.load())
+    runs = load_datasets(args.runs, "FE run")
     out = convergence(runs)
     stamp(
         out,
@@ -112,15 +108,11 @@ def _asperity(args: argparse.Namespace) -> None:
 
 
 def _asperity_gather(args: argparse.Namespace) -> None:
-    import xarray as xr
 
     from contactlab.fe.asperity import gather
-    from contactlab.io import stamp, write_netcdf
+    from contactlab.io import load_datasets, stamp, write_netcdf
 
-    runs = []
-    for path in args.runs:
-        with xr.open_dataset(path) as ds:
-            runs.append(ds.load())
+    runs = load_datasets(args.runs, "FE run")
     out = gather(runs, args.bem)
     stamp(
         out,

@@ -16,6 +16,7 @@ import pandas as pd
 import xarray as xr
 from matplotlib.ticker import NullFormatter
 
+from contactlab.io import load_datasets
 from contactlab.report.section import Section
 
 TITLES = {
@@ -167,10 +168,7 @@ def build_section(results: list[Path], convergence: list[Path], asperity: Path |
                   report_dir: Path, out: Path) -> None:
     """Write the FE section, its tables and figures."""
     report_dir = Path(report_dir)
-    datasets = []
-    for path in results:
-        with xr.open_dataset(path) as ds:
-            datasets.append(ds.load())
+    datasets = load_datasets(results, "FE comparison")
     sec = Section("Finite element cross-checks (CalculiX)", "fe", report_dir)
     sec.paragraph(
         "The receding contacts of chs 5-7 modelled as a finite strip on a finite block in "
@@ -210,10 +208,7 @@ def build_section(results: list[Path], convergence: list[Path], asperity: Path |
                    f"(h/c = {float(ds['h']):g}, {int(ds['n_elements'])} elements, block edges "
                    f"{ds.attrs['edges']}) over the distributed-dislocation solution ({figs}).")
         sec.figure(profile_figure(ds), caption, report_dir / "figures" / f"fe_{problem}.png")
-    conv = []
-    for path in convergence:
-        with xr.open_dataset(path) as ds:
-            conv.append(ds.load())
+    conv = load_datasets(convergence, "FE convergence study")
     if conv:
         sec.table(convergence_table(conv), "Mesh convergence (sec. 8.3): transition points "
                   "and sizes per mesh", report_dir / "tables" / "fe_convergence.csv")

@@ -54,15 +54,10 @@ def _texture(args: argparse.Namespace) -> None:
 
 
 def _texture_summary(args: argparse.Namespace) -> None:
-    import xarray as xr
-
-    from contactlab.io import stamp, write_netcdf
+    from contactlab.io import load_datasets, stamp, write_netcdf
     from contactlab.surfaces.texture import summary_dataset
 
-    datasets = []
-    for path in args.surfaces:
-        with xr.open_dataset(path) as ds:
-            datasets.append(ds.load())
+    datasets = load_datasets(args.surfaces, "surface result")
     summary = summary_dataset(datasets)
     stamp(summary, title="Texture parameters of every surface (Tables A.1, A.26, A.27, 2.6)",
           source="results/surfaces/<surface>.nc of the surfaces in the surface sheet, sec. 2.3.4",
