@@ -68,7 +68,8 @@ if _SHARED:
         f"invalid configuration in {_config_files()}: study {STUDY!r} changes {', '.join(_SHARED)}; "
         "the demo data are shared by all studies, so their seeds are set in config/config.yaml only"
     )
-PROVENANCE = export_provenance(STUDY, config, workflow.basedir)
+# the jobs inherit the study name, config hash and commit through the environment
+export_provenance(STUDY, config, workflow.basedir)
 
 try:
     TESTS = read_test_sheet(config["tests"])
