@@ -112,9 +112,9 @@ def _seq(args: argparse.Namespace) -> None:
         from contactlab.surfaces.texture import refused_scans
 
         with xr.open_dataset(args.texture) as texture:
-            sq = texture["Sq"].load().to_series()
-            refused = {surface for surface, kind, _ in refused_scans(texture.load())
-                       if kind == "areal"}
+            texture = texture.load()
+        sq = texture["Sq"].to_series()
+        refused = {surface for surface, kind, _ in refused_scans(texture) if kind == "areal"}
         ds = add_scan_seq(ds, sheet, sq, str(args.texture), refused)
         source += f"; *_scan from the Sq computed from scans ({args.texture})"
         if refused:
@@ -176,7 +176,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description="Undefined points filled (harmonic interpolation, up to a limit), form "
                     "removal, Gaussian filter (ISO 16610-21/61) and the areal and profile "
                     "parameters Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz (um) of every "
-                    "surface in the sheet, one <surface>.nc each.")
+                    "surface in the sheet, one <surface>.nc each. A scan that cannot be "
+                    "evaluated (unreadable, too many undefined points, smaller than lambda_c) "
+                    "is recorded as refused, parameters NaN and the reason in the file, and "
+                    "named on stderr; texture-check turns refusals into an error.")
     texture.add_argument("--sheet", type=input_file, required=True,
                          help="surface sheet (CSV)")
     texture.add_argument("--out-dir", type=Path, required=True,
