@@ -191,8 +191,8 @@ def _spectra_figure(datasets: dict[str, xr.Dataset]) -> plt.Figure:
         if "psd_areal" not in ds:
             continue
         ax_psd.loglog(ds["q_areal"], ds["psd_areal"], lw=0.7, label=surface)
-        ax_hist.plot(ds["height"] / float(ds["Sq"]), ds["height_density"] * float(ds["Sq"]),
-                     lw=0.7)
+        sq = float(ds["Sq"])
+        ax_hist.plot(ds["roughness_height"] / sq, ds["height_density"] * sq, lw=0.7)
     z = np.linspace(-4, 4, 200)
     ax_hist.plot(z, np.exp(-z**2 / 2) / np.sqrt(2 * np.pi), "k--", lw=1, label="Gaussian")
     ax_hist.set_yscale("log")

@@ -278,9 +278,9 @@ def surface_dataset(texture: SurfaceTexture) -> xr.Dataset:
     if texture.areal:
         a = texture.areal
         centres = 0.5 * (a["edges"][1:] + a["edges"][:-1])
-        coords["height"] = xr.Variable("height", centres, {
+        coords["roughness_height"] = xr.Variable("roughness_height", centres, {
             "long_name": "height from the mean plane (bin centre)", "units": "um"})
-        data["height_density"] = xr.Variable("height", a["density"], {
+        data["height_density"] = xr.Variable("roughness_height", a["density"], {
             "long_name": "probability density of the roughness heights", "units": "1/um"})
         coords["q_areal"] = xr.Variable("q_areal", a["q"], {
             "long_name": "wavevector magnitude", "units": "1/um"})
