@@ -7,7 +7,7 @@ study before and after, copy ``results/`` aside, and compare. netCDF files are c
 with xarray (dimensions, coordinates, variables, dtypes, values with NaN equal to NaN, and
 every attribute except the provenance that legitimately changes from run to run:
 ``history``, ``git_commit``, ``config_sha256``); CSV tables with pandas (columns, rows,
-values). Numbers must be equal (``--rtol`` allows a relative tolerance). Every other
+values; ``#`` lines are comments). Numbers must be equal (``--rtol`` allows a relative tolerance). Every other
 file (figures, HTML, Markdown) is compared byte for byte and only reported: the HTML
 page carries the commit, and a refactoring may move a figure by a pixel legitimately.
 
@@ -118,8 +118,9 @@ def compare_netcdf(first: Path, second: Path, rtol: float = 0.0) -> list[str]:
 
 def compare_csv(first: Path, second: Path, rtol: float = 0.0) -> list[str]:
     """Differences between two CSV tables (empty when equal)."""
-    a = pd.read_csv(first, keep_default_na=False, na_values=[""], low_memory=False)
-    b = pd.read_csv(second, keep_default_na=False, na_values=[""], low_memory=False)
+    options = {"keep_default_na": False, "na_values": [""], "low_memory": False,
+               "comment": "#"}  # leading '# ' lines: provenance notes of the demo data
+    a, b = pd.read_csv(first, **options), pd.read_csv(second, **options)
     if list(a.columns) != list(b.columns):
         return [f"columns {list(a.columns)} != {list(b.columns)}"]
     if len(a) != len(b):
