@@ -7,9 +7,10 @@ study before and after, copy ``results/`` aside, and compare. netCDF files are c
 with xarray (dimensions, coordinates, variables, dtypes, values with NaN equal to NaN, and
 every attribute except the provenance that legitimately changes from run to run:
 ``history``, ``git_commit``, ``config_sha256``); CSV tables with pandas (columns, rows,
-values; ``#`` lines are comments). Numbers must be equal (``--rtol`` allows a relative tolerance). Every other
-file (figures, HTML, Markdown) is compared byte for byte and only reported: the HTML
-page carries the commit, and a refactoring may move a figure by a pixel legitimately.
+values; ``#`` lines are comments). Numbers must be equal (``--rtol`` allows a relative
+tolerance). Every other file (figures, HTML, Markdown) is compared byte for byte and only
+reported: the HTML page carries the commit, and a refactoring may move a figure by a
+pixel legitimately.
 
 Exit status 0 when every netCDF and CSV file of both trees is present in both and equal,
 1 otherwise.

@@ -125,7 +125,7 @@ def _asperity_gather(args: argparse.Namespace) -> None:
 
 
 def _report(args: argparse.Namespace) -> None:
-    from contactlab.report.fe import build_section
+    from contactlab.fe.report import build_section
 
     build_section(args.results, args.convergence, args.asperity, args.report_dir, args.out)
 

@@ -65,7 +65,7 @@ def _summarize(args: argparse.Namespace) -> None:
 
 
 def _report_raw(args: argparse.Namespace) -> None:
-    from contactlab.report.stiffness_raw import build_section
+    from contactlab.stiffness.report_raw import build_section
 
     build_section(args.results, args.summary, args.tests, args.report_dir, args.out,
                   published_dir=args.published_dir, flags_out=args.flags)
@@ -210,7 +210,7 @@ def _summarize_published(args: argparse.Namespace) -> None:
 
 
 def _report_published(args: argparse.Namespace) -> None:
-    from contactlab.report.stiffness_published import build_section
+    from contactlab.stiffness.report_published import build_section
 
     build_section(args.summary, args.tables_dir, args.report_dir, args.out,
                   published_dir=args.published_dir)
@@ -256,7 +256,7 @@ def register_published(commands: argparse._SubParsersAction) -> None:
 
 
 def _figures(args: argparse.Namespace) -> None:
-    from contactlab.report.stiffness_raw import test_figures
+    from contactlab.stiffness.report_raw import test_figures
 
     for result in args.results:
         test_figures(result, args.out_dir, args.published_dir)

@@ -18,9 +18,8 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from contactlab.io import stamp, write_netcdf
+from contactlab.io import stamp, write_netcdf, write_table
 from contactlab.published import TANGENTIAL_TABLES
-from contactlab.report.section import write_table
 from contactlab.stiffness.errors import ErrorModel
 from contactlab.stiffness.process import step_tables
 from contactlab.stiffness.summary import published_inputs, read_seq, summary_dataset
