@@ -215,11 +215,13 @@ def summary_within_margins(ours: dict[str, pd.DataFrame],
     return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=columns)
 
 
-def raw_vs_published(tables_dir: Path, published_dir: Path | None = None
-                     ) -> pd.DataFrame | None:
+def raw_vs_published(tables_dir: Path, published_dir: Path | None = None) -> pd.DataFrame:
     """Every published number of Tables 2.1-2.4 and 2.7-2.10 beside the one recomputed
     from the published per-step values and ours from raw data, with the difference
-    (raw - published) and the relative difference; None when no table was recomputed."""
+    (raw - published) and the relative difference (no rows when none was recomputed)."""
+    keep = ["table", "test", "direction", "basis", "quantity", "unit", "published",
+            "from_published_steps", "from_raw", "from_raw_minus_published",
+            "relative_difference"]
     comparisons = []
     for table, keys in COMPARED_TABLES.items():
         ours = read_recomputed(table, tables_dir)
@@ -239,19 +241,17 @@ def raw_vs_published(tables_dir: Path, published_dir: Path | None = None
         cmp.insert(0, "table", table)
         comparisons.append(cmp)
     if not comparisons:
-        return None
+        return pd.DataFrame(columns=keep)
     long = pd.concat(comparisons, ignore_index=True)
     long["relative_difference"] = long["from_raw_minus_published"] / long[
         "published"].abs().where(long["published"] != 0)
-    keep = ["table", "test", "direction", "basis", "quantity", "unit", "published",
-            "from_published_steps", "from_raw", "from_raw_minus_published",
-            "relative_difference"]
     return long.reindex(columns=keep)
 
 
-def margins_with_covariance(tables_dir: Path) -> pd.DataFrame | None:
+def margins_with_covariance(tables_dir: Path) -> pd.DataFrame:
     """Margins of Kn, Kt0 and Cc with the fit covariance neglected (the thesis's rule,
-    sec. 2.5.1 footnote 2) beside those with it kept, from our tables in ``tables_dir``."""
+    sec. 2.5.1 footnote 2) beside those with it kept, from our tables in ``tables_dir``
+    (no rows when there are none)."""
     parts = []
     for table, col, key in (("2.1", "Kn_An", "direction"), ("2.7", "Kn_An", "direction"),
                             ("2.2", "Kt0_An", "direction"), ("2.8", "Kt0_An", "direction"),
@@ -265,4 +265,6 @@ def margins_with_covariance(tables_dir: Path) -> pd.DataFrame | None:
         part.insert(0, "quantity", col)
         part.insert(0, "table", table)
         parts.append(part.dropna(subset=["value"]))
-    return pd.concat(parts, ignore_index=True) if parts else None
+    columns = ["table", "quantity", "test", "row", "value", "moe_neglected",
+               "moe_with_covariance"]
+    return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=columns)

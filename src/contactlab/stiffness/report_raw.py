@@ -29,7 +29,6 @@ from contactlab.stiffness.compare import (
 )
 from contactlab.stiffness.process import flagged_steps
 from contactlab.stiffness.recovery import recovery_table
-from contactlab.testsheet import read_test_sheet
 
 __all__ = ["build_section", "summary_figure", "test_figures"]
 
@@ -209,12 +208,11 @@ def test_figures(result: Path, out_dir: Path, published_dir: Path | None = None)
     return paths
 
 
-def summary_figure(summary: xr.Dataset, sheet: pd.DataFrame, published_dir: Path | None,
-                   png: Path) -> None:
-    """Like Figs 2.40-2.42 (and 2.60, 2.61): Kn, Kt0, f and Cc against -Pn/An."""
+def summary_figure(summary: xr.Dataset, published_dir: Path | None, png: Path) -> None:
+    """Like Figs 2.40-2.42 (and 2.60, 2.61): Kn, Kt0, f and Cc against -Pn/An, the loads
+    and areas being those the summary records."""
     tests = summary["test"].values.astype(str)
-    pn_an = sheet.loc[tests, "max_normal_load_kN"].to_numpy(float) / sheet.loc[
-        tests, "nominal_area_mm2"].to_numpy(float)
+    pn_an = summary["max_normal_load_kN"].values / summary["nominal_area_mm2"].values
     pub_n = pd.concat([read_published("2.1", published_dir),
                        read_published("2.7", published_dir)]).set_index(["test", "direction"])
     pub_t = pd.concat([read_published("2.2", published_dir),
@@ -248,13 +246,15 @@ def summary_figure(summary: xr.Dataset, sheet: pd.DataFrame, published_dir: Path
     save_figure(fig, png)
 
 
-def build_section(results: list[Path], summary_path: Path, tests_path: Path, report_dir: Path,
-                  out: Path, published_dir: Path | None = None,
-                  flags_out: Path | None = None) -> None:
-    """Write section 21 with its comparison, recovery and flag tables and summary figure."""
+def build_section(results: list[Path], summary_path: Path, report_dir: Path, out: Path,
+                  published_dir: Path | None = None, flags_out: Path | None = None) -> None:
+    """Write section 21 with its comparison, recovery and flag tables and summary figure.
+
+    Every table is written, empty when there is nothing to show (e.g. no thesis test to
+    recover), so the workflow's declared outputs always exist.
+    """
     report_dir = Path(report_dir)
     tables_dir = report_dir / "tables"
-    sheet = read_test_sheet(tests_path)
     section = Section("Contact stiffness from raw data vs the thesis", "stiffness-raw",
                       report_dir)
     demo = []
@@ -287,6 +287,7 @@ def build_section(results: list[Path], summary_path: Path, tests_path: Path, rep
         section.paragraph("All step fits converged.")
 
     recovery = recovery_table(results, published_dir)
+    per_test = pd.DataFrame(columns=["test", "fraction_within", "steps_within", "steps"])
     if len(recovery):
         per_test = recovery.groupby("test", sort=False)["within_margins"].agg(
             ["mean", "sum", "count"]).reset_index().rename(
@@ -297,45 +298,42 @@ def build_section(results: list[Path], summary_path: Path, tests_path: Path, rep
             f"the published 95% margins): {recovery['within_margins'].sum()} of "
             f"{len(recovery)} steps ({100 * overall:.1f}%)."
         )
-        section.table(per_test, "Recovery per test: steps whose fitted parameters lie within "
-                      "the published margins", tables_dir / "stiffness_raw_recovery_by_test.csv")
-        write_table(recovery, tables_dir / "stiffness_raw_recovery.csv")
+    section.table(per_test, "Recovery per test: steps whose fitted parameters lie within "
+                  "the published margins", tables_dir / "stiffness_raw_recovery_by_test.csv")
+    write_table(recovery, tables_dir / "stiffness_raw_recovery.csv")
 
     ours = {t: table for t in MARGIN_CHECKS
             if (table := read_recomputed(t, tables_dir)) is not None}
     cells = summary_within_margins(ours, published_dir)
+    by_quantity = cells.groupby("quantity", sort=False)["within"].agg(
+        ["sum", "count"]).reset_index().rename(columns={"sum": "within", "count": "cells"})
     if len(cells):
         section.paragraph(
             f"Per-test summaries from raw data within the published 95% margins: "
             f"{int(cells['within'].sum())} of {len(cells)} values (Tables 2.1, 2.2, 2.4, "
             "2.7-2.9).")
-        by_quantity = cells.groupby("quantity", sort=False)["within"].agg(
-            ["sum", "count"]).reset_index().rename(columns={"sum": "within", "count": "cells"})
-        section.table(by_quantity, "Summary values within the published margins, by quantity",
-                      tables_dir / "stiffness_raw_summary_margins_by_quantity.csv")
-        write_table(cells, tables_dir / "stiffness_raw_summary_margins.csv")
-        outside = cells[~cells["within"]]
-        if len(outside):
-            section.note("Outside the published margin: " + "; ".join(
-                f"Table {r.table} {r.test} {r.key} {r.quantity}"
-                for r in outside.itertuples()))
+    section.table(by_quantity, "Summary values within the published margins, by quantity",
+                  tables_dir / "stiffness_raw_summary_margins_by_quantity.csv")
+    write_table(cells, tables_dir / "stiffness_raw_summary_margins.csv")
+    outside = cells[~cells["within"].astype(bool)]
+    if len(outside):
+        section.note("Outside the published margin: " + "; ".join(
+            f"Table {r.table} {r.test} {r.key} {r.quantity}" for r in outside.itertuples()))
 
-    long = raw_vs_published(tables_dir, published_dir)
-    if long is not None:
-        section.table(long, "Tables 2.1-2.4 and 2.7-2.10: every published number, recomputed "
-                      "from the published per-step values, ours from raw data and the "
-                      "difference (raw - published)", tables_dir
-                      / "stiffness_raw_vs_published.csv")
+    section.table(raw_vs_published(tables_dir, published_dir),
+                  "Tables 2.1-2.4 and 2.7-2.10: every published number, recomputed from the "
+                  "published per-step values, ours from raw data and the difference "
+                  "(raw - published)", tables_dir / "stiffness_raw_vs_published.csv")
     covariance = margins_with_covariance(tables_dir)
-    if covariance is not None:
+    if len(covariance):
         section.paragraph(
             "The thesis propagates margins without the covariance of the fit parameters "
             "(sec. 2.5.1, footnote 2). With the covariance of each fit kept (beta_n with P0, "
             "beta_t with Qs, strongly correlated), the margins of Kn, Kt0 and Cc shrink:")
-        section.table(covariance, "Margins from raw data: covariance neglected (thesis rule) "
-                      "and kept", tables_dir / "stiffness_raw_margins_covariance.csv")
+    section.table(covariance, "Margins from raw data: covariance neglected (thesis rule) "
+                  "and kept", tables_dir / "stiffness_raw_margins_covariance.csv")
     with xr.open_dataset(summary_path) as summary:
-        summary_figure(summary.load(), sheet, published_dir,
+        summary_figure(summary.load(), published_dir,
                        report_dir / "figures" / "stiffness_raw_summary.png")
     section.blocks.append(
         "<figure><img src='figures/stiffness_raw_summary.png' alt='summary'>"
