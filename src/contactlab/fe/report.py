@@ -160,8 +160,8 @@ def _note_for(ds: xr.Dataset) -> str:
     problem = ds.attrs["problem"]
     if ds.attrs.get("ddt_status", "ok") != "ok":
         return (f"{problem}: {ds.attrs.get('ddt_missing_reason', ds.attrs['ddt_status'])}. "
-                "The FE side is complete; the comparison fills in when the receding branch "
-                "provides the solver.")
+                "The FE side is complete; the comparison with the distributed dislocations "
+                "is missing for this problem.")
     return ""
 
 
