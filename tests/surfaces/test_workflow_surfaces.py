@@ -64,7 +64,7 @@ def test_real_scans_run_one_job_each_and_a_refused_one_fails_alone(
 
     sheet.write_text("\n".join([header, *rows]) + "\n")
     plan = snakemake(workflow_copy, "-n", "results/surfaces/texture.nc", *config)
-    assert "surface_texture_summary" in plan.stdout and "rule surface_texture:" not in plan.stdout
+    assert "surfaces_texture_summary" in plan.stdout and "rule surfaces_texture:" not in plan.stdout
     run = snakemake(workflow_copy, "-j1", "results/surfaces/texture.nc", *config)
     assert run.returncode == 0, run.stderr[-3000:]
     with xr.open_dataset(results / "texture.nc") as texture:
