@@ -133,8 +133,8 @@ def test_the_checker_sees_an_upward_import() -> None:
     assert layer("contactlab.stiffness.tables") < layer("contactlab.report.section")
     assert layer("contactlab.report.section") < layer("contactlab.stiffness.report_raw")
     assert layer("contactlab.stiffness.report_raw") < layer("contactlab.stiffness.cli")
-    assert layer("contactlab.receding.gap.report") == 3
-    assert layer("contactlab.receding.liftoff.cli") == 4
+    assert layer("contactlab.receding.gap.solver.report") == 3
+    assert layer("contactlab.receding.liftoff.solver.cli") == 4
     assert layer("contactlab.receding.core.solve") == 1
     source = ("from contactlab.report.section import write_table\n"
               "def f():\n    from . import cli\n")

@@ -193,7 +193,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     cmp_.add_argument("--e-minus-w", type=float, default=None,
                       help="patch: (e - w)/c (config receding.patches.e_minus_w)")
     cmp_.add_argument("--ddt-file", type=Path, default=None,
-                      help="receding results file to use when no solver API exists")
+                      help="receding results file to use when the solve fails")
     cmp_.add_argument("--out", type=Path, required=True, help="netCDF output")
     cmp_.set_defaults(func=_compare)
 
