@@ -1,6 +1,7 @@
 """Sweeps of the lifting-off problems (line load, patches) as CF datasets, and profiles.
 
-Pure functions: numbers in, xarray out. Sweeps continue along f (largest first) and, for
+Pure functions: numbers in, xarray out; and the fits of sec. 7.6 to a sweep of wide
+patches (:func:`wide_fits`). Sweeps continue along f (largest first) and, for
 patches, along w_hat (smallest first), each converged solution seeding its neighbours;
 a failed point is kept with ``converged = 0``, its residual and its regime code, never
 dropped, and never stops the sweep.
@@ -9,6 +10,7 @@ dropped, and never stops the sweep.
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 import xarray as xr
 
 from contactlab.receding.core.solution import regime_attrs
@@ -18,6 +20,8 @@ from contactlab.receding.liftoff.patch import default_lambdas, slope_normalisati
 from contactlab.receding.liftoff.solver import REGIMES, LiftoffSolution
 
 ONE = "1"
+#: the fitted forms of sec. 7.6 exist for the thesis's laws only, not for a user's shape
+WIDE_FIT_BASIS = {"uniform": np.log, "hertz": np.sqrt, "punch": lambda w: 1.0 / w}
 SCALARS = {
     "a": "end of the central stick zone a/c",
     "b": "start of separation b/c",
@@ -189,6 +193,31 @@ def sweep_patch(law: str, f_values, w_values, n: int, lam_b: float, e_extra: flo
                      "e_minus_w": e_extra,
                      "units_note": "lengths in c, tractions in T = int p dx / c"})
     return ds
+
+
+def wide_fits(patches: dict[str, xr.Dataset], f: float) -> pd.DataFrame:
+    """The fits of sec. 7.6 to K_B(w) at friction f: uniform alpha ln w + beta, Hertzian
+    alpha sqrt(w) + beta, punch K_inf + gamma / w (asymptote)."""
+    rows = []
+    for law, ds in patches.items():
+        if law not in WIDE_FIT_BASIS:
+            continue
+        row = ds.sel(f=f, method="nearest")
+        w = row["w_hat"].values
+        k = row["K_B"].where(row["converged"] == 1).values
+        use = np.isfinite(k) & (w >= 2.0)
+        if use.sum() < 2:
+            continue
+        basis = WIDE_FIT_BASIS[law](w)
+        slope, icpt = np.polyfit(basis[use], k[use], 1)
+        form = {"uniform": "alpha ln(w/c) + beta", "hertz": "alpha sqrt(w/c) + beta",
+                "punch": "K_inf + gamma c/w (K_inf = beta)"}[law]
+        resid = float(np.max(np.abs(slope * basis[use] + icpt - k[use])))
+        rows.append({"law": law, "f": float(row["f"]), "fit": form, "alpha_or_gamma": slope,
+                     "beta": icpt, "max_misfit": resid, "points": int(use.sum()),
+                     "w_range": f"{w[use].min():g}-{w[use].max():g}"})
+    columns = ["law", "f", "fit", "alpha_or_gamma", "beta", "max_misfit", "points", "w_range"]
+    return pd.DataFrame(rows, columns=columns)
 
 
 def profile_dataset(sol: LiftoffSolution, x_max: float, points: int,
