@@ -11,8 +11,8 @@ import time
 
 import numpy as np
 
-from contactlab.receding.gap import separation_friction, solve_gap
-from contactlab.receding.sweep import sweep_friction
+from contactlab.receding.gap.solver import separation_friction, solve_gap
+from contactlab.receding.gap.sweep import sweep_friction
 
 
 def timed(fn, *args, **kwargs):

@@ -12,11 +12,11 @@ from __future__ import annotations
 
 import time
 
-from contactlab.receding._blas import single_thread
-from contactlab.receding.liftoff import assemble
-from contactlab.receding.line import solve_line
-from contactlab.receding.loading import make_load
-from contactlab.receding.patch import solve_patch
+from contactlab.receding.core._blas import single_thread
+from contactlab.receding.liftoff.line import solve_line
+from contactlab.receding.liftoff.loading import make_load
+from contactlab.receding.liftoff.patch import solve_patch
+from contactlab.receding.liftoff.solver import assemble
 
 
 def timed(fn, *args, **kwargs):
@@ -61,7 +61,7 @@ def main() -> None:
         print(f"  N={n:<4} assembly {(t1 - t0) / reps:7.4f} s  solve {(t2 - t1) / reps:7.4f} s")
 
     print("sweep: uniform patch, f = 0.3, w/c = 0.5 ... 20 (continuation in w)")
-    from contactlab.receding.liftoff_sweep import sweep_patch
+    from contactlab.receding.liftoff.sweep import sweep_patch
 
     ds, wall, cpu = timed(sweep_patch, "uniform", [0.3], [0.5, 1, 2, 5, 10, 20], 100, 2.0, 5.0)
     print(f"  {int(ds['converged'].sum())}/{ds['converged'].size} converged, wall {wall:6.2f} s"

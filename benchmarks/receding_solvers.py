@@ -20,11 +20,11 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from contactlab.receding._blas import single_thread
-from contactlab.receding.gap import solve_gap
-from contactlab.receding.liftoff_sweep import sweep_patch
-from contactlab.receding.line import solve_line
-from contactlab.receding.patch import solve_patch
+from contactlab.receding.core._blas import single_thread
+from contactlab.receding.gap.solver import solve_gap
+from contactlab.receding.liftoff.line import solve_line
+from contactlab.receding.liftoff.patch import solve_patch
+from contactlab.receding.liftoff.sweep import sweep_patch
 
 BEFORE = Path(__file__).with_name("receding_solvers_before.json")
 

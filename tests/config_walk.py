@@ -20,11 +20,11 @@ from typing import Any
 
 #: Rules a parameter of each branch may rerun (prefixes), besides the report page.
 BRANCH_RULES = {
-    "surfaces": ("surface_texture", "seq", "report_surfaces", "demo_scans", "stiffness_summary",
-                 "report_stiffness"),
+    "surfaces": ("surfaces_", "report_surfaces", "stiffness_summary", "report_stiffness"),
     "stiffness": ("stiffness_", "report_stiffness"),
-    "asperity": ("asperity_", "fe_asperity"),
-    "receding": ("receding_", "report_receding"),
+    "asperity": ("asperity_", "report_asperity", "fe_asperity"),
+    # the FE cross-checks solve the line load and the patch with the receding settings
+    "receding": ("receding_", "report_receding", "fe_compare", "report_fe"),
 }
 ALWAYS = ("report_index", "all")
 #: Leaves that name files or the shared demo inputs, not parameters of a computation.

@@ -306,12 +306,10 @@ def test_config_parameters_have_no_cli_default(command: tuple[str, str],
 
 
 def test_line_and_patch_science_take_their_parameters_explicitly() -> None:
-    from contactlab.receding.chaise import solve_chaise
-    from contactlab.receding.liftoff_sweep import sweep_line, sweep_patch
-    from contactlab.receding.line import solve_line
+    from contactlab.receding.liftoff.line import solve_line
+    from contactlab.receding.liftoff.sweep import sweep_line, sweep_patch
 
-    for fn, names in ((solve_line, ("n", "lam", "e")), (solve_chaise, ("n", "lam", "e")),
-                      (sweep_line, ("n", "lam", "e", "chaise")),
+    for fn, names in ((solve_line, ("n", "lam", "e")), (sweep_line, ("n", "lam", "e", "chaise")),
                       (sweep_patch, ("n", "lam_b", "e_extra"))):
         params = inspect.signature(fn).parameters
         assert all(params[n].default is inspect.Parameter.empty for n in names), fn

@@ -38,9 +38,9 @@ TARGETS = [
 #: rules that must have been cluster jobs, and gathers that must have run locally
 REMOTE_RULES = {"receding_gap_chunk", "receding_line_chunk", "receding_patch_chunk",
                 "receding_table_chunk", "asperity_grid_bem", "asperity_bem", "fe_receding",
-                "stiffness_process", "surface_texture"}
+                "stiffness_process", "surfaces_texture"}
 LOCAL_RULES = {"receding_gap_gather", "receding_line_gather", "receding_patch_gather",
-               "receding_table_gather", "asperity_grid_bem_merge"}
+               "receding_table_gather", "asperity_grid_bem_gather"}
 
 
 def _slurm_answers() -> bool:

@@ -6,6 +6,7 @@ from pathlib import Path
 
 import pytest
 
+from contactlab.published import NOMINAL_AREA_MM2, NORMAL_LOAD_KN
 from contactlab.testsheet import TestSheetError, check_data_files, read_test_sheet, surface_id
 
 HEADER = (
@@ -16,7 +17,10 @@ HEADER = (
 def test_default_sheet_has_the_nine_thesis_tests(repo) -> None:
     sheet = read_test_sheet(repo / "config" / "tests.csv")
     assert list(sheet.index) == ["RU1", "RU2", "RU3", "SU1", "SU2", "SU3", "S1", "S2", "S3"]
-    assert set(sheet["nominal_area_mm2"]) == {20}
+    # the demo data are built with the thesis's loads (published.NORMAL_LOAD_KN, the one
+    # place they are written); the sheet that processes them must state the same
+    assert sheet["max_normal_load_kN"].to_dict() == NORMAL_LOAD_KN
+    assert set(sheet["nominal_area_mm2"]) == {NOMINAL_AREA_MM2}
 
 
 def test_duplicate_ids_are_refused(tmp_path: Path) -> None:

@@ -41,6 +41,7 @@ def test_workflow_end_to_end(workflow_copy: Path, snakemake) -> None:
     netcdf = sorted(results.rglob("*.nc"))
     assert len(netcdf) > 60
     assert {path.name: errors for path in netcdf if (errors := cf_errors(path))} == {}
+    check_every_file_is_declared(workflow_copy, snakemake)
 
     again = snakemake(workflow_copy, "-n", "all")
     assert again.returncode == 0, again.stderr
@@ -67,6 +68,17 @@ def test_workflow_end_to_end(workflow_copy: Path, snakemake) -> None:
     assert (results / "report" / "snakemake-report.zip").stat().st_size > 0
 
     check_named_study_beside_default(workflow_copy, snakemake)
+
+
+def check_every_file_is_declared(work: Path, snakemake) -> None:
+    """Every file under results/ is an output of some rule (tables with their Markdown,
+    figures with their PDF): what a command writes, its rule declares."""
+    summary = snakemake(work, "--summary", "all")
+    assert summary.returncode == 0, summary.stderr[-3000:]
+    declared = {line.split("\t")[0] for line in summary.stdout.splitlines()[1:]}
+    written = {p.relative_to(work).as_posix() for p in (work / "results").rglob("*")
+               if p.is_file()}
+    assert not written - declared, sorted(written - declared)
 
 
 def _checksums(root: Path, skip: str) -> dict[str, str]:
@@ -101,8 +113,8 @@ def test_single_target_builds_only_its_ancestors(workflow_copy: Path, snakemake)
     run = snakemake(workflow_copy, "-n", "results/surfaces/seq.nc")
     assert run.returncode == 0, run.stderr
     # Seq starts from the scans: texture parameters of the (demo) scans come first.
-    assert planned_rules(run) == {"seq", "surface_texture_summary", "surface_texture",
-                                  "demo_scans"}
+    assert planned_rules(run) == {"surfaces_seq", "surfaces_texture_summary", "surfaces_texture",
+                                  "surfaces_demo_scans"}
 
 
 @pytest.mark.parametrize(

@@ -1,7 +1,7 @@
-"""Writing results: CF-style netCDF and text files, atomically.
+"""Writing results: CF-style netCDF, tables and text files, atomically.
 
-Every result goes through :func:`write_netcdf` or :func:`atomic_path`, so a
-failed or interrupted job never leaves a half-written file behind.
+Every result goes through :func:`write_netcdf`, :func:`write_table` or :func:`atomic_path`,
+so a failed or interrupted job never leaves a half-written file behind.
 """
 
 from __future__ import annotations
@@ -14,11 +14,15 @@ import sys
 import tempfile
 from collections.abc import Iterator, Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import xarray as xr
 
 from contactlab import __version__
 from contactlab.study import provenance
+
+if TYPE_CHECKING:
+    import pandas as pd
 
 CONVENTIONS = "CF-1.10"
 
@@ -176,3 +180,12 @@ def write_text(text: str, path: str | os.PathLike[str]) -> Path:
     with atomic_path(path) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return Path(path)
+
+
+def write_table(table: pd.DataFrame, csv_path: str | os.PathLike[str], digits: int = 3) -> None:
+    """Write ``table`` as CSV at ``csv_path`` and as Markdown beside it (``.md``)."""
+    csv_path = Path(csv_path)
+    with atomic_path(csv_path) as tmp:
+        table.to_csv(tmp, index=False, float_format=f"%.{digits + 3}g", lineterminator="\n")
+    markdown = table.to_markdown(index=False, floatfmt=f".{digits}f")
+    write_text(markdown + "\n", csv_path.with_suffix(".md"))

@@ -72,7 +72,7 @@ def test_small_study_end_to_end(tmp_path, capsys):
         assert main(["asperity", "grid-bem", "--N", str(n), "--area-ratio", "0.3",
                      "--cells-per-spacing", "8", "--equal-loads",
                      "--out", str(out / f"gb{n}.nc")]) == 0
-    assert main(["asperity", "merge-grid-bem", str(out / "gb3.nc"), str(out / "gb1.nc"),
+    assert main(["asperity", "grid-bem-gather", str(out / "gb3.nc"), str(out / "gb1.nc"),
                  "--out", str(out / "grid_bem.nc")]) == 0
     ds = _check_cf(out / "grid_bem.nc")
     assert ds["N"].values.tolist() == [1, 3]

@@ -11,7 +11,9 @@ def test_coulomb_curve_limits():
     q = np.array([0.0, 1e-6, 1.0])
     d = single.coulomb_ratio(q)
     assert d[0] == 0.0
-    assert d[1] / q[1] == pytest.approx(1.0, rel=1e-5)  # initial slope = stuck (eq. 3.1)
+    # initial slope = the stuck line (eq. 3.1), which lies below the partial-slip curve
+    assert d[1] / single.stuck_ratio(q)[1] == pytest.approx(1.0, rel=1e-5)
+    assert np.all(single.coulomb_ratio(q[1:]) > single.stuck_ratio(q[1:]))
     assert d[2] == pytest.approx(1.5, rel=1e-14)  # gross slip at 3/2 Delta_n
     assert np.isnan(single.coulomb_ratio([1.1])[0])
 

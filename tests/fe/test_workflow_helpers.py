@@ -1,4 +1,4 @@
-"""Helpers of workflow/rules/fe.smk and the fe: sections of the default and e2e configs."""
+"""Rule helpers of workflow/rules/fe.smk and the fe: sections of the default and e2e configs."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from pathlib import Path
 import jsonschema
 import yaml
 
-from contactlab.fe import workflow as fe_wf
+from contactlab import rulehelpers as fe_wf
 
 
 def _config(repo: Path, name: str) -> dict:
@@ -43,7 +43,12 @@ def test_arguments_and_file_lists(repo: Path) -> None:
     assert fe_wf.ddt_inputs(with_file, "line", []) == []  # no rule makes it: not an input
     assert fe_wf.ddt_inputs(with_file, "line", [path]) == [path]
     assert fe_wf.ddt_file_arg(with_file, "line") == ["--ddt-file", path]
-    assert fe_wf.ddt_sources("gap") == ["src/contactlab/receding/gap.py"]
+    assert fe_wf.ddt_sources("gap", str(repo)) == ["src/contactlab/receding/gap/solver.py"]
+    config = _config(repo, "config/config.yaml")
+    line = config["receding"]["line"]
+    assert fe_wf.ddt_args(config, "line") == ["--lam", str(line["lambda"]), "--e", str(line["e"])]
+    assert fe_wf.ddt_args(config, "uniform")[::2] == ["--lam-b", "--e-minus-w"]
+    assert fe_wf.ddt_args(config, "gap") == []
     assert fe_wf.asperity_runs({**fe, "asperity": {**fe["asperity"], "enabled": False}}) == []
     runs = fe_wf.asperity_runs({**fe, "asperity": {**fe["asperity"], "enabled": True}})
     assert runs[0] == "results/fe/asperity/sy0.nc" and len(runs) == 5

@@ -18,11 +18,11 @@ from typing import Any
 
 import numpy as np
 
-from contactlab.receding.gap import separation_friction, solve_gap
-from contactlab.receding.liftoff_sweep import sweep_line, sweep_patch
-from contactlab.receding.line import solve_line
-from contactlab.receding.patch import solve_patch
-from contactlab.receding.sweep import sweep_friction
+from contactlab.receding.gap.solver import separation_friction, solve_gap
+from contactlab.receding.gap.sweep import sweep_friction
+from contactlab.receding.liftoff.line import solve_line
+from contactlab.receding.liftoff.patch import solve_patch
+from contactlab.receding.liftoff.sweep import sweep_line, sweep_patch
 
 PATH = Path(__file__).with_name("data") / "solver_reference.json"
 

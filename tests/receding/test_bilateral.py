@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from contactlab.receding.bilateral import (
+from contactlab.receding.core.bilateral import (
     Patch,
     bilateral_tractions,
     gap_bilateral,
@@ -72,7 +72,7 @@ def test_general_patches() -> None:
 def test_line_load_and_patch_closed_forms() -> None:
     """Eqs (6.6)-(6.7) and (7.1)-(7.2) against Flamant integration; the gap problem is the
     uniform state minus the patch."""
-    from contactlab.receding.bilateral import line_load_bilateral, patch_bilateral
+    from contactlab.receding.core.bilateral import line_load_bilateral, patch_bilateral
 
     x = np.array([-3.0, -0.5, 0.0, 0.9, 1.1, 4.0])
     # a line load as the limit of a narrow patch of the same resultant

@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from contactlab.receding.dislocations import DensityInterval
-from contactlab.receding.kernels import SPLIT, kernel
-from contactlab.receding.quadrature import bounded_rule, cauchy_matrix
-from contactlab.receding.solve import LinearSystem
+from contactlab.receding.core.dislocations import DensityInterval
+from contactlab.receding.core.kernels import SPLIT, kernel
+from contactlab.receding.core.quadrature import bounded_rule, cauchy_matrix
+from contactlab.receding.core.solve import LinearSystem
 
 
 def _poly(x):

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from contactlab.receding import gap
-from contactlab.receding.bilateral import gap_bilateral
+from contactlab.receding.core.bilateral import gap_bilateral
+from contactlab.receding.gap import solver as gap
 
 
 @pytest.fixture(scope="module")

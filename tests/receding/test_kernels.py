@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from contactlab.receding import kernels
+from contactlab.receding.core import kernels
 
 
 def _infinite_plane(x: float, y: float, bx: float, by: float) -> tuple[float, float]:

@@ -82,7 +82,7 @@ def test_sweeps_gather_profile_report(tmp_path: Path) -> None:
         check_cf(ds)
         assert "separation_chaise" in ds and ds.attrs["converged"] == 1
     section = tmp_path / "report" / "sections" / "51_receding_line_patch.html"
-    assert main(["receding", "liftoff-report", "--line", str(line), "--patches", str(uniform),
+    assert main(["receding", "report-liftoff", "--line", str(line), "--patches", str(uniform),
                  "--profiles", str(prof_line), str(prof_patch), "--report-dir",
                  str(tmp_path / "report"), "--out", str(section)]) == 0
     html = section.read_text()

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from contactlab.receding.bilateral import line_load_bilateral, patch_bilateral
-from contactlab.receding.loading import make_load, remote_form_closed
+from contactlab.receding.core.bilateral import line_load_bilateral, patch_bilateral
+from contactlab.receding.liftoff.loading import make_load, remote_form_closed
 
 X = np.array([0.0, 0.3, 0.99, 1.0, 1.7, 4.0, 12.0])
 

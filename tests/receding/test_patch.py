@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from integrals import gauss_integral
 
-from contactlab.receding.legendre_helpers import gauss_integral
-from contactlab.receding.liftoff import CHECK_TOL, solve_liftoff
-from contactlab.receding.loading import make_load
-from contactlab.receding.patch import slope_normalisations, solve_patch
+from contactlab.receding.core.solution import CHECK_TOL
+from contactlab.receding.liftoff.loading import make_load
+from contactlab.receding.liftoff.patch import slope_normalisations, solve_patch
+from contactlab.receding.liftoff.solver import solve_liftoff
 
 THESIS = (100, 2.0, 5.0)  # N, lambda_b, (e - w)/c of sec. 7.4
 
@@ -70,7 +71,7 @@ def test_refusals() -> None:
 
 def test_config_pressure_table_is_swept_like_a_named_law() -> None:
     """A user's shape given as a table in units of w reproduces the named laws it equals."""
-    from contactlab.receding.liftoff_sweep import sweep_patch
+    from contactlab.receding.liftoff.sweep import sweep_patch
 
     uniform = sweep_patch("uniform", [0.3], [1.0, 2.5], *THESIS)
     table = sweep_patch("table", [0.3], [1.0, 2.5], *THESIS, shape={"x": [0, 1], "p": [1, 1]})

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from contactlab.receding.kernels import h_yxy, h_yyy, h_yyy_regular
-from contactlab.receding.loading import make_load
-from contactlab.receding.preformed import (
+from contactlab.receding.core.kernels import h_yxy, h_yyy, h_yyy_regular
+from contactlab.receding.liftoff.loading import make_load
+from contactlab.receding.liftoff.preformed import (
     Preformed,
     cubic_coefficients,
     printed_cubic_coefficients,
@@ -91,7 +91,7 @@ def test_table_6_1_by_direct_evaluation() -> None:
     """Far-field tractions of Table 6.1 (normalised, M -> 1/pi): the climb densities
     -sign(x) and k2/x (= 1/(2 pi x)) evaluated with A_y of b = 0, e -> 0, and the glide
     pair and line load from the kernels: all entries as printed."""
-    from contactlab.receding.kernels import h_xxy, h_xyy
+    from contactlab.receding.core.kernels import h_xxy, h_xyy
 
     pre = Preformed(make_load("line"), 0.0, 1e-3)
     x = 120.0

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from contactlab.receding import quadrature as q
+from contactlab.receding.core import quadrature as q
 
 
 def _phi(s):

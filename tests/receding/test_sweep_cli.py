@@ -15,7 +15,7 @@ import xarray as xr
 
 from contactlab.cli import main
 from contactlab.io import check_cf
-from contactlab.receding import sweep
+from contactlab.receding.gap import sweep
 
 
 @pytest.fixture(scope="module")
@@ -92,7 +92,7 @@ def test_cli_chain(tmp_path: Path) -> None:
     assert main(["receding", "gap-profile", "--w-hat", "2.5", "--f", "0.5", "--n", "20",
                  "--x-max", "6", "--out", str(profile)]) == 0
     section = tmp_path / "report" / "sections" / "50_receding_gap.html"
-    assert main(["receding", "report", "--sweep", str(gap), "--regimes", str(regimes),
+    assert main(["receding", "report-gap", "--sweep", str(gap), "--regimes", str(regimes),
                  "--profiles", str(profile), "--report-dir", str(tmp_path / "report"),
                  "--out", str(section)]) == 0
     with xr.open_dataset(gap) as ds:
@@ -127,10 +127,10 @@ def test_receding_rules_plan(workflow_copy: Path) -> None:
 
 
 def test_workflow_helpers() -> None:
-    from contactlab.receding.workflow import (
+    from contactlab.rulehelpers import (
         chunk_values,
-        profile_name,
-        profile_point,
+        gap_profile_name,
+        gap_profile_point,
         sweep_values,
     )
 
@@ -140,7 +140,7 @@ def test_workflow_helpers() -> None:
     chunks = [chunk_values(values, c, 6) for c in range(6)]
     assert sorted(float(v) for chunk in chunks for v in chunk) == values
     points = [{"w": 2.5, "f": 0.5}, {"w": 1.0, "f": 0.3}]
-    assert profile_name(points[1]) == "w1_f0.3"
-    assert profile_point(points, "w2.5_f0.5") == points[0]
+    assert gap_profile_name(points[1]) == "w1_f0.3"
+    assert gap_profile_point(points, "w2.5_f0.5") == points[0]
     with pytest.raises(ValueError, match="w9_f9"):
-        profile_point(points, "w9_f9")
+        gap_profile_point(points, "w9_f9")

@@ -7,6 +7,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+import xarray as xr
 
 from contactlab.cli import main
 from contactlab.io import write_netcdf
@@ -62,7 +63,8 @@ def test_flagged_step_stays_out_of_the_means(tmp_path: Path) -> None:
     write_netcdf(ds, tmp_path / "RU1.nc")
     sheet = pd.DataFrame({"id": ["RU1"], "group": ["ground"], "max_normal_load_kN": [4.0],
                           "nominal_area_mm2": [20.0]}).set_index("id", drop=False)
-    tables = raw_tables([tmp_path / "RU1.nc"], sheet)
+    with xr.open_dataset(tmp_path / "RU1.nc") as ds:
+        tables = raw_tables([ds.load()], sheet)
     loading = tables["means"].set_index(["test", "direction"]).loc[("RU1", "loading")]
     assert loading["steps_used"] == "1"
 

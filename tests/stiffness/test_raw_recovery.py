@@ -19,13 +19,13 @@ import xarray as xr
 
 from contactlab.io import write_netcdf
 from contactlab.published import NORMAL_LOAD_KN, read_published
-from contactlab.report.stiffness_raw import recovery_table, summary_within_margins
 from contactlab.stiffness import demo
-from contactlab.stiffness.compare import THESIS_DISCREPANCIES
+from contactlab.stiffness.compare import THESIS_DISCREPANCIES, summary_within_margins
 from contactlab.stiffness.demo import DEMO_TESTS, generate_test, write_demo
 from contactlab.stiffness.errors import ErrorModel
 from contactlab.stiffness.process import load_inputs, process_test
 from contactlab.stiffness.raw_summary import summarize_raw
+from contactlab.stiffness.recovery import recovery_table
 
 
 @pytest.fixture(scope="module")

@@ -67,4 +67,4 @@ def test_tenth_test_reruns_only_its_jobs_and_the_summaries(workflow_copy: Path,
     # the test sheet feeds Seq, so Seq and everything summarising all tests reruns too
     assert set(jobs) <= {"stiffness_process", "stiffness_figures", "stiffness_summary",
                          "stiffness_summary_from_published_steps", "report_stiffness_raw",
-                         "seq"}, jobs
+                         "surfaces_seq"}, jobs

@@ -65,7 +65,7 @@ def test_real_scans_one_job_each_and_refused_ones_listed_with_their_reason(
         workflow_copy: Path, snakemake, repo: Path) -> None:
     """Real instrument files in the surface sheet (issue 22), one job each, with two bad
     scans among them: with --keep-going every good surface is evaluated, the summary lists
-    all nine surfaces with the bad ones' reasons, and surface_texture_check fails the run
+    all nine surfaces with the bad ones' reasons, and surfaces_texture_check fails the run
     naming both; allow_refused_scans accepts them; without them the summary has the filled
     fraction of the OPD and Str of the X3P and the PLU as NaN with the reason."""
     shutil.copytree(repo / "tests" / "data" / "scans", workflow_copy / "data")
@@ -101,7 +101,7 @@ def test_real_scans_one_job_each_and_refused_ones_listed_with_their_reason(
 
     accept = ("--config", "surfaces={sheet: config/real.csv, allow_refused_scans: true}")
     plan = snakemake(workflow_copy, "-n", *targets, *accept)
-    assert "surface_texture_check" in plan.stdout and "surface_texture:" not in plan.stdout
+    assert "surfaces_texture_check" in plan.stdout and "surfaces_texture:" not in plan.stdout
     run = snakemake(workflow_copy, "-j1", *targets, *accept)
     assert run.returncode == 0, run.stderr[-3000:]
     refused = pd.read_csv(results / "refused.csv")
@@ -109,7 +109,8 @@ def test_real_scans_one_job_each_and_refused_ones_listed_with_their_reason(
 
     sheet.write_text("\n".join([header, *rows]) + "\n")
     plan = snakemake(workflow_copy, "-n", *targets, *config)
-    assert "surface_texture_summary" in plan.stdout and "rule surface_texture:" not in plan.stdout
+    assert "surfaces_texture_summary" in plan.stdout
+    assert "rule surfaces_texture:" not in plan.stdout
     run = snakemake(workflow_copy, "-j1", *targets, *config)
     assert run.returncode == 0, run.stderr[-3000:]
     assert len(pd.read_csv(results / "refused.csv")) == 0

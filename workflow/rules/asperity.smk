@@ -1,9 +1,11 @@
 # Asperity branch (thesis ch. 3): single-asperity curves with a tangential BEM (one job per
 # interface law), distributed asperity loads, Hertz grid models and their BEM check (one job
-# per grid size N), and three report sections. One BLAS thread per job: the dense and FFT
-# solves are small, Snakemake runs the jobs side by side.
+# per grid size N), and three report sections (report_asperity_*). One BLAS thread per job:
+# the dense and FFT solves are small, Snakemake runs the jobs side by side.
 
 import json
+
+from contactlab.rulehelpers import pdf_files, table_files
 
 ASPERITY = config["asperity"]
 ASPERITY_BEM_LAWS = ASPERITY["bem"]["laws"]
@@ -147,7 +149,7 @@ rule asperity_grid_bem:
         " --cells-per-spacing {params.cells:q} {params.equal:q} --out {output:q} 2> {log:q}"
 
 
-rule asperity_grid_bem_merge:
+rule asperity_grid_bem_gather:
     """results/asperity/grid_bem.nc: the BEM grids joined along N."""
     input:
         expand(result("asperity/grid_bem/N{n}.nc"), n=ASPERITY_GRID_BEM_N),
@@ -156,16 +158,26 @@ rule asperity_grid_bem_merge:
     log:
         logs("asperity/grid_bem_merge.log"),
     shell:
-        "contactlab asperity merge-grid-bem {input:q} --out {output:q} 2> {log:q}"
+        "contactlab asperity grid-bem-gather {input:q} --out {output:q} 2> {log:q}"
 
 
-rule asperity_report_single:
+rule report_asperity_single:
     """Report section: Figs 3.6 and 3.8 equivalents, BEM checks, transverse traction."""
     input:
         single=result("asperity/single.nc"),
         transverse=result("asperity/bem/transverse.nc"),
     output:
         section=result("report/sections/30_asperity_1_single.html"),
+        tables=table_files(
+            *[
+                result(f"report/tables/asperity_{name}.csv")
+                for name in ("bem_checks", "yield_ratios", "shear_limits", "transverse")
+            ]
+        ),
+        pdfs=pdf_files(
+            result("report/figures/asperity_fig_3_6.png"),
+            result("report/figures/asperity_fig_3_8.png"),
+        ),
         fig36=report(
             result("report/figures/asperity_fig_3_6.png"),
             caption="../report/asperity_single.rst",
@@ -185,12 +197,14 @@ rule asperity_report_single:
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
 
 
-rule asperity_report_multi:
+rule report_asperity_multi:
     """Report section: Fig. 3.10 equivalent and the initial slopes S(n)."""
     input:
         result("asperity/multi.nc"),
     output:
         section=result("report/sections/30_asperity_2_multi.html"),
+        tables=table_files(result("report/tables/asperity_multi.csv")),
+        pdfs=pdf_files(result("report/figures/asperity_fig_3_10.png")),
         fig=report(
             result("report/figures/asperity_fig_3_10.png"),
             caption="../report/asperity_multi.rst",
@@ -205,13 +219,20 @@ rule asperity_report_multi:
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
 
 
-rule asperity_report_grid:
+rule report_asperity_grid:
     """Report section: Figs 3.12-3.16 equivalents and the BEM grids."""
     input:
         grid=result("asperity/grid.nc"),
         bem=result("asperity/grid_bem.nc"),
     output:
         section=result("report/sections/30_asperity_3_grid.html"),
+        tables=table_files(result("report/tables/asperity_grid_bem.csv")),
+        pdfs=pdf_files(
+            *[
+                result(f"report/figures/asperity_{name}.png")
+                for name in ("fig_3_12", "fig_3_13", "fig_3_14", "fig_3_15_3_16", "grid_bem")
+            ]
+        ),
         fig312=report(
             result("report/figures/asperity_fig_3_12.png"),
             caption="../report/asperity_grid.rst",
@@ -270,7 +291,7 @@ localrules:
     asperity_single,
     asperity_multi,
     asperity_grid,
-    asperity_grid_bem_merge,
-    asperity_report_single,
-    asperity_report_multi,
-    asperity_report_grid,
+    asperity_grid_bem_gather,
+    report_asperity_single,
+    report_asperity_multi,
+    report_asperity_grid,

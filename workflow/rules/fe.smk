@@ -3,13 +3,19 @@
 # convergence, and the elastic-perfectly plastic stuck asperity (opt-in). One ccx job per
 # model and mesh, so `-j N` runs N of them at once. `fe: {enabled: false}` drops the branch.
 
-from contactlab.fe import workflow as fe_wf
+from contactlab import rulehelpers
+from contactlab.rulehelpers import pdf_files, table_files
 
 FE = config["fe"]
 FE_ON = FE["enabled"]
 FE_PROBLEMS = list(FE["problems"]) if FE_ON else []
-FE_ASPERITY = fe_wf.asperity_runs(FE, RESULTS)
-FE_CONVERGENCE = fe_wf.convergence_files(FE, RESULTS)
+FE_ASPERITY = rulehelpers.asperity_runs(FE, RESULTS)
+FE_CONVERGENCE = rulehelpers.convergence_files(FE, RESULTS)
+FE_FIGURES = [
+    *expand(result("report/figures/fe_{problem}.png"), problem=FE_PROBLEMS),
+    *([result("report/figures/fe_convergence.png")] if FE_CONVERGENCE else []),
+    *([result("report/figures/fe_asperity.png")] if FE_ASPERITY else []),
+]
 
 
 rule fe_receding:
@@ -20,7 +26,7 @@ rule fe_receding:
         problem="gap|line|uniform",
         level=r"[A-Za-z0-9]+",
     params:
-        args=lambda wc: fe_wf.receding_args(FE, wc.problem, wc.level),
+        args=lambda wc: rulehelpers.receding_args(FE, wc.problem, wc.level),
     log:
         logs("fe/receding_{problem}_{level}.log"),
     benchmark:
@@ -35,28 +41,29 @@ rule fe_receding:
 rule fe_compare:
     """results/fe/{problem}.nc: FE transition points and profiles against the DDT solution."""
     input:
-        run=lambda wc: fe_wf.comparison_run(FE, wc.problem, RESULTS),
-        ddt=lambda wc: fe_wf.ddt_inputs(FE, wc.problem, ALL_TARGETS),
-        solver=lambda wc: fe_wf.ddt_sources(wc.problem),
+        run=lambda wc: rulehelpers.comparison_run(FE, wc.problem, RESULTS),
+        ddt=lambda wc: rulehelpers.ddt_inputs(FE, wc.problem, ALL_TARGETS),
+        solver=lambda wc: rulehelpers.ddt_sources(wc.problem),
     output:
         result("fe/{problem}.nc"),
     wildcard_constraints:
         problem="gap|line|uniform",
     params:
         n=FE["ddt_n"],
-        ddt=lambda wc: fe_wf.ddt_file_arg(FE, wc.problem),
+        reference=lambda wc: rulehelpers.ddt_args(config, wc.problem),
+        ddt=lambda wc: rulehelpers.ddt_file_arg(FE, wc.problem),
     log:
         logs("fe/compare_{problem}.log"),
     shell:
         "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1"
-        " contactlab fe compare --run {input.run:q} --ddt-n {params.n:q} {params.ddt:q}"
-        " --out {output:q} 2> {log:q}"
+        " contactlab fe compare --run {input.run:q} --ddt-n {params.n:q}"
+        " {params.reference:q} {params.ddt:q} --out {output:q} 2> {log:q}"
 
 
 rule fe_convergence:
     """results/fe/convergence_{problem}.nc: transition points over refined meshes (sec. 8.3)."""
     input:
-        lambda wc: fe_wf.convergence_runs(FE, wc.problem, RESULTS),
+        lambda wc: rulehelpers.convergence_runs(FE, wc.problem, RESULTS),
     output:
         result("fe/convergence_{problem}.nc"),
     wildcard_constraints:
@@ -74,7 +81,7 @@ rule fe_asperity:
     wildcard_constraints:
         sy=r"[0-9.]+",
     params:
-        args=lambda wc: fe_wf.asperity_args(FE),
+        args=lambda wc: rulehelpers.asperity_args(FE),
     log:
         logs("fe/asperity_sy{sy}.log"),
     benchmark:
@@ -110,20 +117,17 @@ rule report_fe:
         asperity=[result("fe/asperity_plastic.nc")] if FE_ASPERITY else [],
     output:
         section=result("report/sections/70_fe.html"),
-        tables=[
+        tables=table_files(
             result("report/tables/fe_agreement.csv"),
             *([result("report/tables/fe_convergence.csv")] if FE_CONVERGENCE else []),
             *([result("report/tables/fe_asperity.csv")] if FE_ASPERITY else []),
-        ],
+        ),
         figures=report(
-            [
-                *expand(result("report/figures/fe_{problem}.png"), problem=FE_PROBLEMS),
-                *([result("report/figures/fe_convergence.png")] if FE_CONVERGENCE else []),
-                *([result("report/figures/fe_asperity.png")] if FE_ASPERITY else []),
-            ],
+            FE_FIGURES,
             caption="../report/fe.rst",
             category="Finite elements",
         ),
+        pdfs=pdf_files(*FE_FIGURES),
     params:
         asperity=lambda wc, input: ["--asperity", *input.asperity] if input.asperity else [],
         convergence=lambda wc, input: (

@@ -3,18 +3,22 @@
 # map, interface profiles and the report section. Small dense solves: one BLAS thread per
 # job, Snakemake runs the jobs in parallel.
 
-from contactlab.receding.workflow import (
+from contactlab.rulehelpers import (
     chunk_values,
-    profile_name,
-    profile_point,
+    gap_profile_name,
+    gap_profile_point,
+    liftoff_profile_name,
+    liftoff_profile_point,
+    pdf_files,
     sweep_values,
+    table_files,
 )
 
 RECEDING = config["receding"]["gap"]
 RECEDING_W = sweep_values(RECEDING["w"])
 RECEDING_F = sweep_values(RECEDING["f"])
 RECEDING_CHUNKS = list(range(min(RECEDING["chunks"], len(RECEDING_W))))
-RECEDING_PROFILES = [profile_name(p) for p in RECEDING["profiles"]]
+RECEDING_PROFILES = [gap_profile_name(p) for p in RECEDING["profiles"]]
 RECEDING_COMPARE = [n for n in RECEDING["compare_n"] if n != RECEDING["n"]]
 
 
@@ -85,8 +89,8 @@ rule receding_gap_profile:
     output:
         result("receding/profiles/gap_{point}.nc"),
     params:
-        w=lambda wc: profile_point(RECEDING["profiles"], wc.point)["w"],
-        f=lambda wc: profile_point(RECEDING["profiles"], wc.point)["f"],
+        w=lambda wc: gap_profile_point(RECEDING["profiles"], wc.point)["w"],
+        f=lambda wc: gap_profile_point(RECEDING["profiles"], wc.point)["f"],
         n=RECEDING["profile_n"],
         x_max=RECEDING["profile_x_max"],
     log:
@@ -106,10 +110,16 @@ rule report_receding_gap:
         profiles=expand(result("receding/profiles/gap_{point}.nc"), point=RECEDING_PROFILES),
     output:
         section=result("report/sections/50_receding_gap.html"),
-        tables=[
+        tables=table_files(
             result("report/tables/receding_gap_points.csv"),
             result("report/tables/receding_gap_thresholds.csv"),
-        ],
+        ),
+        pdfs=pdf_files(
+            *[
+                result(f"report/figures/receding_gap_{name}.png")
+                for name in ("regimes", "zones", "densities", "tractions", "displacements")
+            ]
+        ),
         regimes=report(
             result("report/figures/receding_gap_regimes.png"),
             caption="../report/receding_regimes.rst",
@@ -140,7 +150,7 @@ rule report_receding_gap:
     log:
         logs("report/receding_gap.log"),
     shell:
-        "contactlab receding report --sweep {input.sweep:q} --compare {input.compare:q}"
+        "contactlab receding report-gap --sweep {input.sweep:q} --compare {input.compare:q}"
         " --regimes {input.regimes:q}"
         " --profiles {input.profiles:q} --report-dir {params.report_dir:q} --out {output.section:q}"
         " 2> {log:q}"
@@ -159,8 +169,6 @@ REPORT_SECTIONS.append(result("report/sections/50_receding_gap.html"))
 
 # ---- Line load (ch. 6) and pressure patches (ch. 7): lift-off at all remote points.
 # Sweeps split per problem and f-chunk (interleaved f values), gathered along f.
-
-from contactlab.receding.workflow import liftoff_profile_name, liftoff_profile_point
 
 LINE = config["receding"]["line"]
 LINE_F = sweep_values(LINE["f"])
@@ -348,12 +356,29 @@ rule report_receding_line_patch:
         ],
     output:
         section=result("report/sections/51_receding_line_patch.html"),
-        tables=[
+        tables=table_files(
             result("report/tables/receding_line_sweep.csv"),
             result("report/tables/receding_patch_points.csv"),
             result("report/tables/receding_patch_fits.csv"),
             *([result("report/tables/receding_user_shapes.csv")] if PATCH_TABLES else []),
-        ],
+        ),
+        pdfs=pdf_files(
+            *[
+                result(f"report/figures/receding_{name}.png")
+                for name in (
+                    "line_zones",
+                    "line_densities",
+                    "line_tractions",
+                    "line_displacements",
+                    "patch_tractions",
+                    "patch_densities",
+                    "patch_displacements",
+                    "patch_zones",
+                    "patch_slope",
+                    "patch_wide",
+                )
+            ]
+        ),
         line_zones=report(
             result("report/figures/receding_line_zones.png"),
             caption="../report/receding_line_patch.rst",
@@ -409,7 +434,7 @@ rule report_receding_line_patch:
     log:
         logs("report/receding_line_patch.log"),
     shell:
-        "contactlab receding liftoff-report --line {input.line:q} --patches {input.patches:q}"
+        "contactlab receding report-liftoff --line {input.line:q} --patches {input.patches:q}"
         " --profiles {input.profiles:q} --report-dir {params.report_dir:q} --out {output.section:q}"
         " 2> {log:q}"
 

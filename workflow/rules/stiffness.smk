@@ -5,9 +5,9 @@
 import re
 
 from contactlab.published import TANGENTIAL_TABLES
+from contactlab.rulehelpers import pdf_files, raw_data_option, raw_inputs, raw_tests, table_files
 from contactlab.stiffness.demo import DEMO_TESTS
 from contactlab.stiffness.raw_summary import CHAPTER_TABLES
-from contactlab.stiffness.workflow import raw_data_option, raw_inputs, raw_tests
 
 _RAW = config["stiffness"]["raw"]
 _ERR = config["stiffness"]["errors"]
@@ -87,7 +87,7 @@ rule stiffness_figures:
     input:
         result=result("stiffness/{test}.nc"),
     output:
-        [
+        figures=[
             report(
                 result(f"report/figures/stiffness_raw_{{test}}_{name}.png"),
                 caption="../report/stiffness_raw.rst",
@@ -96,11 +96,14 @@ rule stiffness_figures:
             )
             for name in RAW_FIGURES
         ],
+        pdfs=pdf_files(
+            *[result(f"report/figures/stiffness_raw_{{test}}_{name}.png") for name in RAW_FIGURES]
+        ),
     wildcard_constraints:
         test=_RAW_TEST_PATTERN,
     params:
         published=PUBLISHED,
-        out_dir=lambda wildcards, output: Path(output[0]).parent,
+        out_dir=lambda wildcards, output: Path(output.figures[0]).parent,
     log:
         logs("stiffness/figures_{test}.log"),
     shell:
@@ -116,7 +119,7 @@ rule stiffness_summary:
         seq=result("surfaces/seq.nc"),
     output:
         summary=result("stiffness/summary.nc"),
-        tables=RAW_TABLES,
+        tables=table_files(*RAW_TABLES),
     params:
         threshold=_RAW["kt0_margin_threshold"],
         errors=_ERROR_OPTIONS,
@@ -139,7 +142,6 @@ rule report_stiffness_raw:
         tables=RAW_TABLES,
         figures=expand(result("report/figures/stiffness_raw_{test}_{name}.png"),
                        test=RAW_TESTS, name=RAW_FIGURES),
-        tests=config["tests"],
         from_published_steps=[
             result(f"report/tables/table_{n}_from_published_steps.csv")
             for n in ["2.1", "2.2", "2.3", "2.4", "2.7", "2.8", "2.9", "2.10"]
@@ -151,15 +153,27 @@ rule report_stiffness_raw:
         ],
     output:
         section=result("report/sections/21_stiffness_raw.html"),
-        comparison=result("report/tables/stiffness_raw_vs_published.csv"),
-        recovery=result("report/tables/stiffness_raw_recovery.csv"),
-        margins=result("report/tables/stiffness_raw_summary_margins.csv"),
         flags=result("report/tables/stiffness_raw_flagged_fits.csv"),
+        tables=table_files(
+            *[
+                result(f"report/tables/stiffness_raw_{name}.csv")
+                for name in (
+                    "vs_published",
+                    "recovery",
+                    "recovery_by_test",
+                    "summary_margins",
+                    "summary_margins_by_quantity",
+                    "margins_covariance",
+                )
+            ]
+        ),
+        flags_md=result("report/tables/stiffness_raw_flagged_fits.md"),
         figure=report(
             result("report/figures/stiffness_raw_summary.png"),
             caption="../report/stiffness_raw.rst",
             category="Contact stiffness",
         ),
+        pdf=result("report/figures/stiffness_raw_summary.pdf"),
     params:
         published=PUBLISHED,
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
@@ -167,7 +181,7 @@ rule report_stiffness_raw:
         logs("report/stiffness_raw.log"),
     shell:
         "contactlab stiffness report-raw {input.results:q} --summary {input.summary:q}"
-        " --tests {input.tests:q} --published-dir {params.published:q}"
+        " --published-dir {params.published:q}"
         " --report-dir {params.report_dir:q} --flags {output.flags:q}"
         " --out {output.section:q} 2> {log:q}"
 

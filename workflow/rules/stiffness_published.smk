@@ -3,11 +3,13 @@
 # printed ones. Outputs carry the suffix _from_published_steps.
 
 from contactlab.published import MEAN_ROW_TABLES, PER_STEP_FIT_TABLES
+from contactlab.rulehelpers import pdf_files, table_files
 
 STIFFNESS_PUBLISHED_NUMBERS = ["2.1", "2.2", "2.3", "2.4", "2.7", "2.8", "2.9", "2.10"]
 STIFFNESS_PUBLISHED_TABLES = expand(
     result("report/tables/table_{n}_from_published_steps.csv"), n=STIFFNESS_PUBLISHED_NUMBERS
 )
+STIFFNESS_PUBLISHED_FIGURES = ["fig_2_40", "fig_2_41", "fig_2_42", "fig_2_60", "fig_2_61", "mean_row"]
 _SP_ERRORS = config["stiffness"]["errors"]
 _SP = config["stiffness"]["published_steps"]
 
@@ -26,7 +28,7 @@ rule stiffness_summary_from_published_steps:
         published=STIFFNESS_PUBLISHED_INPUTS,
     output:
         summary=result("stiffness/summary_from_published_steps.nc"),
-        tables=STIFFNESS_PUBLISHED_TABLES,
+        tables=table_files(*STIFFNESS_PUBLISHED_TABLES),
     params:
         published=PUBLISHED,
         tables_dir=lambda wildcards, output: Path(output.tables[0]).parent,
@@ -57,17 +59,25 @@ rule report_stiffness_published:
         published=[PUBLISHED / f"table_{n}.csv" for n in STIFFNESS_PUBLISHED_NUMBERS],
     output:
         section=result("report/sections/20_stiffness_published.html"),
-        tables=expand(
-            result("report/tables/compare_{n}_from_published_steps.csv"),
-            n=STIFFNESS_PUBLISHED_NUMBERS,
+        tables=table_files(
+            *expand(
+                result("report/tables/compare_{n}_from_published_steps.csv"),
+                n=[*STIFFNESS_PUBLISHED_NUMBERS, "counts"],
+            )
         ),
         figures=report(
             expand(
                 result("report/figures/stiffness_{fig}_from_published_steps.png"),
-                fig=["fig_2_40", "fig_2_41", "fig_2_42", "fig_2_60", "fig_2_61", "mean_row"],
+                fig=STIFFNESS_PUBLISHED_FIGURES,
             ),
             caption="../report/stiffness_published.rst",
             category="Contact stiffness",
+        ),
+        pdfs=pdf_files(
+            *expand(
+                result("report/figures/stiffness_{fig}_from_published_steps.png"),
+                fig=STIFFNESS_PUBLISHED_FIGURES,
+            )
         ),
     params:
         published=PUBLISHED,

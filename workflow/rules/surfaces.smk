@@ -1,6 +1,7 @@
 # Surfaces branch (thesis sec. 2.3.4): texture parameters of every surface from its scans,
 # and Seq of each test's interface from the computed and from the published Sq.
 
+from contactlab.rulehelpers import pdf_files, table_files
 from contactlab.surfaces.sheet import check_scan_files, read_surface_sheet, scan_paths
 
 SURFACES_CONFIG = config["surfaces"]
@@ -19,7 +20,7 @@ SURFACE_ROWS = {spec.surface: spec for spec in SURFACE_SPECS}
 
 if DEMO_SCANS:
 
-    rule demo_scans:
+    rule surfaces_demo_scans:
         """SYNTHETIC X3P scans with the published statistics (Tables A.1, A.26, A.27, 2.6)."""
         input:
             sheet=SURFACE_SHEET,
@@ -37,12 +38,12 @@ if DEMO_SCANS:
             " --seed {params.seed:q} --published-dir {params.published:q} > {log:q} 2>&1"
 
 
-rule surface_texture:
+rule surfaces_texture:
     """Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz of one surface from its scans.
 
     One job per surface. A scan the analysis refuses (unreadable, too many undefined
     points...) leaves the surface's parameters NaN with the reason in its result, so the
-    summary lists every surface; surface_texture_check then fails the run naming it. The
+    summary lists every surface; surfaces_texture_check then fails the run naming it. The
     sheet row is a param, not the sheet an input, so editing one row reruns one surface.
     """
     input:
@@ -60,14 +61,14 @@ rule surface_texture:
     log:
         logs("surfaces/texture/{surface}.log"),
     benchmark:
-        logs("benchmarks/surface_texture_{surface}.tsv"),
+        logs("benchmarks/surfaces_texture_{surface}.tsv"),
     shell:
         "contactlab surfaces texture --sheet {params.sheet:q} --surface {wildcards.surface:q}"
         " --out-dir {params.out_dir:q} --bins {params.bins:q}"
         " --max-undefined-fraction {params.max_undefined:q} > {log:q} 2>&1"
 
 
-rule surface_texture_summary:
+rule surfaces_texture_summary:
     """Parameters, filled fractions and reasons for undefined parameters of every surface."""
     input:
         expand(result("surfaces/{surface}.nc"), surface=SURFACE_IDS),
@@ -79,7 +80,7 @@ rule surface_texture_summary:
         "contactlab surfaces texture-summary {input:q} --out {output:q} > {log:q} 2>&1"
 
 
-rule surface_texture_check:
+rule surfaces_texture_check:
     """Fails naming every refused scan (unless surfaces.allow_refused_scans); lists them."""
     input:
         result("surfaces/texture.nc"),
@@ -94,7 +95,7 @@ rule surface_texture_check:
         " > {log:q} 2>&1"
 
 
-rule seq:
+rule surfaces_seq:
     """Seq (eq. 2.1) of each test's imaged interface from the scans' and the published Sq."""
     input:
         tests=config["tests"],
@@ -123,10 +124,19 @@ rule report_surfaces:
         ],
     output:
         section=result("report/sections/10_surfaces.html"),
-        table=result("report/tables/seq.csv"),
-        areal=result("report/tables/surfaces_areal.csv"),
-        profile=result("report/tables/surfaces_profile.csv"),
-        structured=result("report/tables/surfaces_100x.csv"),
+        tables=table_files(
+            result("report/tables/seq.csv"),
+            *[
+                result(f"report/tables/surfaces_{name}.csv")
+                for name in ("areal", "profile", "100x", "other", "filled", "undefined")
+            ],
+        ),
+        pdfs=pdf_files(
+            *[
+                result(f"report/figures/{name}.png")
+                for name in ("seq", "surfaces_maps", "surfaces_profiles", "surfaces_spectra")
+            ]
+        ),
         figure=report(
             result("report/figures/seq.png"),
             caption="../report/seq.rst",
@@ -168,6 +178,6 @@ REPORT_SECTIONS.append(result("report/sections/10_surfaces.html"))
 # Seconds-long gathers, light solves and reports: on a cluster they run in the
 # Snakemake process itself instead of queueing as jobs of their own.
 localrules:
-    surface_texture_check,
-    seq,
+    surfaces_texture_check,
+    surfaces_seq,
     report_surfaces,

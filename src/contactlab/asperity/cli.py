@@ -103,7 +103,7 @@ def _grid_bem(args: argparse.Namespace) -> None:
     write_netcdf(ds, args.out)
 
 
-def _merge_grid_bem(args: argparse.Namespace) -> None:
+def _grid_bem_gather(args: argparse.Namespace) -> None:
     import numpy as np
     import xarray as xr
 
@@ -258,11 +258,11 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.set_defaults(func=_grid_bem)
 
     p = add_command(
-        cmd, "merge-grid-bem", help="combine grid BEM files along N",
+        cmd, "grid-bem-gather", help="join grid BEM files along N",
         description="Join grid-bem files of several N into one file along N.")
     p.add_argument("inputs", type=input_file, nargs="+", help="grid-bem files")
     common(p, nu=False)
-    p.set_defaults(func=_merge_grid_bem)
+    p.set_defaults(func=_grid_bem_gather)
 
     p = add_command(
         cmd, "report", help="report section of the asperity branch",

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
+from contactlab.asperity.single import coulomb_ratio
 from contactlab.fe.ccx import ccx_version, run_ccx
 
 #: Largest von Mises stress of Hertz contact over p0 for nu = 0.3 (sec. 3.2.2).
@@ -383,12 +384,6 @@ def run_asperity(model: AsperityModel, yield_stress: float, threads: int = 1,
 # --------------------------------------------------------------------------- gather
 
 
-def mindlin_ratio(q_ratio: np.ndarray) -> np.ndarray:
-    """Cattaneo-Mindlin, eq. (3.5): Delta_x/Delta_n = 3/2 (1 - (1 - Q/Q_n)^(2/3))."""
-    q = np.clip(np.asarray(q_ratio, dtype=float), 0.0, 1.0)
-    return 1.5 * (1.0 - (1.0 - q) ** (2.0 / 3.0))
-
-
 def gather(runs: list[xr.Dataset], bem_path=None) -> xr.Dataset:
     """Fig. 3.8 data: each model's curve, the elastic compliance, Mindlin and the BEM."""
     from pathlib import Path
@@ -437,7 +432,7 @@ def gather(runs: list[xr.Dataset], bem_path=None) -> xr.Dataset:
         attrs={"long_name": "stuck half-space compliance (2 - nu)/(8 mu r_c), eq. (3.3)",
                "units": "mm/N"})
     grid = np.linspace(0.0, 1.0, 101)
-    data["mindlin"] = xr.DataArray(mindlin_ratio(grid), dims=("q_ratio",), attrs={
+    data["mindlin"] = xr.DataArray(coulomb_ratio(grid), dims=("q_ratio",), attrs={
         "long_name": "Cattaneo-Mindlin Delta_x/Delta_n, eq. (3.5)", "units": "1"})
     data["stuck"] = xr.DataArray(grid, dims=("q_ratio",), attrs={
         "long_name": "elastic stuck Delta_x/Delta_n = Q/Q_n", "units": "1"})

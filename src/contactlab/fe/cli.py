@@ -10,7 +10,8 @@ from contactlab.cliutil import add_command, add_group, input_file
 EXAMPLES = """\
   contactlab fe receding --problem uniform --f 0.3 --w-hat 2.5 --h 0.1 --length 12.5 \\
       --depth 25 --x-fine 6 --edges encastre --young 20000 --increments 1 --out run.nc
-  contactlab fe compare --run run.nc --ddt-n 100 --out results/fe/uniform.nc
+  contactlab fe compare --run run.nc --ddt-n 100 --lam-b 2 --e-minus-w 5 \\
+      --out results/fe/uniform.nc
   contactlab fe asperity --yield-stress 3000 --out results/fe/asperity/sy3000.nc
 Needs CalculiX `ccx` (Debian package calculix-ccx). Receding-contact lengths are in units
 of the strip thickness c; the asperity model is in mm and N/mm^2.
@@ -58,7 +59,8 @@ def _compare(args: argparse.Namespace) -> None:
     problem = fe.attrs["problem"]
     w = float(fe.attrs.get("w_hat", 0.0))
     ref = reference(problem, float(fe.attrs["f"]), w, args.ddt_n, fe["x"].values,
-                    args.ddt_file)
+                    args.ddt_file, lam=args.lam, e=args.e, lam_b=args.lam_b,
+                    e_minus_w=args.e_minus_w)
     ds = agreement(fe, ref)
     stamp(
         ds,
@@ -125,7 +127,7 @@ def _asperity_gather(args: argparse.Namespace) -> None:
 
 
 def _report(args: argparse.Namespace) -> None:
-    from contactlab.report.fe import build_section
+    from contactlab.fe.report import build_section
 
     build_section(args.results, args.convergence, args.asperity, args.report_dir, args.out)
 
@@ -180,8 +182,18 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     cmp_.add_argument("--run", type=input_file, required=True, help="output of `fe receding`")
     cmp_.add_argument("--ddt-n", type=int, required=True,
                       help="Gauss-Chebyshev points N of the reference (config fe.ddt_n)")
+    cmp_.add_argument("--lam", type=float, default=None,
+                      help="line load: map scale lambda of the reference (config "
+                           "receding.line.lambda)")
+    cmp_.add_argument("--e", type=float, default=None,
+                      help="line load: end e/c of the cubic part of A_y (config "
+                           "receding.line.e)")
+    cmp_.add_argument("--lam-b", type=float, default=None,
+                      help="patch: map scale lambda_b (config receding.patches.lambda_b)")
+    cmp_.add_argument("--e-minus-w", type=float, default=None,
+                      help="patch: (e - w)/c (config receding.patches.e_minus_w)")
     cmp_.add_argument("--ddt-file", type=Path, default=None,
-                      help="receding results file to use when no solver API exists")
+                      help="receding results file to use when the solve fails")
     cmp_.add_argument("--out", type=Path, required=True, help="netCDF output")
     cmp_.set_defaults(func=_compare)
 

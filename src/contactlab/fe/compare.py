@@ -58,8 +58,7 @@ def agreement(fe: xr.Dataset, ref: DdtReference) -> xr.Dataset:
     )
     if ref.status != "ok":
         ds.attrs["ddt_missing_reason"] = (
-            f"no distributed-dislocation solution available yet ({ref.status}); the *_ddt "
-            "variables are NaN and fill in when the receding branch provides the solver"
+            f"no distributed-dislocation solution ({ref.status}); the *_ddt variables are NaN"
         )
     return ds
 

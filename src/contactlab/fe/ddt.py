@@ -1,21 +1,16 @@
 """The distributed-dislocation (DDT) side of the cross-checks: transition points and profiles.
 
-The FE branch does not solve the integral equations itself; it asks the receding branch
-(``contactlab.receding``) in this order and records where the numbers came from:
-
-1. the Python API (``contactlab.receding.gap.solve_gap`` for ch. 5; for the line load
-   and the patches any of the solvers listed in :data:`API_CANDIDATES`, called with
-   ``f``, ``w`` and ``n`` keywords and returning an object with ``a``/``b`` (or ``a3``)
-   and ``tractions(x)``, ``separation(x)``, ``slip(x)`` like ``GapSolution``);
-2. a results file of the receding branch (``--ddt-file``: a netCDF with scalar or
-   (f, w)-indexed variables ``a``/``a3`` and ``b``, optionally profiles on ``x``);
-3. nothing: NaN with the reason, so the comparison completes once a solver exists.
+The FE branch does not solve the integral equations itself; it calls the receding
+branch's solvers (:data:`SOLVERS`) with the discretisation the workflow passes (N, and
+lambda, e for the line load or lambda_b, (e - w)/c for the patch, from the config's
+``receding`` section) and records where the numbers came from. When a solve raises, a
+results file of the receding branch (``--ddt-file``: a netCDF with scalar or
+(f, w)-indexed variables ``a``/``a3`` and ``b``, optionally profiles on ``x``) stands in;
+else the reference is NaN with the reason, and the comparison still completes.
 """
 
 from __future__ import annotations
 
-import importlib
-import inspect
 import os
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -23,29 +18,21 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-#: (module, function) pairs tried for each problem, first found wins.
-API_CANDIDATES: dict[str, list[tuple[str, str]]] = {
-    "gap": [("contactlab.receding.gap", "solve_gap")],
-    "line": [
-        ("contactlab.receding.line", "solve_line"),
-        ("contactlab.receding.line_load", "solve_line"),
-        ("contactlab.receding.lineload", "solve_line_load"),
-        ("contactlab.receding.line", "solve"),
-    ],
-    "uniform": [
-        ("contactlab.receding.patch", "solve_uniform"),
-        ("contactlab.receding.patch", "solve_patch"),
-        ("contactlab.receding.patches", "solve_uniform"),
-        ("contactlab.receding.patches", "solve_patch"),
-    ],
-}
+from contactlab.fe.receding import STICK_SLIP_NAME
+from contactlab.receding.core.solution import ContactSolution
+from contactlab.receding.gap.solver import solve_gap
+from contactlab.receding.liftoff.line import solve_line
+from contactlab.receding.liftoff.patch import solve_patch
+
+#: The solver each FE problem is checked against.
+SOLVERS = {"gap": solve_gap, "line": solve_line, "uniform": solve_patch}
 
 
 def profile_scale(problem: str, w: float) -> float:
     """Factor from the receding branch's profile normalisation to the FE one.
 
-    ``contactlab.receding.patch`` gives tractions in T/c and relative displacements in
-    (kappa + 1) T / (2 mu) with T = 2 A1 w the load per unit length of the uniform patch
+    ``contactlab.receding.liftoff.patch`` gives tractions in T/c and relative displacements
+    in (kappa + 1) T / (2 mu) with T = 2 A1 w the load per unit length of the uniform patch
     (eq. 7.34); the FE results use the pressure p = A1 (as for the gap problem), so the
     patch profiles are multiplied by T / (p c) = 2 w_hat. Gap and line load: 1.
     """
@@ -63,65 +50,53 @@ class DdtReference:
     profiles: dict[str, np.ndarray] = field(default_factory=dict)
 
 
-def _call(func, problem: str, f: float, w: float, n: int):
-    params = inspect.signature(func).parameters
-    kwargs: dict[str, object] = {}
-    names = set(params)
-    for key in ("f", "mu", "friction"):
-        if key in names:
-            kwargs[key] = f
-            break
-    for key in ("w", "w_hat"):
-        if key in names and problem != "line":
-            kwargs[key] = w
-            break
-    for key in ("n", "N"):
-        if key in names:
-            kwargs[key] = n
-            break
-    for key in ("kind", "pressure", "patch", "shape"):
-        if key in names and problem == "uniform":
-            kwargs[key] = "constant"
-            break
-    return func(**kwargs)
+def solve(problem: str, f: float, w: float, n: int, *, lam: float | None = None,
+          e: float | None = None, lam_b: float | None = None,
+          e_minus_w: float | None = None) -> tuple[ContactSolution, str]:
+    """The receding solution of ``problem`` and a description of the call.
+
+    The line load needs ``lam`` and ``e`` (config ``receding.line``), the uniform patch
+    ``lam_b`` and ``e_minus_w`` (config ``receding.patches``; lambda_a follows sec. 7.4).
+    """
+    if problem == "gap":
+        return solve_gap(w, f, n), f"{_name(solve_gap)}(f={f}, w_hat={w}, N={n})"
+    if problem == "line":
+        if lam is None or e is None:
+            raise ValueError("the line-load reference needs lambda and e (receding.line)")
+        return (solve_line(f, n, lam, e),
+                f"{_name(solve_line)}(f={f}, N={n}, lambda={lam}, e={e})")
+    if problem == "uniform":
+        if lam_b is None or e_minus_w is None:
+            raise ValueError("the patch reference needs lambda_b and e - w "
+                             "(receding.patches)")
+        return (solve_patch("uniform", f, w, n, lam_b=lam_b, e=w + e_minus_w),
+                f"{_name(solve_patch)}('uniform', f={f}, w_hat={w}, N={n}, "
+                f"lambda_b={lam_b}, e={w + e_minus_w})")
+    raise ValueError(f"no distributed-dislocation solver for problem {problem!r}; "
+                     f"the problems are {', '.join(SOLVERS)}")
 
 
-def _profiles(sol, x: np.ndarray) -> dict[str, np.ndarray]:
-    out: dict[str, np.ndarray] = {}
-    try:
-        s, n = sol.tractions(x)
-        out["N"], out["S"] = np.asarray(n, float), np.asarray(s, float)
-    except Exception:
-        return out
-    for name in ("separation", "slip"):
-        try:
-            out[name] = np.asarray(getattr(sol, name)(x), float)
-        except Exception:
-            pass
-    return out
+def _name(func: object) -> str:
+    return f"{func.__module__}.{func.__qualname__}"
 
 
-def from_api(problem: str, f: float, w: float, n: int, x: np.ndarray) -> DdtReference:
-    """Solve with the receding branch's Python API (see module docstring)."""
-    reasons = []
-    for module, name in API_CANDIDATES[problem]:
-        try:
-            func = getattr(importlib.import_module(module), name)
-        except (ImportError, AttributeError):
-            reasons.append(f"{module}.{name} not found")
-            continue
-        sol = _call(func, problem, f, w, n)
-        a_name = "a3" if problem == "gap" else "a"
-        b = float(getattr(sol, "b", np.nan))
-        a = float(getattr(sol, a_name, getattr(sol, "a", np.nan)))
-        converged = bool(getattr(sol, "converged", True))
-        scale = profile_scale(problem, w)
-        profiles = {k: v * scale for k, v in _profiles(sol, x).items()}
-        return DdtReference(
-            b=b, a=a, source=f"{module}.{name}(f={f}, w_hat={w}, N={n})",
-            status="ok" if converged else "not converged", profiles=profiles,
-        )
-    return DdtReference(status="no solver: " + "; ".join(reasons))
+def _profiles(sol: ContactSolution, x: np.ndarray) -> dict[str, np.ndarray]:
+    s, n = sol.tractions(x)
+    return {"N": np.asarray(n, float), "S": np.asarray(s, float),
+            "separation": np.asarray(sol.separation(x), float),
+            "slip": np.asarray(sol.slip(x), float)}
+
+
+def from_api(problem: str, f: float, w: float, n: int, x: np.ndarray,
+             **settings: float | None) -> DdtReference:
+    """Solve with the receding branch's solver (:func:`solve`) and sample it on ``x``."""
+    sol, source = solve(problem, f, w, n, **settings)
+    scale = profile_scale(problem, w)
+    return DdtReference(
+        b=float(sol.b), a=float(getattr(sol, STICK_SLIP_NAME[problem])), source=source,
+        status="ok" if sol.converged else "not converged",
+        profiles={k: v * scale for k, v in _profiles(sol, x).items()},
+    )
 
 
 def from_file(path: str | os.PathLike[str], problem: str, f: float, w: float,
@@ -130,7 +105,7 @@ def from_file(path: str | os.PathLike[str], problem: str, f: float, w: float,
     path = Path(path)
     if not path.exists():
         return DdtReference(status=f"no file {path}")
-    a_name = "a3" if problem == "gap" else "a"
+    a_name = STICK_SLIP_NAME[problem]
     with xr.open_dataset(path) as ds:
         sel = {}
         for dim, val in (("f", f), ("w", w), ("w_hat", w)):
@@ -158,17 +133,22 @@ def from_file(path: str | os.PathLike[str], problem: str, f: float, w: float,
 
 
 def reference(problem: str, f: float, w: float, n: int, x: np.ndarray,
-              ddt_file: str | os.PathLike[str] | None = None) -> DdtReference:
-    """API first, then the results file, else NaN with the reasons joined in ``status``."""
+              ddt_file: str | os.PathLike[str] | None = None,
+              **settings: float | None) -> DdtReference:
+    """The solver first, then the results file, else NaN with the reasons in ``status``.
+
+    ``settings``: ``lam``, ``e`` (line) or ``lam_b``, ``e_minus_w`` (patch), see
+    :func:`solve`.
+    """
     try:
-        ref = from_api(problem, f, w, n, x)
-    except Exception as exc:
-        ref = DdtReference(status=f"API failed: {exc}")
+        ref = from_api(problem, f, w, n, x, **settings)
+    except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+        ref = DdtReference(status=f"solver failed: {exc}")
     if ref.status == "ok" or ddt_file is None:
         return ref
     try:
         alt = from_file(ddt_file, problem, f, w, x)
-    except Exception as exc:
+    except (OSError, ValueError, KeyError) as exc:
         alt = DdtReference(status=f"file failed: {exc}")
     if alt.status == "ok":
         return alt

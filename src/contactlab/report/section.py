@@ -1,7 +1,9 @@
 """One report section: an HTML fragment plus its tables (CSV, Markdown) and figures (PNG, PDF).
 
-Each branch of the workflow writes its section to ``results/report/sections/``;
-:mod:`contactlab.report.index` stitches the fragments into ``index.html``.
+The report toolkit (this module and :mod:`contactlab.report.index`) knows no science: each
+branch's own report builder (``contactlab.<branch>.report``) fills a :class:`Section` and
+writes it to ``results/report/sections/``; :mod:`contactlab.report.index` stitches the
+fragments into ``index.html``. Tables are written by :func:`contactlab.io.write_table`.
 Paths inside a fragment are relative to ``results/report/``.
 """
 
@@ -18,20 +20,11 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from contactlab.io import atomic_path, write_text
+from contactlab.io import atomic_path, write_table, write_text
 
 #: Metadata in saved figures is fixed so the same data give the same files.
 _PNG_METADATA = {"Software": None}
 _PDF_METADATA = {"Creator": None, "Producer": None, "CreationDate": None}
-
-
-def write_table(table: pd.DataFrame, csv_path: str | os.PathLike[str], digits: int = 3) -> None:
-    """Write ``table`` as CSV at ``csv_path`` and as Markdown beside it (``.md``)."""
-    csv_path = Path(csv_path)
-    with atomic_path(csv_path) as tmp:
-        table.to_csv(tmp, index=False, float_format=f"%.{digits + 3}g", lineterminator="\n")
-    markdown = table.to_markdown(index=False, floatfmt=f".{digits}f")
-    write_text(markdown + "\n", csv_path.with_suffix(".md"))
 
 
 def save_figure(fig: plt.Figure, png_path: str | os.PathLike[str]) -> None:

@@ -65,9 +65,9 @@ def _summarize(args: argparse.Namespace) -> None:
 
 
 def _report_raw(args: argparse.Namespace) -> None:
-    from contactlab.report.stiffness_raw import build_section
+    from contactlab.stiffness.report_raw import build_section
 
-    build_section(args.results, args.summary, args.tests, args.report_dir, args.out,
+    build_section(args.results, args.summary, args.report_dir, args.out,
                   published_dir=args.published_dir, flags_out=args.flags)
 
 
@@ -177,8 +177,7 @@ def register_raw(commands: argparse._SubParsersAction) -> None:
     rep.add_argument("results", nargs="+", type=input_file,
                      help="per-test results (results/stiffness/<test>.nc)")
     rep.add_argument("--summary", type=input_file, required=True,
-                     help="results/stiffness/summary.nc")
-    rep.add_argument("--tests", type=input_file, required=True, help="test sheet")
+                     help="results/stiffness/summary.nc (with each test's load and area)")
     rep.add_argument("--published-dir", type=input_dir, default=None, help=PUBLISHED)
     rep.add_argument("--report-dir", type=Path, default=Path("results/report"),
                      help="report directory receiving tables/ and figures/")
@@ -210,7 +209,7 @@ def _summarize_published(args: argparse.Namespace) -> None:
 
 
 def _report_published(args: argparse.Namespace) -> None:
-    from contactlab.report.stiffness_published import build_section
+    from contactlab.stiffness.report_published import build_section
 
     build_section(args.summary, args.tables_dir, args.report_dir, args.out,
                   published_dir=args.published_dir)
@@ -256,7 +255,7 @@ def register_published(commands: argparse._SubParsersAction) -> None:
 
 
 def _figures(args: argparse.Namespace) -> None:
-    from contactlab.report.stiffness_raw import test_figures
+    from contactlab.stiffness.report_raw import test_figures
 
     for result in args.results:
         test_figures(result, args.out_dir, args.published_dir)

@@ -16,9 +16,28 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from contactlab.published import PUBLISHED_DIR
+from contactlab.published import PUBLISHED_DIR, read_published
 
-__all__ = ["THESIS_DISCREPANCIES", "compare_with_published", "explain", "printed_decimals"]
+__all__ = [
+    "COMPARED_TABLES",
+    "MARGIN_CHECKS",
+    "THESIS_DISCREPANCIES",
+    "compare_with_published",
+    "comparison",
+    "explain",
+    "margins_with_covariance",
+    "printed_decimals",
+    "raw_vs_published",
+    "read_recomputed",
+    "summary_within_margins",
+]
+
+#: Thesis table number -> key columns identifying a row.
+COMPARED_TABLES: dict[str, list[str]] = {
+    "2.1": ["test", "direction"], "2.2": ["test", "direction"], "2.3": ["test"],
+    "2.4": ["test", "basis"], "2.7": ["test", "direction"], "2.8": ["test", "direction"],
+    "2.9": ["test", "basis"], "2.10": ["test"],
+}
 
 #: Printed cells that the aggregation of the printed per-step/fit parameters does not
 #: reproduce even allowing for the rounding of its inputs, with the reason (evidence in
@@ -136,3 +155,116 @@ def compare_with_published(ours: pd.DataFrame | Mapping[str, pd.DataFrame],
                 out[f"{name}_minus_published"].abs() <= out["half_unit"] + 1e-9
             )
     return out
+
+
+def comparison(table: str, ours: pd.DataFrame, published_dir: Path | None = None
+               ) -> pd.DataFrame:
+    """Long comparison of one thesis table: published, recomputed from the published
+    per-step values, difference, status (:func:`explain`)."""
+    keys = COMPARED_TABLES[table]
+    published = read_published(table, published_dir)
+    columns = [c for c in published.columns
+               if c not in keys and c != "texture_wavelength" and c in ours.columns
+               and pd.api.types.is_numeric_dtype(published[c])]
+    cmp = compare_with_published({"from_published_steps": ours}, published, keys, columns,
+                                 printed_decimals(table, published_dir))
+    cmp["status"] = explain(table, cmp, keys, "from_published_steps")
+    return cmp.drop(columns=["from_published_steps_rounds_to_published"])
+
+
+def read_recomputed(table: str, tables_dir: Path) -> pd.DataFrame | None:
+    """Our table ``table_<table>.csv`` from ``tables_dir`` (None if there is none)."""
+    path = tables_dir / f"table_{table}.csv"
+    if not path.is_file():
+        return None
+    return pd.read_csv(path, dtype={"test": str, "steps_used": str}, keep_default_na=False,
+                       na_values=[""])
+
+
+#: Summary values the thesis prints with a 95% margin: table -> (row key, quantities).
+MARGIN_CHECKS: dict[str, tuple[str, tuple[str, ...]]] = {
+    "2.1": ("direction", ("Kn_An", "beta_n")), "2.7": ("direction", ("Kn_An", "beta_n")),
+    "2.2": ("direction", ("Kt0_An", "beta_t", "f")),
+    "2.8": ("direction", ("Kt0_An", "beta_t", "f")),
+    "2.4": ("basis", ("Cc",)), "2.9": ("basis", ("Cc",)),
+}
+
+
+def summary_within_margins(ours: dict[str, pd.DataFrame],
+                           published_dir: Path | None = None) -> pd.DataFrame:
+    """Every published summary value with a margin (Tables 2.1, 2.2, 2.4, 2.7-2.9) beside ours.
+
+    ``ours`` maps table number -> our table (missing tables are skipped). One row per
+    published cell: table, test, key (direction or basis), quantity, published, moe, ours,
+    within (|ours - published| <= moe; False where ours is missing).
+    """
+    parts = []
+    for table, (key, quantities) in MARGIN_CHECKS.items():
+        if table not in ours:
+            continue
+        published = read_published(table, published_dir)
+        merged = published.merge(ours[table], on=["test", key], how="left",
+                                 suffixes=("", "_ours"))
+        for q in quantities:
+            rows = merged.dropna(subset=[q, f"{q}_moe"])
+            parts.append(pd.DataFrame({
+                "table": table, "test": rows["test"], "key": rows[key], "quantity": q,
+                "published": rows[q], "moe": rows[f"{q}_moe"], "ours": rows[f"{q}_ours"],
+                "within": (rows[f"{q}_ours"] - rows[q]).abs() <= rows[f"{q}_moe"]}))
+    columns = ["table", "test", "key", "quantity", "published", "moe", "ours", "within"]
+    return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=columns)
+
+
+def raw_vs_published(tables_dir: Path, published_dir: Path | None = None) -> pd.DataFrame:
+    """Every published number of Tables 2.1-2.4 and 2.7-2.10 beside the one recomputed
+    from the published per-step values and ours from raw data, with the difference
+    (raw - published) and the relative difference (no rows when none was recomputed)."""
+    keep = ["table", "test", "direction", "basis", "quantity", "unit", "published",
+            "from_published_steps", "from_raw", "from_raw_minus_published",
+            "relative_difference"]
+    comparisons = []
+    for table, keys in COMPARED_TABLES.items():
+        ours = read_recomputed(table, tables_dir)
+        if ours is None:
+            continue
+        published = read_published(table, published_dir)
+        columns = [c for c in published.columns if c not in keys
+                   and pd.api.types.is_numeric_dtype(published[c]) and c in ours.columns]
+        if not columns:
+            continue
+        versions = {"from_raw": ours}
+        other = read_recomputed(f"{table}_from_published_steps", tables_dir)
+        if other is not None and all(c in other.columns for c in [*keys, *columns]):
+            versions["from_published_steps"] = other
+        cmp = compare_with_published(versions, published, keys, columns,
+                                     printed_decimals(table, published_dir))
+        cmp.insert(0, "table", table)
+        comparisons.append(cmp)
+    if not comparisons:
+        return pd.DataFrame(columns=keep)
+    long = pd.concat(comparisons, ignore_index=True)
+    long["relative_difference"] = long["from_raw_minus_published"] / long[
+        "published"].abs().where(long["published"] != 0)
+    return long.reindex(columns=keep)
+
+
+def margins_with_covariance(tables_dir: Path) -> pd.DataFrame:
+    """Margins of Kn, Kt0 and Cc with the fit covariance neglected (the thesis's rule,
+    sec. 2.5.1 footnote 2) beside those with it kept, from our tables in ``tables_dir``
+    (no rows when there are none)."""
+    parts = []
+    for table, col, key in (("2.1", "Kn_An", "direction"), ("2.7", "Kn_An", "direction"),
+                            ("2.2", "Kt0_An", "direction"), ("2.8", "Kt0_An", "direction"),
+                            ("2.4", "Cc", "basis"), ("2.9", "Cc", "basis")):
+        ours = read_recomputed(table, tables_dir)
+        if ours is None or f"{col}_moe_cov" not in ours.columns:
+            continue
+        part = ours.loc[:, ["test", key, col, f"{col}_moe", f"{col}_moe_cov"]].rename(
+            columns={key: "row", col: "value", f"{col}_moe": "moe_neglected",
+                     f"{col}_moe_cov": "moe_with_covariance"})
+        part.insert(0, "quantity", col)
+        part.insert(0, "table", table)
+        parts.append(part.dropna(subset=["value"]))
+    columns = ["table", "quantity", "test", "row", "value", "moe_neglected",
+               "moe_with_covariance"]
+    return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=columns)

@@ -1,7 +1,9 @@
 """Per-test raw results -> ``results/stiffness/summary.nc`` and the thesis tables from raw data.
 
-Reads every ``results/stiffness/<test>.nc`` (:mod:`contactlab.stiffness.process`), turns
-them into the per-step tables of the aggregation interface
+Reads every ``results/stiffness/<test>.nc`` (:mod:`contactlab.stiffness.process`) once,
+takes each test's load and nominal area from it (the values its fits were computed with;
+the test sheet only says which group a test belongs to), turns them into the per-step
+tables of the aggregation interface
 (:mod:`contactlab.stiffness.aggregate`) and runs the same aggregation as for the published
 per-step values: Tables 2.1/2.7 (normal fits, Kn at the test load), 2.2/2.8 (means over the
 steps whose Kt0 margin is under 50%, sec. 2.5.3), 2.3/2.10 (beta_n Seq), 2.4/2.9 (Cc) and
@@ -18,16 +20,15 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from contactlab.io import stamp, write_netcdf
+from contactlab.io import load_datasets, stamp, write_netcdf, write_table
 from contactlab.published import TANGENTIAL_TABLES
-from contactlab.report.section import write_table
 from contactlab.stiffness.errors import ErrorModel
 from contactlab.stiffness.process import step_tables
 from contactlab.stiffness.summary import published_inputs, read_seq, summary_dataset
 from contactlab.stiffness.tables import GROUP_TABLES, build_tables, write_tables
 from contactlab.testsheet import read_test_sheet
 
-__all__ = ["CHAPTER_TABLES", "raw_tables", "summarize_raw", "table_files"]
+__all__ = ["CHAPTER_TABLES", "raw_tables", "summarize_raw", "table_files", "tests_of"]
 
 #: Chapter tables by test group: (normal, tangential means, beta_n Seq, Cc).
 CHAPTER_TABLES = GROUP_TABLES
@@ -40,22 +41,39 @@ _TABLE_OF = {(test, direction, kind): table
              for table, (test, direction, kind) in TANGENTIAL_TABLES.items()}
 
 
-def _collect(results: list[Path]) -> dict[str, pd.DataFrame]:
+def _collect(results: list[xr.Dataset]) -> dict[str, pd.DataFrame]:
     parts: dict[str, list[pd.DataFrame]] = {"tangential": [], "normal": [], "mean_row": []}
-    for path in results:
-        with xr.open_dataset(path) as ds:
-            for key, table in step_tables(ds.load()).items():
-                parts[key].append(table)
+    for ds in results:
+        for key, table in step_tables(ds).items():
+            parts[key].append(table)
     return {key: (pd.concat(v, ignore_index=True) if v else pd.DataFrame())
             for key, v in parts.items()}
 
 
-def raw_tables(results: list[Path], sheet: pd.DataFrame, seq: pd.DataFrame | None = None,
-               threshold: float = 0.5, error_model: ErrorModel | None = None,
+def tests_of(results: list[xr.Dataset], sheet: pd.DataFrame) -> pd.DataFrame:
+    """One row per result (index and column ``id``): the ``max_normal_load_kN`` and
+    ``nominal_area_mm2`` the result was computed with and its ``group`` from ``sheet``."""
+    if "group" not in sheet.columns:
+        raise ValueError("test sheet: missing column 'group'")
+    rows = []
+    for ds in results:
+        test = str(ds.attrs["test"])
+        if test not in sheet.index:
+            raise ValueError(f"test sheet: no row for test {test!r} of the results")
+        rows.append({"id": test, "group": sheet.loc[test, "group"],
+                     "max_normal_load_kN": float(ds.attrs["max_normal_load_kN"]),
+                     "nominal_area_mm2": float(ds.attrs["nominal_area_mm2"])})
+    return pd.DataFrame(rows).set_index("id", drop=False)
+
+
+def raw_tables(results: list[xr.Dataset], sheet: pd.DataFrame,
+               seq: pd.DataFrame | None = None, threshold: float = 0.5,
+               error_model: ErrorModel | None = None,
                texture_wavelength: pd.Series | None = None) -> dict[str, pd.DataFrame]:
     """The aggregated tables of the raw results (:func:`.tables.build_tables`) plus
-    ``mean_row``. Fits flagged as not converged keep their values but lose their margins,
-    so they never enter the means (sec. 2.5.3)."""
+    ``mean_row``; loads and areas from the results, groups from ``sheet``
+    (:func:`tests_of`). Fits flagged as not converged keep their values but lose their
+    margins, so they never enter the means (sec. 2.5.3)."""
     parts = _collect(results)
     steps = parts["tangential"].copy()
     flagged = ~steps["converged"].astype(bool)
@@ -63,13 +81,13 @@ def raw_tables(results: list[Path], sheet: pd.DataFrame, seq: pd.DataFrame | Non
     normal = parts["normal"].copy()
     normal.loc[~normal["converged"].astype(bool), ["alpha_n_moe", "beta_n_moe", "P0_moe"]] = \
         np.nan
-    tables = build_tables(steps, normal, sheet, seq, error_model, threshold=threshold,
-                          texture_wavelength=texture_wavelength)
+    tables = build_tables(steps, normal, tests_of(results, sheet), seq, error_model,
+                          threshold=threshold, texture_wavelength=texture_wavelength)
     tables["mean_row"] = parts["mean_row"]
     return tables
 
 
-def table_files(tables: dict[str, pd.DataFrame], sheet: pd.DataFrame) -> dict[str, pd.DataFrame]:
+def table_files(tables: dict[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
     """File stem -> table: the chapter tables (``table_2.1`` ...) and the per-step Appendix A
     tables (``table_A.2`` ..., or ``table_fit_<test>_<direction>`` and
     ``table_mean_row_<test>_<direction>`` for tests outside the thesis)."""
@@ -98,28 +116,28 @@ def summarize_raw(results: list[Path], tests_path: Path, out: Path, *,
                   seq_path: Path | None = None, threshold: float = 0.5,
                   error_model: ErrorModel | None = None,
                   published_dir: Path | None = None) -> dict[str, pd.DataFrame]:
-    """Write ``summary.nc`` and the from-raw tables; return the tables by file stem."""
+    """Write ``summary.nc`` and the from-raw tables; return the tables by file stem.
+
+    Each result is read once; the test sheet only gives each test's group."""
+    datasets = load_datasets(results, "per-test result")
     sheet = read_test_sheet(tests_path)
     seq = read_seq(seq_path) if seq_path is not None else None
     wavelength = published_inputs(published_dir)["texture_wavelength"]["texture_wavelength"]
-    tables = raw_tables(list(results), sheet, seq, threshold, error_model, wavelength)
+    tables = raw_tables(datasets, sheet, seq, threshold, error_model, wavelength)
     write_tables(tables, tables_dir)
-    files = table_files(tables, sheet)
+    files = table_files(tables)
     for stem, table in files.items():
         if stem.startswith("table_A.") or stem.startswith("table_fit_") or stem.startswith(
                 "table_mean_row_"):
             write_table(table, Path(tables_dir) / f"{stem}.csv")
-    ds = summary_dataset(tables, sheet, tables["mean_row"])
+    ds = summary_dataset(tables, tests_of(datasets, sheet), tables["mean_row"])
     steps = tables["steps"]
     test_ids = [str(t) for t in ds["test"].values]
     ds["steps_flagged"] = ("test", np.array(
         [int((~steps.loc[steps["test"] == t, "converged"].astype(bool)).sum())
          for t in test_ids], dtype=np.int32),
         {"long_name": "tangential step fits flagged as not converged", "units": "1"})
-    flags = {}
-    for path in results:
-        with xr.open_dataset(path) as one:
-            flags[str(one.attrs["test"])] = int(one.attrs.get("reconstructed", 0))
+    flags = {str(one.attrs["test"]): int(one.attrs.get("reconstructed", 0)) for one in datasets}
     ds["reconstructed"] = ("test", np.array([flags.get(t, 0) for t in test_ids], dtype=np.int8),
                            {"long_name": "raw data are the RECONSTRUCTED demo dataset (1), "
                                          "not measurements", "units": "1"})

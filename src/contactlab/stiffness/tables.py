@@ -27,7 +27,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from contactlab.report.section import write_table
+from contactlab.io import write_table
 from contactlab.stiffness import aggregate
 from contactlab.stiffness.errors import ErrorModel
 

@@ -132,7 +132,7 @@ def _seq(args: argparse.Namespace) -> None:
 
 
 def _report(args: argparse.Namespace) -> None:
-    from contactlab.report.surfaces import build_section
+    from contactlab.surfaces.report import build_section
 
     build_section(args.seq, args.report_dir, args.published_dir, args.out,
                   texture_path=args.texture, surface_dir=args.surface_dir)

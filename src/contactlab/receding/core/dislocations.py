@@ -48,8 +48,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from contactlab.receding.kernels import Kind, even_part, regular_pair
-from contactlab.receding.quadrature import (
+from contactlab.receding.core.kernels import Kind, even_part, regular_pair
+from contactlab.receding.core.quadrature import (
     bounded_rule,
     cauchy_matrix,
     cumulative_matrix,

@@ -43,7 +43,7 @@ class BoundedRule:
 
 @lru_cache(maxsize=64)
 def bounded_rule(n: int) -> BoundedRule:
-    """The N-point rule, cached (arrays are read-only)."""
+    """The N-point rule of eqs (5.8)-(5.10), cached (arrays are read-only)."""
     if n < 2:
         raise ValueError(f"need at least 2 integration points, got N = {n}")
     i = np.arange(1, n + 1)

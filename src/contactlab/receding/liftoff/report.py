@@ -12,12 +12,11 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from contactlab.receding.liftoff.sweep import WIDE_FIT_BASIS, wide_fits
 from contactlab.report.section import Section
 
 LAW_NAMES = {"uniform": "constant (A1)", "hertz": "Hertzian (A2)", "punch": "flat punch (A3)"}
 LAW_COLORS = {"uniform": "C0", "hertz": "C1", "punch": "C2", "line": "k"}
-#: the fitted forms of sec. 7.6 exist for the thesis's laws only, not for a user's shape
-WIDE_FIT_BASIS = {"uniform": np.log, "hertz": np.sqrt, "punch": lambda w: 1.0 / w}
 
 
 def law_name(law: str) -> str:
@@ -157,31 +156,6 @@ def patch_slope_figure(patches: dict[str, xr.Dataset], line: xr.Dataset, w: floa
     ax.set_title(f"w/c = {w:g}", fontsize=9)
     ax.legend(fontsize=8, frameon=False)
     return fig
-
-
-def wide_fits(patches: dict[str, xr.Dataset], f: float) -> pd.DataFrame:
-    """The fits of sec. 7.6 to K_B(w) at friction f: uniform alpha ln w + beta, Hertzian
-    alpha sqrt(w) + beta, punch K_inf + gamma / w (asymptote)."""
-    rows = []
-    for law, ds in patches.items():
-        if law not in WIDE_FIT_BASIS:
-            continue
-        row = ds.sel(f=f, method="nearest")
-        w = row["w_hat"].values
-        k = _ok(row, "K_B").values
-        use = np.isfinite(k) & (w >= 2.0)
-        if use.sum() < 2:
-            continue
-        basis = WIDE_FIT_BASIS[law](w)
-        slope, icpt = np.polyfit(basis[use], k[use], 1)
-        form = {"uniform": "alpha ln(w/c) + beta", "hertz": "alpha sqrt(w/c) + beta",
-                "punch": "K_inf + gamma c/w (K_inf = beta)"}[law]
-        resid = float(np.max(np.abs(slope * basis[use] + icpt - k[use])))
-        rows.append({"law": law, "f": float(row["f"]), "fit": form, "alpha_or_gamma": slope,
-                     "beta": icpt, "max_misfit": resid, "points": int(use.sum()),
-                     "w_range": f"{w[use].min():g}-{w[use].max():g}"})
-    columns = ["law", "f", "fit", "alpha_or_gamma", "beta", "max_misfit", "points", "w_range"]
-    return pd.DataFrame(rows, columns=columns)
 
 
 def wide_figure(patches: dict[str, xr.Dataset], line: xr.Dataset, f: float,

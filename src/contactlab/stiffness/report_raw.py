@@ -17,18 +17,20 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from contactlab.io import write_table
 from contactlab.published import per_step_fits, read_published
-from contactlab.report.section import Section, save_figure, write_table
-from contactlab.stiffness.compare import compare_with_published, printed_decimals
+from contactlab.report.section import Section, save_figure
+from contactlab.stiffness.compare import (
+    MARGIN_CHECKS,
+    margins_with_covariance,
+    raw_vs_published,
+    read_recomputed,
+    summary_within_margins,
+)
 from contactlab.stiffness.process import flagged_steps
-from contactlab.testsheet import read_test_sheet
+from contactlab.stiffness.recovery import recovery_table
 
-__all__ = ["build_section", "recovery_table", "summary_within_margins", "test_figures"]
-
-_KEYS = {"2.1": ["test", "direction"], "2.2": ["test", "direction"], "2.3": ["test"],
-         "2.4": ["test", "basis"], "2.7": ["test", "direction"], "2.8": ["test", "direction"],
-         "2.9": ["test", "basis"], "2.10": ["test"]}
-
+__all__ = ["build_section", "summary_figure", "test_figures"]
 
 def _published_normal(test: str, published_dir: Path | None) -> pd.DataFrame:
     table = pd.concat([read_published("2.1", published_dir), read_published("2.7",
@@ -206,99 +208,11 @@ def test_figures(result: Path, out_dir: Path, published_dir: Path | None = None)
     return paths
 
 
-def recovery_table(results: list[Path], published_dir: Path | None = None) -> pd.DataFrame:
-    """Per step: are the fitted parameters within the published 95% margins?
-
-    Tangential steps against Appendix A, normal steps against Tables 2.1/2.7 with the two
-    corrections the demo uses (SU1 unloading alpha_n/P0 swapped back, S2 unloading alpha_n
-    replaced; column ``note``), see :func:`contactlab.stiffness.demo.demo_truth`.
-    """
-    from contactlab.stiffness.demo import demo_truth
-
-    truth = demo_truth(published_dir).set_index(["test", "kind", "direction", "step"])
-    rows = []
-    for path in results:
-        with xr.open_dataset(path) as ds:
-            test = str(ds.attrs["test"])
-            for i in range(ds.sizes["step"]):
-                kind = str(ds["kind"].values[i])
-                d = str(ds["direction"].values[i])
-                n = int(ds["step_number"].values[i])
-                key = (test, kind, d, n)
-                if key not in truth.index:
-                    continue
-                pub = truth.loc[key]
-                names = ("alpha_t", "beta_t", "Qs") if kind == "tangential" else (
-                    "alpha_n", "beta_n", "P0")
-                row = {"test": test, "kind": kind, "direction": d, "step": n,
-                       "converged": bool(ds["converged"].values[i]),
-                       "gof": float(ds["gof"].values[i]), "gof_published": float(pub["gof"]),
-                       "note": str(pub["note"])}
-                inside = True
-                for name, var, col in zip(names, ("alpha", "beta", "offset"),
-                                          ("alpha", "beta", "c"), strict=True):
-                    ours = float(ds[var].values[i])
-                    moe = float(pub[f"{col}_moe"])
-                    row[name] = ours
-                    row[f"{name}_published"] = float(pub[col])
-                    row[f"{name}_moe"] = float(ds[f"{var}_moe"].values[i])
-                    row[f"{name}_moe_published"] = moe
-                    ok = abs(ours - float(pub[col])) <= moe
-                    row[f"{name}_within"] = ok
-                    inside = inside and ok
-                row["within_margins"] = inside
-                rows.append(row)
-    return pd.DataFrame(rows)
-
-
-#: Summary values the thesis prints with a 95% margin: table -> (row key, quantities).
-_MARGIN_CHECKS: dict[str, tuple[str, tuple[str, ...]]] = {
-    "2.1": ("direction", ("Kn_An", "beta_n")), "2.7": ("direction", ("Kn_An", "beta_n")),
-    "2.2": ("direction", ("Kt0_An", "beta_t", "f")),
-    "2.8": ("direction", ("Kt0_An", "beta_t", "f")),
-    "2.4": ("basis", ("Cc",)), "2.9": ("basis", ("Cc",)),
-}
-
-
-def summary_within_margins(ours: dict[str, pd.DataFrame],
-                           published_dir: Path | None = None) -> pd.DataFrame:
-    """Every published summary value with a margin (Tables 2.1, 2.2, 2.4, 2.7-2.9) beside ours.
-
-    ``ours`` maps table number -> our table (missing tables are skipped). One row per
-    published cell: table, test, key (direction or basis), quantity, published, moe, ours,
-    within (|ours - published| <= moe; False where ours is missing).
-    """
-    parts = []
-    for table, (key, quantities) in _MARGIN_CHECKS.items():
-        if table not in ours:
-            continue
-        published = read_published(table, published_dir)
-        merged = published.merge(ours[table], on=["test", key], how="left",
-                                 suffixes=("", "_ours"))
-        for q in quantities:
-            rows = merged.dropna(subset=[q, f"{q}_moe"])
-            parts.append(pd.DataFrame({
-                "table": table, "test": rows["test"], "key": rows[key], "quantity": q,
-                "published": rows[q], "moe": rows[f"{q}_moe"], "ours": rows[f"{q}_ours"],
-                "within": (rows[f"{q}_ours"] - rows[q]).abs() <= rows[f"{q}_moe"]}))
-    columns = ["table", "test", "key", "quantity", "published", "moe", "ours", "within"]
-    return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=columns)
-
-
-def _ours_for(table: str, tables_dir: Path) -> pd.DataFrame | None:
-    path = tables_dir / f"table_{table}.csv"
-    if not path.is_file():
-        return None
-    return pd.read_csv(path, dtype={"test": str, "steps_used": str}, keep_default_na=False,
-                       na_values=[""])
-
-
-def summary_figure(summary: xr.Dataset, sheet: pd.DataFrame, published_dir: Path | None,
-                   png: Path) -> None:
-    """Like Figs 2.40-2.42 (and 2.60, 2.61): Kn, Kt0, f and Cc against -Pn/An."""
+def summary_figure(summary: xr.Dataset, published_dir: Path | None, png: Path) -> None:
+    """Like Figs 2.40-2.42 (and 2.60, 2.61): Kn, Kt0, f and Cc against -Pn/An, the loads
+    and areas being those the summary records."""
     tests = summary["test"].values.astype(str)
-    pn_an = sheet.loc[tests, "max_normal_load_kN"].to_numpy(float) / sheet.loc[
-        tests, "nominal_area_mm2"].to_numpy(float)
+    pn_an = summary["max_normal_load_kN"].values / summary["nominal_area_mm2"].values
     pub_n = pd.concat([read_published("2.1", published_dir),
                        read_published("2.7", published_dir)]).set_index(["test", "direction"])
     pub_t = pd.concat([read_published("2.2", published_dir),
@@ -332,13 +246,15 @@ def summary_figure(summary: xr.Dataset, sheet: pd.DataFrame, published_dir: Path
     save_figure(fig, png)
 
 
-def build_section(results: list[Path], summary_path: Path, tests_path: Path, report_dir: Path,
-                  out: Path, published_dir: Path | None = None,
-                  flags_out: Path | None = None) -> None:
-    """Write section 21 with its comparison, recovery and flag tables and summary figure."""
+def build_section(results: list[Path], summary_path: Path, report_dir: Path, out: Path,
+                  published_dir: Path | None = None, flags_out: Path | None = None) -> None:
+    """Write section 21 with its comparison, recovery and flag tables and summary figure.
+
+    Every table is written, empty when there is nothing to show (e.g. no thesis test to
+    recover), so the workflow's declared outputs always exist.
+    """
     report_dir = Path(report_dir)
     tables_dir = report_dir / "tables"
-    sheet = read_test_sheet(tests_path)
     section = Section("Contact stiffness from raw data vs the thesis", "stiffness-raw",
                       report_dir)
     demo = []
@@ -371,6 +287,7 @@ def build_section(results: list[Path], summary_path: Path, tests_path: Path, rep
         section.paragraph("All step fits converged.")
 
     recovery = recovery_table(results, published_dir)
+    per_test = pd.DataFrame(columns=["test", "fraction_within", "steps_within", "steps"])
     if len(recovery):
         per_test = recovery.groupby("test", sort=False)["within_margins"].agg(
             ["mean", "sum", "count"]).reset_index().rename(
@@ -381,69 +298,42 @@ def build_section(results: list[Path], summary_path: Path, tests_path: Path, rep
             f"the published 95% margins): {recovery['within_margins'].sum()} of "
             f"{len(recovery)} steps ({100 * overall:.1f}%)."
         )
-        section.table(per_test, "Recovery per test: steps whose fitted parameters lie within "
-                      "the published margins", tables_dir / "stiffness_raw_recovery_by_test.csv")
-        write_table(recovery, tables_dir / "stiffness_raw_recovery.csv")
+    section.table(per_test, "Recovery per test: steps whose fitted parameters lie within "
+                  "the published margins", tables_dir / "stiffness_raw_recovery_by_test.csv")
+    write_table(recovery, tables_dir / "stiffness_raw_recovery.csv")
 
-    ours = {t: table for t in _MARGIN_CHECKS
-            if (table := _ours_for(t, tables_dir)) is not None}
+    ours = {t: table for t in MARGIN_CHECKS
+            if (table := read_recomputed(t, tables_dir)) is not None}
     cells = summary_within_margins(ours, published_dir)
+    by_quantity = cells.groupby("quantity", sort=False)["within"].agg(
+        ["sum", "count"]).reset_index().rename(columns={"sum": "within", "count": "cells"})
     if len(cells):
         section.paragraph(
             f"Per-test summaries from raw data within the published 95% margins: "
             f"{int(cells['within'].sum())} of {len(cells)} values (Tables 2.1, 2.2, 2.4, "
             "2.7-2.9).")
-        by_quantity = cells.groupby("quantity", sort=False)["within"].agg(
-            ["sum", "count"]).reset_index().rename(columns={"sum": "within", "count": "cells"})
-        section.table(by_quantity, "Summary values within the published margins, by quantity",
-                      tables_dir / "stiffness_raw_summary_margins_by_quantity.csv")
-        write_table(cells, tables_dir / "stiffness_raw_summary_margins.csv")
-        outside = cells[~cells["within"]]
-        if len(outside):
-            section.note("Outside the published margin: " + "; ".join(
-                f"Table {r.table} {r.test} {r.key} {r.quantity}"
-                for r in outside.itertuples()))
+    section.table(by_quantity, "Summary values within the published margins, by quantity",
+                  tables_dir / "stiffness_raw_summary_margins_by_quantity.csv")
+    write_table(cells, tables_dir / "stiffness_raw_summary_margins.csv")
+    outside = cells[~cells["within"].astype(bool)]
+    if len(outside):
+        section.note("Outside the published margin: " + "; ".join(
+            f"Table {r.table} {r.test} {r.key} {r.quantity}" for r in outside.itertuples()))
 
-    comparisons = []
-    for table, keys in _KEYS.items():
-        ours = _ours_for(table, tables_dir)
-        if ours is None:
-            continue
-        published = read_published(table, published_dir)
-        columns = [c for c in published.columns if c not in keys
-                   and pd.api.types.is_numeric_dtype(published[c]) and c in ours.columns]
-        if not columns:
-            continue
-        versions = {"from_raw": ours}
-        other = _ours_for(f"{table}_from_published_steps", tables_dir)
-        if other is not None and all(c in other.columns for c in [*keys, *columns]):
-            versions["from_published_steps"] = other
-        cmp = compare_with_published(versions, published, keys, columns,
-                                     printed_decimals(table, published_dir))
-        cmp.insert(0, "table", table)
-        comparisons.append(cmp)
-    if comparisons:
-        long = pd.concat(comparisons, ignore_index=True)
-        long["relative_difference"] = long["from_raw_minus_published"] / long[
-            "published"].abs().where(long["published"] != 0)
-        keep = ["table", "test", "direction", "basis", "quantity", "unit", "published",
-                "from_published_steps", "from_raw", "from_raw_minus_published",
-                "relative_difference"]
-        long = long.reindex(columns=keep)
-        section.table(long, "Tables 2.1-2.4 and 2.7-2.10: every published number, recomputed "
-                      "from the published per-step values, ours from raw data and the "
-                      "difference (raw - published)", tables_dir
-                      / "stiffness_raw_vs_published.csv")
-    covariance = _covariance_table(tables_dir)
-    if covariance is not None:
+    section.table(raw_vs_published(tables_dir, published_dir),
+                  "Tables 2.1-2.4 and 2.7-2.10: every published number, recomputed from the "
+                  "published per-step values, ours from raw data and the difference "
+                  "(raw - published)", tables_dir / "stiffness_raw_vs_published.csv")
+    covariance = margins_with_covariance(tables_dir)
+    if len(covariance):
         section.paragraph(
             "The thesis propagates margins without the covariance of the fit parameters "
             "(sec. 2.5.1, footnote 2). With the covariance of each fit kept (beta_n with P0, "
             "beta_t with Qs, strongly correlated), the margins of Kn, Kt0 and Cc shrink:")
-        section.table(covariance, "Margins from raw data: covariance neglected (thesis rule) "
-                      "and kept", tables_dir / "stiffness_raw_margins_covariance.csv")
+    section.table(covariance, "Margins from raw data: covariance neglected (thesis rule) "
+                  "and kept", tables_dir / "stiffness_raw_margins_covariance.csv")
     with xr.open_dataset(summary_path) as summary:
-        summary_figure(summary.load(), sheet, published_dir,
+        summary_figure(summary.load(), published_dir,
                        report_dir / "figures" / "stiffness_raw_summary.png")
     section.blocks.append(
         "<figure><img src='figures/stiffness_raw_summary.png' alt='summary'>"
@@ -460,23 +350,6 @@ def build_section(results: list[Path], summary_path: Path, tests_path: Path, rep
             section.blocks.append(f"<figure><img src='{png}' alt='{test} {name}'>"
                                   f"<figcaption>Test {test}: {caption}</figcaption></figure>")
     section.write(out)
-
-
-def _covariance_table(tables_dir: Path) -> pd.DataFrame | None:
-    parts = []
-    for table, col, key in (("2.1", "Kn_An", "direction"), ("2.7", "Kn_An", "direction"),
-                            ("2.2", "Kt0_An", "direction"), ("2.8", "Kt0_An", "direction"),
-                            ("2.4", "Cc", "basis"), ("2.9", "Cc", "basis")):
-        ours = _ours_for(table, tables_dir)
-        if ours is None or f"{col}_moe_cov" not in ours.columns:
-            continue
-        part = ours.loc[:, ["test", key, col, f"{col}_moe", f"{col}_moe_cov"]].rename(
-            columns={key: "row", col: "value", f"{col}_moe": "moe_neglected",
-                     f"{col}_moe_cov": "moe_with_covariance"})
-        part.insert(0, "quantity", col)
-        part.insert(0, "table", table)
-        parts.append(part.dropna(subset=["value"]))
-    return pd.concat(parts, ignore_index=True) if parts else None
 
 
 def _flags(path: Path) -> list[str]:

@@ -23,7 +23,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import linalg, optimize
 
-from contactlab.receding._blas import single_thread
+from contactlab.receding.core._blas import single_thread
 
 
 @dataclass

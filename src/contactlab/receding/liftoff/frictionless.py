@@ -18,13 +18,13 @@ import time
 
 import numpy as np
 
-from contactlab.receding._blas import single_thread
-from contactlab.receding.dislocations import DensityInterval
-from contactlab.receding.liftoff import LiftoffSolution, check_inputs
-from contactlab.receding.loading import Load
-from contactlab.receding.preformed import Preformed
-from contactlab.receding.quadrature import interpolation_matrix
-from contactlab.receding.solve import LinearSystem, find_transitions
+from contactlab.receding.core._blas import single_thread
+from contactlab.receding.core.dislocations import DensityInterval
+from contactlab.receding.core.quadrature import interpolation_matrix
+from contactlab.receding.core.solve import LinearSystem, find_transitions
+from contactlab.receding.liftoff.loading import Load
+from contactlab.receding.liftoff.preformed import Preformed
+from contactlab.receding.liftoff.solver import LiftoffSolution, check_liftoff_inputs
 
 
 def _intervals(n: int, b: float, lam_a: float, lam_b: float) -> tuple[DensityInterval,
@@ -70,7 +70,7 @@ def solve_frictionless(load: Load, n: int, lam_a: float, lam_b: float, e: float,
                        problem: str = "", preformed: bool = True,
                        guess: float | None = None) -> LiftoffSolution:
     """f = 0: find b (and K_T) with S = 0 everywhere (see module docstring)."""
-    check_inputs(0.0, n, lam_a, lam_b, e, load)
+    check_liftoff_inputs(0.0, n, lam_a, lam_b, e, load)
     start = time.perf_counter()
 
     def system(p: np.ndarray) -> LinearSystem:

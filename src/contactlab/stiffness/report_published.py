@@ -19,21 +19,10 @@ import xarray as xr
 
 from contactlab.published import read_published
 from contactlab.report.section import Section
-from contactlab.stiffness.compare import (
-    THESIS_DISCREPANCIES,
-    compare_with_published,
-    explain,
-    printed_decimals,
-)
+from contactlab.stiffness.compare import COMPARED_TABLES, THESIS_DISCREPANCIES, comparison
 
-__all__ = ["COMPARED_TABLES", "build_section", "comparison"]
+__all__ = ["build_section"]
 
-#: Table number -> key columns identifying a row.
-COMPARED_TABLES: dict[str, list[str]] = {
-    "2.1": ["test", "direction"], "2.2": ["test", "direction"], "2.3": ["test"],
-    "2.4": ["test", "basis"], "2.7": ["test", "direction"], "2.8": ["test", "direction"],
-    "2.9": ["test", "basis"], "2.10": ["test"],
-}
 SUFFIX = "_from_published_steps"
 _KN_UNIT = "kN/mm3"
 
@@ -43,20 +32,6 @@ def _ours(tables_dir: Path, table: str) -> pd.DataFrame:
     if not path.is_file():
         raise FileNotFoundError(f"{path}: recomputed table not found")
     return pd.read_csv(path, dtype={"test": str, "steps_used": str})
-
-
-def comparison(table: str, ours: pd.DataFrame, published_dir: Path | None = None
-               ) -> pd.DataFrame:
-    """Long comparison of one thesis table: published, recomputed, difference, status."""
-    keys = COMPARED_TABLES[table]
-    published = read_published(table, published_dir)
-    columns = [c for c in published.columns
-               if c not in keys and c != "texture_wavelength" and c in ours.columns
-               and pd.api.types.is_numeric_dtype(published[c])]
-    cmp = compare_with_published({"from_published_steps": ours}, published, keys, columns,
-                                 printed_decimals(table, published_dir))
-    cmp["status"] = explain(table, cmp, keys, "from_published_steps")
-    return cmp.drop(columns=["from_published_steps_rounds_to_published"])
 
 
 def _legend(ax: plt.Axes) -> None:

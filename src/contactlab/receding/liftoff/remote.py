@@ -1,6 +1,6 @@
 """Remote forms of the densities (eqs 6.3-6.5, 7.11-7.18) and the remote slip relation.
 
-Normalisation of ``liftoff`` (densities times 2 mu / ((kappa + 1) T), T the load per
+Normalisation of ``solver`` (densities times 2 mu / ((kappa + 1) T), T the load per
 thickness, lengths in c, K = K_T):
 
 * climb (eqs 6.4, 7.12-7.17): ``B_yl(x) = -K + g(x)`` for x > w, with

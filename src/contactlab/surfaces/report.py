@@ -248,7 +248,7 @@ def build_section(seq_path: Path, report_dir: Path, published_dir: Path | None,
         if synthetic:
             section.note(
                 f"{len(synthetic)} of {texture.sizes['surface']} surfaces are evaluated from "
-                "SYNTHETIC demo scans (seeded, written by the rule demo_scans): self-affine "
+                "SYNTHETIC demo scans (seeded, by the rule surfaces_demo_scans): self-affine "
                 "surfaces made to have the published Sq, Sa/Sq, Sp and Str (areal) and Rq, "
                 "Ra/Rq (profiles; 100x also Rz), with the grooves of Table 2.6 on the structured "
                 "specimens. "

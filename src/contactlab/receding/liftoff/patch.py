@@ -2,7 +2,7 @@
 
 ``solve_patch(law, f, w_hat, n)`` solves the lifting-off receding contact under a
 symmetric pressure on |x| <= w (``loading.make_load``) with the method of ch. 6
-(``liftoff``). Results: a, b in units of c, K_T = k_l 2 mu / ((kappa + 1) T) with T the
+(``solver``). Results: a, b in units of c, K_T = k_l 2 mu / ((kappa + 1) T) with T the
 load per thickness (eq. 7.33), tractions in T. Thesis defaults (sec. 7.4): N = 100,
 e = 5c + w, lambda_b = 2 and lambda_a = 2 for w <= c, 5 for larger w, 10 beyond 10c.
 
@@ -19,9 +19,10 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from contactlab.receding.liftoff import LiftoffSolution, solve_liftoff
-from contactlab.receding.line import flag_no_stick, line_guess
-from contactlab.receding.loading import Load, make_load
+from contactlab.receding.core.solution import check_friction
+from contactlab.receding.liftoff.line import flag_no_stick, line_guess
+from contactlab.receding.liftoff.loading import Load, make_load
+from contactlab.receding.liftoff.solver import LiftoffSolution, solve_liftoff
 
 LAWS = ("uniform", "hertz", "punch")
 
@@ -35,7 +36,7 @@ def default_lambdas(w: float) -> tuple[float, float]:
 def _continuation(load: Load, f: float, n: int, lam_a: float, lam_b: float, e_extra: float,
                   preformed: bool) -> tuple[float, float] | None:
     """(a, b) reached by continuation in w from the line load at a coarse N."""
-    from contactlab.receding.liftoff import COARSE_N
+    from contactlab.receding.liftoff.solver import COARSE_N
 
     guess = line_guess(f)
     steps = [w for w in (0.1, 0.25, 0.5, 1.0, 2.0, 3.0, 5.0, 7.5, 10.0, 14.0, 20.0, 30.0)
@@ -68,15 +69,14 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
     ``law`` is uniform/hertz/punch (aliases: constant, A1, A2, A3) or ``table`` with
     ``table = {"x": [...], "p": [...]}`` (w_hat is then the table's extent).
     """
-    if not (np.isfinite(f) and f >= 0):
-        raise ValueError(f"friction coefficient f must be >= 0, got {f}")
+    check_friction(f, zero=True)
     load = make_load(law, w_hat, table)
     la, lb = default_lambdas(load.w)
     lam_a = la if lam_a is None else lam_a
     lam_b = lb if lam_b is None else lam_b
     e = load.w + 5.0 if e is None else e
     if f == 0:
-        from contactlab.receding.frictionless import solve_frictionless
+        from contactlab.receding.liftoff.frictionless import solve_frictionless
 
         return solve_frictionless(load, n, lam_a, lam_b, e, problem=load.law,
                                   preformed=preformed)

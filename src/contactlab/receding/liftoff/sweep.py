@@ -1,6 +1,7 @@
 """Sweeps of the lifting-off problems (line load, patches) as CF datasets, and profiles.
 
-Pure functions: numbers in, xarray out. Sweeps continue along f (largest first) and, for
+Pure functions: numbers in, xarray out; and the fits of sec. 7.6 to a sweep of wide
+patches (:func:`wide_fits`). Sweeps continue along f (largest first) and, for
 patches, along w_hat (smallest first), each converged solution seeding its neighbours;
 a failed point is kept with ``converged = 0``, its residual and its regime code, never
 dropped, and never stops the sweep.
@@ -8,21 +9,19 @@ dropped, and never stops the sweep.
 
 from __future__ import annotations
 
-import time
-
 import numpy as np
+import pandas as pd
 import xarray as xr
 
-from contactlab.receding.liftoff import REGIMES, LiftoffSolution
-from contactlab.receding.line import solve_line
-from contactlab.receding.loading import make_load
-from contactlab.receding.patch import default_lambdas, slope_normalisations, solve_patch
+from contactlab.receding.core.solution import regime_attrs
+from contactlab.receding.liftoff.line import solve_line
+from contactlab.receding.liftoff.loading import make_load
+from contactlab.receding.liftoff.patch import default_lambdas, slope_normalisations, solve_patch
+from contactlab.receding.liftoff.solver import REGIMES, LiftoffSolution
 
 ONE = "1"
-CODES = ("failed", *REGIMES)
-REGIME_ATTRS = {"long_name": "solution regime", "units": ONE,
-                "flag_values": np.arange(-1, len(REGIMES), dtype=np.int8),
-                "flag_meanings": " ".join(CODES)}
+#: the fitted forms of sec. 7.6 exist for the thesis's laws only, not for a user's shape
+WIDE_FIT_BASIS = {"uniform": np.log, "hertz": np.sqrt, "punch": lambda w: 1.0 / w}
 SCALARS = {
     "a": "end of the central stick zone a/c",
     "b": "start of separation b/c",
@@ -33,6 +32,7 @@ SCALARS = {
     "remote_slip_lhs": "int_0^inf B_x dx, times 2 mu / ((kappa + 1) T c)",
     "remote_slip_rhs": "-1/8 - K_T/2 + (1/4) int_0^b x S dx / (T c^2)",
 }
+#: The shared contact checks (``core.solution.CHECKS``) described in units of T.
 CHECKS = {
     "max_tension": "largest N/T in contact (admissible <= 0)",
     "max_stick_excess": "largest |S| - f|N| in the stick zone, /T (admissible <= 0)",
@@ -53,11 +53,8 @@ def _code(sol: LiftoffSolution) -> int:
 def _record(sol: LiftoffSolution) -> dict[str, float]:
     rec = {k: np.nan for k in [*SCALARS, *CHECKS]}
     rec.update(a=sol.a, b=sol.b, K_T=sol.K_T, residual=sol.residual)
+    rec.update(sol.remote_slip_record())
     if sol.converged:
-        if sol.preformed_used:
-            rel = sol.remote_slip()
-            rec.update(remote_slip_error=rel["error"], remote_slip_lhs=rel["lhs"],
-                       remote_slip_rhs=rel["rhs"])
         rec.update({k: sol.checks.get(k, np.nan) for k in CHECKS})
     else:
         rec.update(a=np.nan, b=np.nan, K_T=np.nan)
@@ -68,7 +65,8 @@ def _record(sol: LiftoffSolution) -> dict[str, float]:
     return rec
 
 
-def _failed(problem: str, f: float, n: int, exc: Exception) -> dict[str, float]:
+def _failed_record() -> dict[str, float]:
+    """The record of a point whose solve raised (bad geometry, singular system)."""
     rec = {k: np.nan for k in [*SCALARS, *CHECKS]}
     rec.update(converged=0, admissible=0, regime=-1, nfev=0)
     return rec
@@ -90,8 +88,7 @@ def _variables(records: np.ndarray, dims: tuple[str, ...], suffix: str = "",
         values = np.array([r[key] for r in flat], dtype=dtype).reshape(shape)
         out[key + suffix] = (dims, values, {"long_name": name + what, "units": ONE})
     regime = np.array([r["regime"] for r in flat], dtype=np.int8).reshape(shape)
-    out["regime" + suffix] = (dims, regime, {**REGIME_ATTRS,
-                                             "long_name": "solution regime" + what})
+    out["regime" + suffix] = (dims, regime, regime_attrs(REGIMES, "solution regime" + what))
     return out
 
 
@@ -100,7 +97,8 @@ def _f_coord(f_values: np.ndarray) -> dict:
                   {"long_name": "coefficient of friction", "units": ONE})}
 
 
-def check_f(f_values) -> np.ndarray:
+def check_f(f_values: np.ndarray | list[float]) -> np.ndarray:
+    """The friction coefficients of a sweep as floats; all must be finite and >= 0."""
     f_values = np.asarray(f_values, dtype=float)
     if np.any(~np.isfinite(f_values)) or np.any(f_values < 0):
         raise ValueError(f"friction coefficients must be >= 0, got {f_values.tolist()}")
@@ -123,8 +121,8 @@ def sweep_line(f_values, n: int, lam: float, e: float, chaise: bool) -> xr.Datas
                 records[j] = _record(sol)
                 if sol.converged and sol.regime == "slip_separation":
                     prev = (sol.a, sol.b)
-            except (ValueError, np.linalg.LinAlgError) as exc:
-                records[j] = _failed("line", f, n, exc)
+            except (ValueError, np.linalg.LinAlgError):
+                records[j] = _failed_record()
         what = " (Chaise et al. model, bounded-bounded densities only)" if suffix else ""
         data.update(_variables(records, ("f",), suffix, what))
     for key in [k for k in data if k.startswith("remote_slip") and k.endswith("_chaise")]:
@@ -176,8 +174,8 @@ def sweep_patch(law: str, f_values, w_values, n: int, lam_b: float, e_extra: flo
                     if sol.load.law != "table":  # K_N, K_B need a named amplitude
                         norms = slope_normalisations(sol.load.law, w, sol.K_T)
                         k_n[i, j], k_b[i, j] = norms["K_N"], norms["K_B"]
-            except (ValueError, np.linalg.LinAlgError) as exc:
-                records[i, j] = _failed(law, f, n, exc)
+            except (ValueError, np.linalg.LinAlgError):
+                records[i, j] = _failed_record()
     dims = ("f", "w_hat")
     data = _variables(records, dims)
     data["K_N"] = (dims, k_n, {"long_name": "remote slope k_l 4 mu / ((kappa + 1) A_N) "
@@ -197,6 +195,31 @@ def sweep_patch(law: str, f_values, w_values, n: int, lam_b: float, e_extra: flo
     return ds
 
 
+def wide_fits(patches: dict[str, xr.Dataset], f: float) -> pd.DataFrame:
+    """The fits of sec. 7.6 to K_B(w) at friction f: uniform alpha ln w + beta, Hertzian
+    alpha sqrt(w) + beta, punch K_inf + gamma / w (asymptote)."""
+    rows = []
+    for law, ds in patches.items():
+        if law not in WIDE_FIT_BASIS:
+            continue
+        row = ds.sel(f=f, method="nearest")
+        w = row["w_hat"].values
+        k = row["K_B"].where(row["converged"] == 1).values
+        use = np.isfinite(k) & (w >= 2.0)
+        if use.sum() < 2:
+            continue
+        basis = WIDE_FIT_BASIS[law](w)
+        slope, icpt = np.polyfit(basis[use], k[use], 1)
+        form = {"uniform": "alpha ln(w/c) + beta", "hertz": "alpha sqrt(w/c) + beta",
+                "punch": "K_inf + gamma c/w (K_inf = beta)"}[law]
+        resid = float(np.max(np.abs(slope * basis[use] + icpt - k[use])))
+        rows.append({"law": law, "f": float(row["f"]), "fit": form, "alpha_or_gamma": slope,
+                     "beta": icpt, "max_misfit": resid, "points": int(use.sum()),
+                     "w_range": f"{w[use].min():g}-{w[use].max():g}"})
+    columns = ["law", "f", "fit", "alpha_or_gamma", "beta", "max_misfit", "points", "w_range"]
+    return pd.DataFrame(rows, columns=columns)
+
+
 def profile_dataset(sol: LiftoffSolution, x_max: float, points: int,
                     chaise: LiftoffSolution | None = None) -> xr.Dataset:
     """Densities, tractions, separation and slip on 0 <= x <= x_max (Figs 6.4-6.6, 7.2-7.4,
@@ -209,7 +232,7 @@ def profile_dataset(sol: LiftoffSolution, x_max: float, points: int,
     if sol.converged:
         s, nn = sol.tractions(x)
         sb, nb = sol.load.bilateral(x)
-        rel = sol.remote_slip() if sol.preformed_used else {"lhs": np.nan}
+        remote_lhs = sol.remote_slip_record()["remote_slip_lhs"]
         variables.update({
             "shear": (s, "shear traction S/T"),
             "normal": (nn, "normal traction N/T"),
@@ -235,8 +258,8 @@ def profile_dataset(sol: LiftoffSolution, x_max: float, points: int,
         glide_far[far] = sol.remote_glide(x[far])
         variables["remote_glide"] = (glide_far, "remote form of B_x, eq. (6.5)/(7.11), "
                                                 f"(I/pi)/(d^2 - x^2), x > b {unit_d}")
-        variables["slip_remote_expected"] = (np.full_like(x, -rel["lhs"] if np.isfinite(
-            rel["lhs"]) else np.nan), "slip at infinity, -int_0^inf B_x " + unit_g)
+        variables["slip_remote_expected"] = (np.full_like(x, -remote_lhs if np.isfinite(
+            remote_lhs) else np.nan), "slip at infinity, -int_0^inf B_x " + unit_g)
     if chaise is not None and chaise.converged:
         s, nn = chaise.tractions(x)
         variables.update({
@@ -262,21 +285,13 @@ def profile_dataset(sol: LiftoffSolution, x_max: float, points: int,
 
 
 def solution_attrs(sol: LiftoffSolution) -> dict:
-    rel = sol.remote_slip() if (sol.converged and sol.preformed_used) else {}
+    """The global attributes of a profile: parameters, transition points, diagnostics."""
     attrs = {"problem": sol.problem, "law": sol.load.law, "w_hat": sol.load.w, "f": sol.f,
              "N": sol.n, "lambda_a": sol.lam_a, "lambda_b": sol.lam_b, "e": sol.e,
              "a": sol.a, "b": sol.b, "K_T": sol.K_T, "regime": sol.regime,
              "converged": int(sol.converged), "admissible": int(sol.admissible),
              "residual": sol.residual, "nfev": sol.nfev, "solver_log": sol.message,
-             "remote_slip_error": rel.get("error", np.nan),
-             "remote_slip_lhs": rel.get("lhs", np.nan),
-             "remote_slip_rhs": rel.get("rhs", np.nan),
+             **sol.remote_slip_record(),
              "shear_moment": sol.shear_moment() if sol.converged else np.nan}
     attrs.update(sol.checks)
     return attrs
-
-
-def timed(func, *args, **kwargs):
-    start = time.perf_counter()
-    out = func(*args, **kwargs)
-    return out, time.perf_counter() - start

@@ -54,7 +54,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from contactlab.receding.loading import Load
+from contactlab.receding.liftoff.loading import Load
 
 #: geometric panels per finite segment and Gauss points per panel
 _LEVELS = 8

@@ -33,7 +33,8 @@ Notes on the printed equations (checked numerically, see tests/receding):
 
 The slip direction: with these kernels the relative displacement of the layer over the
 half-plane is ``-int B dxi``; friction on the half-plane points along the layer's motion,
-so an admissible slip zone has S * slip >= 0 (checked in ``GapSolution.checks``).
+so an admissible slip zone has S * slip >= 0 (checked in ``GapSolution.checks``, the
+contact checks shared with the lifting-off problems, ``core.solution``).
 """
 
 from __future__ import annotations
@@ -44,10 +45,16 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import optimize
 
-from contactlab.receding.bilateral import gap_bilateral
-from contactlab.receding.dislocations import DensityInterval
-from contactlab.receding.quadrature import bounded_rule
-from contactlab.receding.solve import (
+from contactlab.receding.core.bilateral import gap_bilateral
+from contactlab.receding.core.dislocations import DensityInterval
+from contactlab.receding.core.quadrature import bounded_rule
+from contactlab.receding.core.solution import (
+    admissible,
+    check_friction,
+    check_points,
+    contact_checks,
+)
+from contactlab.receding.core.solve import (
     LinearSystem,
     RootResult,
     difference_jacobian,
@@ -55,27 +62,18 @@ from contactlab.receding.solve import (
 )
 
 REGIMES = ("stick", "slip", "slip_separation")
-#: Tolerance (in units of p) for contact-condition checks on the dense grid. The checks
-#: run between the nodes, where the interpolated densities are least accurate: next to the
-#: kink of eq. (5.19) at |x| = b the slip-zone mismatch |S| - f|N| is ~2e-3 at N = 100 and
-#: decreases slowly with N (1.5e-3 at 200, 0.9e-3 at 400 for w_hat = 2.5, f = 0.2).
-CHECK_TOL = 5e-3
 
 
 # --------------------------------------------------------------------------- stick
 
 
-def check_inputs(w: float, f: float, n: int) -> None:
+def check_gap_inputs(w: float, f: float, n: int) -> None:
     """Refuse impossible inputs with a message naming the value (ValueError)."""
     if not (np.isfinite(w) and w > 0):
         raise ValueError(f"w_hat must be a positive number (gap half-width w/c), got {w}")
-    if not (np.isfinite(f) and f > 0):
-        raise ValueError(
-            f"friction coefficient f must be positive, got {f} (f = 0 makes the slip zone "
-            "unbounded; the frictionless limit is reached by f -> 0)"
-        )
-    if int(n) != n or n < 4 or n % 2:
-        raise ValueError(f"N must be an even integer >= 4, got {n}")
+    check_friction(f, zero=False, hint=" (f = 0 makes the slip zone unbounded; the "
+                   "frictionless limit is reached by f -> 0)")
+    check_points(n, 4)
 
 
 def stick_friction(w: float) -> tuple[float, float]:
@@ -126,7 +124,8 @@ class GapSolution:
     the residuals of the equations left out of the square solve; ``nfev`` counts linear
     solves (root-finder iterations); ``converged`` is the root finder's verdict and
     ``checks`` the contact conditions on a dense grid between the nodes (``admissible``
-    when all hold within CHECK_TOL, in units of p). ``p`` is the applied pressure:
+    when all hold within :data:`~contactlab.receding.core.solution.CHECK_TOL`, in units of
+    p; :func:`~contactlab.receding.core.solution.contact_checks`). ``p`` is the applied pressure:
     tractions come out in its unit, densities and displacements scale with it, the zones
     do not (receding contacts are load independent).
     """
@@ -198,19 +197,11 @@ class GapSolution:
 
     @property
     def admissible(self) -> bool:
-        return bool(self.checks) and all(
-            v <= CHECK_TOL for k, v in self.checks.items() if k.startswith("max_")
-        )
+        return admissible(self.checks)
 
     def evaluate_checks(self, points: int = 801) -> dict[str, float]:
-        """Contact conditions of §4.2 on x in [0, X] (symmetry), X beyond every zone.
-
-        ``max_tension``: largest N/p in contact (must be <= 0); ``max_stick_excess``:
-        largest |S| - f|N| in stick zones; ``max_slip_mismatch``: largest f|N| - |S|
-        magnitude mismatch in slip zones and of S against the slip direction;
-        ``max_overlap``: largest negative separation in the separation zone;
-        ``max_separated_traction``: largest |N|, |S| inside the separation zone.
-        """
+        """Contact conditions of §4.2 on x in [0, X] (symmetry), X beyond every zone, in
+        units of p (:func:`~contactlab.receding.core.solution.contact_checks`)."""
         ends = [v for v in (self.a1, self.a2, self.a3, self.b) if np.isfinite(v)]
         xmax = max([self.w, *ends]) + 4.0
         x = np.linspace(0.0, xmax, points)
@@ -223,28 +214,10 @@ class GapSolution:
         contact = ~separated & ~((np.abs(x - b) < eps) & (b > 0))
         slipping = (x > inner + eps) & (x < outer - eps) & ~separated
         sticking = contact & ~((x >= inner - eps) & (x <= outer + eps)) & ~separated
-        s, n = s / self.p, n / self.p  # checks in units of p
-        excess = np.abs(s) - self.f * np.abs(n)
-        checks = {
-            "max_tension": float(np.max(n[contact], initial=-np.inf)),
-            "max_stick_excess": float(np.max(excess[sticking], initial=-np.inf)),
-            "max_slip_mismatch": 0.0,
-            "max_overlap": 0.0,
-            "max_separated_traction": 0.0,
-        }
-        if slipping.any():
-            u = self.slip(x[slipping])
-            mismatch = np.abs(excess[slipping])
-            wrong_way = np.where(s[slipping] * u < 0, np.abs(s[slipping]), 0.0)
-            checks["max_slip_mismatch"] = float(max(mismatch.max(), wrong_way.max()))
-        if separated.any():
-            g = self.separation(x[separated])
-            checks["max_overlap"] = float(max(0.0, -g.min()))
-            checks["max_separated_traction"] = float(
-                max(np.abs(n[separated]).max(), np.abs(s[separated]).max())
-            )
-        self.checks = checks
-        return checks
+        self.checks = contact_checks(x, self.f, s / self.p, n / self.p, contact=contact,
+                                     stick=sticking, slipping=slipping, separated=separated,
+                                     slip=self.slip, separation=self.separation)
+        return self.checks
 
 
 # --------------------------------------------------------------------------- slip
@@ -505,7 +478,7 @@ def solve_gap(w: float, f: float, n: int = 100, guess: GapSolution | None = None
     finder and picks the regime tried first, which is how sweeps continue along f or w;
     without it the regime more likely from the tabulated f_sep(w) is tried first.
     """
-    check_inputs(w, f, n)
+    check_gap_inputs(w, f, n)
     if not (np.isfinite(p) and p > 0):
         raise ValueError(f"pressure p must be positive, got {p}")
     if f >= stick_friction(w)[0]:

@@ -1,13 +1,23 @@
 """The line load of ch. 6: a layer pressed on a half-plane by a line load P (Fig. 6.1).
 
-``solve_line(f, n, lam, e)`` returns a :class:`~contactlab.receding.liftoff.LiftoffSolution`
-with a, b in units of c, K_T = k_l 2 mu c / ((kappa + 1) P) (the thesis's K), tractions
-in P/c and densities/displacements normalised as in ``liftoff``. Thesis defaults: N = 500,
-lambda = 3.5, e = 5c (sec. 6.4).
+``solve_line(f, n, lam, e)`` returns a :class:`~contactlab.receding.liftoff.solver.
+LiftoffSolution` with a, b in units of c, K_T = k_l 2 mu c / ((kappa + 1) P) (the thesis's
+K), tractions in P/c and densities/displacements normalised as in ``solver``. Thesis
+defaults: N = 500, lambda = 3.5, e = 5c (sec. 6.4).
+
+The model of Chaise et al. that the thesis compares against (ch. 6) is
+``solve_line(..., preformed=False)``: the same equations without the preformed
+distribution A_y, the slope K and eq. (6.22), glide and climb densities on [a, inf) and
+[b, inf) both bounded at both ends. The climb density then integrates to a finite total,
+so the separation tends to a constant far away instead of growing linearly (Fig. 6.6),
+while the tractions near the load are close to those of the full model (Fig. 6.5). With
+lambda = 3.5 its discrete equations have no root for f >= 0.7 (N = 100 and 500): the
+leftover residuals jump where a collocation point of the glide set crosses b; those points
+are reported as not converged.
 
 Stick-zone limit: the central stick zone shrinks very fast as f falls (a = 0.25 c at
 f = 0.5, 0.018 c at 0.2, 2.5e-4 c at 0.1, 6e-6 c at 0.08 with N = 100). Solving the same
-equations with a = 0 fixed and f unknown (``liftoff.critical_friction``) gives the
+equations with a = 0 fixed and f unknown (``solver.critical_friction``) gives the
 friction below which the discrete equations have no root with a > 0:
 f_c = 0.086, 0.079, 0.070, 0.063 for N = 64, 100, 200, 400 -- it keeps falling with N, so
 it is a resolution limit of the bounded glide representation (the first node sits
@@ -21,8 +31,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from contactlab.receding.liftoff import LiftoffSolution, critical_friction, solve_liftoff
-from contactlab.receding.loading import make_load
+from contactlab.receding.core.solution import check_friction
+from contactlab.receding.liftoff.loading import make_load
+from contactlab.receding.liftoff.solver import LiftoffSolution, critical_friction, solve_liftoff
 
 #: (f, a, b) of converged line-load solutions (N = 100), only to seed the root finder
 GUESS_TABLE = np.array([[0.08, 6.4e-6, 1.379], [0.1, 2.53e-4, 1.394], [0.2, 0.0182, 1.476],
@@ -44,13 +55,12 @@ def solve_line(f: float, n: int, lam: float, e: float,
                guess: tuple[float, float] | None = None, preformed: bool = True,
                ) -> LiftoffSolution:
     """Line load at friction f (see module docstring); ``preformed=False`` is the
-    bounded-bounded-only model of Chaise et al. (``chaise``)."""
-    if not (np.isfinite(f) and f >= 0):
-        raise ValueError(f"friction coefficient f must be >= 0, got {f}")
+    bounded-bounded-only model of Chaise et al."""
+    check_friction(f, zero=True)
     load = make_load("line")
     problem = "line" if preformed else "line_chaise"
     if f == 0:
-        from contactlab.receding.frictionless import solve_frictionless
+        from contactlab.receding.liftoff.frictionless import solve_frictionless
 
         return solve_frictionless(load, n, lam, lam, e, problem=problem, preformed=preformed)
     seeds = [guess] if guess is not None else []

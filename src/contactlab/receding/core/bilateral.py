@@ -29,7 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from contactlab.receding.quadrature import legendre, legendre_semi_infinite
+from contactlab.receding.core.quadrature import legendre, legendre_semi_infinite
 
 #: Pressure or shear load along the surface: a constant or a vectorised function of x_hat.
 Load = float | Callable[[np.ndarray], np.ndarray]

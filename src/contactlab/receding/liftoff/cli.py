@@ -1,5 +1,7 @@
 """Command line of the lifting-off problems (chs 6-7), registered by ``receding.cli``.
 
+``receding solve`` of a line or patch problem runs :func:`run_solve`.
+
     contactlab receding solve --problem line --f 0.5 --n 500 --lam 3.5 --e 5 --json
     contactlab receding solve --problem hertz --f 0.3 --w-hat 1 --n 100 --lam-b 2 \\
         --e-minus-w 5 --json
@@ -9,7 +11,7 @@
     contactlab receding liftoff-gather chunk*.nc --out results/receding/line.nc
     contactlab receding liftoff-profile --problem line --f 0.5 --n 500 --lam 3.5 --e 5 \\
         --chaise --x-max 12 --out profile.nc
-    contactlab receding liftoff-report --line line.nc --patches uniform.nc ... --out s.html
+    contactlab receding report-liftoff --line line.nc --patches uniform.nc ... --out s.html
 
 The science parameters (N, lambda, e, lambda_b, (e - w)/c) have no defaults here: the
 config (``receding.line``, ``receding.patches``) is their one home and the rules pass them.
@@ -49,7 +51,7 @@ def solve_problem(problem: str, f: float, w_hat: float | None, n: int, *,
     if problem == "line":
         if lam is None or e is None:
             raise ValueError("problem line needs --lam and --e (config receding.line)")
-        from contactlab.receding.line import solve_line
+        from contactlab.receding.liftoff.line import solve_line
 
         return solve_line(f, n, lam, e, preformed=not chaise)
     if w_hat is None:
@@ -57,7 +59,7 @@ def solve_problem(problem: str, f: float, w_hat: float | None, n: int, *,
     if lam_b is None or e_minus_w is None:
         raise ValueError(f"problem {problem} needs --lam-b and --e-minus-w "
                          "(config receding.patches)")
-    from contactlab.receding.patch import solve_patch
+    from contactlab.receding.liftoff.patch import solve_patch
 
     return solve_patch(problem, f, w_hat, n, lam_b=lam_b, e=w_hat + e_minus_w,
                        preformed=not chaise)
@@ -71,20 +73,16 @@ def _solve_args(args: argparse.Namespace, chaise: bool = False) -> Any:
 
 def summary(sol: Any, seconds: float) -> dict:
     """The JSON object of ``contactlab receding solve`` for a line or patch (NaN -> null)."""
-    import numpy as np
+    from contactlab.receding.core.solution import json_ready
 
-    rel = sol.remote_slip() if (sol.converged and sol.preformed_used) else {}
-    out = {
+    return json_ready({
         "problem": sol.problem, "f": sol.f, "w_hat": sol.load.w, "N": sol.n,
         "regime": sol.regime, "a": sol.a, "b": sol.b, "K_T": sol.K_T,
         "converged": bool(sol.converged), "admissible": bool(sol.admissible),
-        "residual": sol.residual, "remote_slip_error": rel.get("error", np.nan),
-        "remote_slip_lhs": rel.get("lhs", np.nan), "remote_slip_rhs": rel.get("rhs", np.nan),
+        "residual": sol.residual, **sol.remote_slip_record(),
         "lambda_a": sol.lam_a, "lambda_b": sol.lam_b, "e": sol.e, "iterations": sol.nfev,
         "seconds": round(seconds, 4), **sol.checks,
-    }
-    return {k: (None if isinstance(v, float) and not np.isfinite(v) else v)
-            for k, v in out.items()}
+    })
 
 
 def run_solve(args: argparse.Namespace) -> None:
@@ -112,7 +110,7 @@ def _line_sweep(args: argparse.Namespace) -> None:
     import numpy as np
 
     from contactlab.io import stamp, write_netcdf
-    from contactlab.receding.liftoff_sweep import sweep_line
+    from contactlab.receding.liftoff.sweep import sweep_line
 
     start = time.perf_counter()
     ds = sweep_line(np.asarray(args.f), args.n, args.lam, args.e, chaise=args.chaise)
@@ -128,7 +126,7 @@ def _patch_sweep(args: argparse.Namespace) -> None:
     import numpy as np
 
     from contactlab.io import stamp, write_netcdf
-    from contactlab.receding.liftoff_sweep import sweep_patch
+    from contactlab.receding.liftoff.sweep import sweep_patch
 
     shape = None
     if args.table_x is not None or args.table_p is not None:
@@ -166,7 +164,7 @@ def _profile(args: argparse.Namespace) -> None:
     sol = _solve_args(args)
     chaise = _solve_args(args, chaise=True) if args.chaise else None
     from contactlab.io import stamp, write_netcdf
-    from contactlab.receding.liftoff_sweep import profile_dataset
+    from contactlab.receding.liftoff.sweep import profile_dataset
 
     ds = profile_dataset(sol, args.x_max, args.points, chaise)
     stamp(ds, title=f"{args.problem} (thesis chs 6-7): interface profiles at f = {args.f}"
@@ -177,7 +175,7 @@ def _profile(args: argparse.Namespace) -> None:
 
 
 def _report(args: argparse.Namespace) -> None:
-    from contactlab.receding.liftoff_report import build_section
+    from contactlab.receding.liftoff.report import build_section
 
     build_section(args.line, args.patches, args.profiles, args.report_dir, args.out)
 
@@ -259,7 +257,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     profile.set_defaults(func=_profile)
 
     report = add_command(
-        commands, "liftoff-report", help="report section of chs 6-7",
+        commands, "report-liftoff", help="report section of chs 6-7",
         description="HTML report fragment of the line load and pressure patches: Figs "
                     "6.3-6.6 and 7.2-7.10 and tables.")
     report.add_argument("--line", type=input_file, required=True,

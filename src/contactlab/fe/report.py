@@ -16,6 +16,7 @@ import pandas as pd
 import xarray as xr
 from matplotlib.ticker import NullFormatter
 
+from contactlab.fe.receding import STICK_SLIP_NAME
 from contactlab.io import load_datasets
 from contactlab.report.section import Section
 
@@ -29,7 +30,7 @@ PANELS = (("N", "N/q"), ("S", "S/q"), ("separation", "separation (normalised)"),
 
 
 def _stick_slip(ds: xr.Dataset) -> str:
-    return "a3" if ds.attrs["problem"] == "gap" else "a"
+    return STICK_SLIP_NAME[ds.attrs["problem"]]
 
 
 def profile_figure(ds: xr.Dataset) -> plt.Figure:
@@ -89,7 +90,7 @@ def agreement_table(results: list[xr.Dataset]) -> pd.DataFrame:
 def convergence_table(conv: list[xr.Dataset]) -> pd.DataFrame:
     rows = []
     for ds in conv:
-        a = "a3" if ds.attrs["problem"] == "gap" else "a"
+        a = _stick_slip(ds)
         for i, mesh in enumerate(ds["mesh"].values):
             rows.append({
                 "problem": ds.attrs["problem"], "mesh": str(mesh),
@@ -104,7 +105,7 @@ def convergence_figure(conv: list[xr.Dataset]) -> plt.Figure:
     """Transition points against h/c, and each problem's normal traction per mesh."""
     fig, axes = plt.subplots(2, len(conv), figsize=(4.2 * len(conv), 6.4), squeeze=False)
     for k, ds in enumerate(conv):
-        a = "a3" if ds.attrs["problem"] == "gap" else "a"
+        a = _stick_slip(ds)
         h = ds["h"].values
         ax = axes[0, k]
         ax.plot(h, ds["b_fe"].values, "o-", label="b")
@@ -159,8 +160,8 @@ def _note_for(ds: xr.Dataset) -> str:
     problem = ds.attrs["problem"]
     if ds.attrs.get("ddt_status", "ok") != "ok":
         return (f"{problem}: {ds.attrs.get('ddt_missing_reason', ds.attrs['ddt_status'])}. "
-                "The FE side is complete; the comparison fills in when the receding branch "
-                "provides the solver.")
+                "The FE side is complete; the comparison with the distributed dislocations "
+                "is missing for this problem.")
     return ""
 
 

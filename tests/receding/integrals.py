@@ -1,4 +1,4 @@
-"""Small quadrature helper for integrals of interface fields over x (tests, reports)."""
+"""Gauss-Legendre integrals of interface fields over x, for the tests of the resultants."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from contactlab.receding.quadrature import legendre
+from contactlab.receding.core.quadrature import legendre
 
 
 def gauss_integral(func: Callable[[np.ndarray], np.ndarray], breaks: Sequence[float],

@@ -60,26 +60,28 @@ nearby), reported as not converged with its residual.
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import linalg
 
-from contactlab.receding._blas import single_thread
-from contactlab.receding.dislocations import DensityInterval
-from contactlab.receding.loading import Load
-from contactlab.receding.preformed import Preformed
-from contactlab.receding.quadrature import interpolation_matrix, legendre
-from contactlab.receding.solve import (
+from contactlab.receding.core._blas import single_thread
+from contactlab.receding.core.dislocations import DensityInterval
+from contactlab.receding.core.quadrature import interpolation_matrix, legendre
+from contactlab.receding.core.solution import (
+    admissible,
+    check_friction,
+    check_points,
+    contact_checks,
+)
+from contactlab.receding.core.solve import (
     LinearSystem,
     RootResult,
     difference_jacobian,
     find_transitions,
 )
+from contactlab.receding.liftoff.loading import Load
+from contactlab.receding.liftoff.preformed import Preformed
 
-#: tolerance (units of T) of the contact checks between the nodes
-CHECK_TOL = 5e-3
 REGIMES = ("slip_separation", "no_stick", "frictionless")
 #: N of the first, coarse solve of the N-continuation
 COARSE_N = 64
@@ -210,7 +212,7 @@ class LiftoffSolution:
     def remote_glide(self, x: np.ndarray) -> np.ndarray:
         """Eq. (6.5)/(7.11) normalised, (I/pi)/(d^2 - x^2) with I = F d = int_0^b x S and
         d = I / F (eqs 6.1-6.2, 7.9-7.10); meaningful for x >> d."""
-        from contactlab.receding.remote import remote_glide
+        from contactlab.receding.liftoff.remote import remote_glide
 
         moment = self.shear_moment()
         d = moment / self.shear_moment(power=0)
@@ -220,7 +222,7 @@ class LiftoffSolution:
         """The remote slip relation: lhs = int_0^inf B_x, rhs = -1/8 - K/2 + (1/4) int x S.
 
         Corrected eq. (6.32)/(7.32) (sign of the K term; see ``remote``)."""
-        from contactlab.receding.remote import slip_relation_rhs
+        from contactlab.receding.liftoff.remote import slip_relation_rhs
 
         lhs = self.glide.integral(self.phi_x) if self.glide is not None else np.nan
         if self.glide is not None and self.glide.mapping == "infinite":
@@ -228,17 +230,16 @@ class LiftoffSolution:
         rhs = slip_relation_rhs(self._k, self.shear_moment())
         return {"lhs": float(lhs), "rhs": float(rhs), "error": float(lhs - rhs)}
 
-    @property
-    def remote_slip_error(self) -> float:
-        if not (self.converged and self.preformed_used):
-            return np.nan
-        return self.remote_slip()["error"]
+    def remote_slip_record(self) -> dict[str, float]:
+        """``remote_slip_error``, ``_lhs``, ``_rhs`` of :meth:`remote_slip`, NaN unless the
+        solution converged with the preformed density (the relation needs K)."""
+        rel = self.remote_slip() if (self.converged and self.preformed_used) else {}
+        return {f"remote_slip_{key}": rel.get(key, np.nan) for key in ("error", "lhs", "rhs")}
 
     # ---- contact checks between the nodes
     @property
     def admissible(self) -> bool:
-        return bool(self.checks) and all(
-            v <= CHECK_TOL for k, v in self.checks.items() if k.startswith("max_"))
+        return admissible(self.checks)
 
     def record(self, root: RootResult, system: LinearSystem, glide: DensityInterval,
                climb: DensityInterval, checks: bool = True) -> None:
@@ -258,13 +259,9 @@ class LiftoffSolution:
             self.evaluate_checks()
 
     def evaluate_checks(self, points: int = 600) -> dict[str, float]:
-        """Contact conditions on 0 <= x <= b + 8 (symmetry), in units of T.
-
-        ``max_tension``: largest N in contact (x < b); ``max_stick_excess``: largest
-        |S| - f|N| in the stick zone; ``max_slip_mismatch``: friction-law mismatch and
-        slip against the shear in the slip zone; ``max_separated_traction``: |N|, |S| in the
-        separation zone; ``max_overlap``: largest negative separation for x > b.
-        """
+        """Contact conditions on 0 <= x <= b + 8 (symmetry), in units of T: stick on
+        x < a, slip on a < x < b, separation beyond b
+        (:func:`~contactlab.receding.core.solution.contact_checks`)."""
         if not (self.converged and np.isfinite(self.b)):
             self.checks = {}
             return self.checks
@@ -273,26 +270,11 @@ class LiftoffSolution:
         x = np.linspace(0.0, b + 8.0, points)[1:]
         eps = 1e-6
         s, n = self.tractions(x)
-        stick = x < a - eps
-        slipping = (x > a + eps) & (x < b - eps)
-        separated = x > b + eps
-        contact = x < b - eps
-        excess = np.abs(s) - self.f * np.abs(n)
-        checks = {
-            "max_tension": float(np.max(n[contact], initial=-np.inf)),
-            "max_stick_excess": float(np.max(excess[stick], initial=-np.inf)),
-            "max_slip_mismatch": 0.0,
-            "max_separated_traction": float(np.max(np.maximum(np.abs(n[separated]),
-                                                              np.abs(s[separated])),
-                                                   initial=0.0)),
-            "max_overlap": float(max(0.0, -np.min(self.separation(x[separated]), initial=0.0))),
-        }
-        if slipping.any():
-            u = self.slip(x[slipping])
-            wrong = np.where(s[slipping] * u < 0, np.abs(s[slipping]), 0.0)
-            checks["max_slip_mismatch"] = float(max(np.abs(excess[slipping]).max(), wrong.max()))
-        self.checks = checks
-        return checks
+        self.checks = contact_checks(x, self.f, s, n, contact=x < b - eps, stick=x < a - eps,
+                                     slipping=(x > a + eps) & (x < b - eps),
+                                     separated=x > b + eps, slip=self.slip,
+                                     separation=self.separation)
+        return self.checks
 
 
 # --------------------------------------------------------------------------- assembly
@@ -354,11 +336,11 @@ def _params(p: np.ndarray) -> tuple[float, float]:
     return a, a + float(np.exp(min(p[1], 4.0)))
 
 
-def check_inputs(f: float, n: int, lam_a: float, lam_b: float, e: float, load: Load) -> None:
-    if not (np.isfinite(f) and f >= 0):
-        raise ValueError(f"friction coefficient f must be >= 0, got {f}")
-    if int(n) != n or n < 8 or n % 2:
-        raise ValueError(f"N must be an even integer >= 8, got {n}")
+def check_liftoff_inputs(f: float, n: int, lam_a: float, lam_b: float, e: float,
+                         load: Load) -> None:
+    """Refuse impossible inputs with a message naming the value (ValueError)."""
+    check_friction(f, zero=True)
+    check_points(n, 8)
     for name, lam in (("lambda_a", lam_a), ("lambda_b", lam_b)):
         if not (np.isfinite(lam) and lam > 0):
             raise ValueError(f"{name} must be positive, got {lam}")
@@ -382,7 +364,7 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
     ``checks=False`` skips the contact checks (the coarse solve only seeds the fine one)."""
     import time
 
-    check_inputs(f, n, lam_a, lam_b, e, load)
+    check_liftoff_inputs(f, n, lam_a, lam_b, e, load)
     if f == 0:
         raise ValueError("f = 0 has no stick zone; use solve_frictionless")
     start = time.perf_counter()
@@ -462,15 +444,8 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
     return sol, None
 
 
-def solve_quietly(*args, **kwargs) -> LiftoffSolution:
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", linalg.LinAlgWarning)
-        return solve_liftoff(*args, **kwargs)
-
-
-def coarse_failure(coarse: LiftoffSolution):
-    from contactlab.receding.solve import RootResult
-
+def coarse_failure(coarse: LiftoffSolution) -> RootResult:
+    """The root-finder result reported at full N when the coarse solve found no root."""
     params = np.array([np.log(max(coarse.a, 1e-26)),
                        np.log(max(coarse.b - coarse.a, 1e-26))])
     return RootResult(params, np.array([]), np.full(2, np.inf), False, coarse.nfev,
@@ -483,7 +458,7 @@ def critical_friction(load: Load, n: int, lam_a: float, lam_b: float, e: float,
     a = 0 fixed and f as the unknown in its place (roots of the two leftover rows in
     (f, b)). Below this f a root of the discrete equations has a < 0, which is no solution
     (the glide density would have to be bounded at a point inside the slip zone)."""
-    check_inputs(max(guess[0], 0.0), n, lam_a, lam_b, e, load)
+    check_liftoff_inputs(max(guess[0], 0.0), n, lam_a, lam_b, e, load)
 
     def system(p: np.ndarray) -> LinearSystem:
         f = float(p[0])

@@ -10,12 +10,12 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from contactlab.receding.bilateral import gap_bilateral
-from contactlab.receding.gap import (
-    CHECK_TOL,
+from contactlab.receding.core.bilateral import gap_bilateral
+from contactlab.receding.core.solution import CHECK_TOL, regime_attrs
+from contactlab.receding.gap.solver import (
     REGIMES,
     GapSolution,
-    check_inputs,
+    check_gap_inputs,
     frictionless_centre_normal,
     separation_friction,
     solve_gap,
@@ -23,12 +23,7 @@ from contactlab.receding.gap import (
 )
 
 ONE = "1"
-REGIME_ATTRS = {
-    "long_name": "solution regime",
-    "units": ONE,
-    "flag_values": np.arange(-1, len(REGIMES), dtype=np.int8),
-    "flag_meanings": "failed " + " ".join(REGIMES),
-}
+#: The shared contact checks (``core.solution.CHECKS``) described in units of p.
 CHECK_NAMES = {
     "max_tension": "largest normal traction N/p in contact (admissible <= 0)",
     "max_stick_excess": "largest |S| - f|N| in stick zones, /p (admissible <= 0)",
@@ -75,7 +70,7 @@ def sweep_dataset(w_values: np.ndarray, f_values: np.ndarray, n: int,
     f_values = np.asarray(f_values, dtype=float)
     for w in w_values:  # refuse impossible inputs before any work
         for f in f_values:
-            check_inputs(float(w), float(f), n)
+            check_gap_inputs(float(w), float(f), n)
     shape = (f_values.size, w_values.size)
     data = {k: np.full(shape, np.nan) for k in [*ZONE_NAMES, "residual", *CHECK_NAMES]}
     regime = np.full(shape, -1, dtype=np.int8)
@@ -96,7 +91,7 @@ def sweep_dataset(w_values: np.ndarray, f_values: np.ndarray, n: int,
     dims = ("f", "w_hat")
     ds = xr.Dataset(
         {
-            "regime": (dims, regime, REGIME_ATTRS),
+            "regime": (dims, regime, regime_attrs(REGIMES)),
             **{k: (dims, v, {"long_name": ZONE_NAMES[k], "units": ONE})
                for k, v in data.items() if k in ZONE_NAMES},
             "residual": (dims, data["residual"], {

@@ -1,0 +1,6 @@
+"""The distributed-dislocation method shared by the gap and lifting-off problems (ch. 4).
+
+Kernels (App. B.1), quadrature, bilateral tractions (eqs 5.1-5.2), density intervals, the
+linear solve with root finding on the leftover equations, and the solution protocol with
+its contact checks (``solution``).
+"""

@@ -1,0 +1,220 @@
+"""Helpers of the rule files (``workflow/rules/*.smk``): the one home of the workflow's logic.
+
+The rule files stay declarative (inputs, outputs, params, one shell command); what needs
+a loop or a decision lives here, as plain functions of config sections, the test sheet
+and wildcard values, so it is tested (tests/test_rulehelpers.py) and ``snakemake --lint``
+stays clean. Command-line options are returned as lists of words, which a rule passes as
+one quoted argument each (``{params.x:q}``); ``results`` is the study's results folder
+(``results/`` or ``results/studies/<name>/``). Nothing here reads files or imports
+Snakemake.
+
+Sections: the report files a rule declares; contact stiffness (which tests have raw data,
+their files); receding contacts (sweep values, chunks, profile names); finite elements
+(arguments, file lists).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+# --------------------------------------------------------------------------- report files
+
+
+def table_files(*csv: str) -> list[str]:
+    """Each report table with the Markdown copy :func:`contactlab.io.write_table` writes."""
+    return [path for name in csv for path in (name, str(Path(name).with_suffix(".md")))]
+
+
+def pdf_files(*png: str) -> list[str]:
+    """The PDF copy :func:`contactlab.report.section.save_figure` writes of each figure."""
+    return [str(Path(name).with_suffix(".pdf")) for name in png]
+
+
+# --------------------------------------------------------------------------- stiffness
+
+
+def has_path(sheet: pd.DataFrame, test: str, column: str) -> bool:
+    """True if the test-sheet cell ``column`` of ``test`` holds a path."""
+    value = sheet.loc[test].get(column)
+    return value is not None and not pd.isna(value) and str(value).strip() != ""
+
+
+def raw_tests(sheet: pd.DataFrame) -> list[str]:
+    """Tests with a load log and fields or a contact-displacement file, in sheet order."""
+    return [str(t) for t in sheet.index
+            if has_path(sheet, t, "load_log")
+            and (has_path(sheet, t, "fields") or has_path(sheet, t, "contact_displacement"))]
+
+
+def raw_inputs(sheet: pd.DataFrame) -> Callable[[Any], dict[str, str]]:
+    """Input function: the test's load log and fields (or contact displacement) paths."""
+
+    def inputs(wildcards: Any) -> dict[str, str]:
+        row = sheet.loc[wildcards.test]
+        files = {"load_log": str(row["load_log"])}
+        if has_path(sheet, wildcards.test, "fields"):
+            files["fields"] = str(row["fields"])
+        else:
+            files["contact_displacement"] = str(row["contact_displacement"])
+        return files
+
+    return inputs
+
+
+def raw_data_option(wildcards: Any, input: Mapping[str, Any]) -> list[str]:
+    """The ``--fields`` or ``--contact-displacement`` option of ``stiffness process``.
+
+    Returned as separate words, so the rule quotes the path as one argument (``:q``).
+    """
+    if "fields" in input.keys():
+        return ["--fields", str(input["fields"])]
+    return ["--contact-displacement", str(input["contact_displacement"])]
+
+
+# --------------------------------------------------------------------------- receding
+
+
+def sweep_values(spec: Mapping[str, float] | Sequence[float]) -> list[float]:
+    """Values from a {start, stop, step} range (stop included) or an explicit list."""
+    if isinstance(spec, Mapping):
+        count = round((spec["stop"] - spec["start"]) / spec["step"]) + 1
+        if count < 1:
+            raise ValueError(f"empty sweep range {dict(spec)}")
+        return [round(spec["start"] + i * spec["step"], 10) for i in range(count)]
+    return [float(v) for v in spec]
+
+
+def chunk_values(values: Sequence[float], chunk: int, chunks: int) -> list[str]:
+    """The values of one chunk, interleaved (balances cheap and dear points), as CLI words."""
+    return [str(v) for v in values[int(chunk) :: chunks]]
+
+
+def gap_profile_name(point: Mapping[str, float]) -> str:
+    """File stem of a profile point, e.g. ``w2.5_f0.5``."""
+    return f"w{point['w']:g}_f{point['f']:g}"
+
+
+def gap_profile_point(points: Sequence[Mapping[str, float]], name: str) -> Mapping[str, float]:
+    """The configured profile point with this file stem."""
+    for point in points:
+        if gap_profile_name(point) == name:
+            return point
+    raise ValueError(f"no receding.gap.profiles entry named {name!r}")
+
+
+def liftoff_profile_name(point: Mapping[str, float] | float, law: str = "line") -> str:
+    """File stem of a line/patch profile: ``line_f0.5`` or ``patch_uniform_w1_f0.3``."""
+    if isinstance(point, Mapping):
+        return f"patch_{point['law']}_w{point['w']:g}_f{point['f']:g}"
+    return f"{law}_f{float(point):g}"
+
+
+def liftoff_profile_point(points: Sequence[Mapping[str, float]], name: str
+                          ) -> Mapping[str, float]:
+    """The configured patch profile point with this file stem."""
+    for point in points:
+        if liftoff_profile_name(point) == name:
+            return point
+    raise ValueError(f"no receding.patches.profiles entry named {name!r}")
+
+
+# --------------------------------------------------------------------------- finite elements
+
+
+def receding_args(fe: dict, problem: str, level: str) -> list[str]:
+    """Arguments of ``contactlab fe receding`` for one problem on one mesh level."""
+    spec = fe["problems"][problem]
+    options = {
+        "problem": problem,
+        "f": spec["f"],
+        "w-hat": spec.get("w_hat", 0.0),
+        "h": fe["levels"][level],
+        "length": spec["length"],
+        "depth": spec["depth"],
+        "x-fine": spec["x_fine"],
+        "edges": spec["edges"],
+        "young": spec["young"],
+        "increments": fe["increments"],
+        "level": level,
+    }
+    return [word for key, value in options.items() for word in (f"--{key}", str(value))]
+
+
+def comparison_run(fe: dict, problem: str, results: str = "results/") -> str:
+    """The FE run compared with the DDT solution: the problem's ``level``."""
+    return f"{results}fe/runs/{problem}_{fe['problems'][problem]['level']}.nc"
+
+
+def ddt_file_arg(fe: dict, problem: str) -> list[str]:
+    """``--ddt-file PATH`` when the problem names a receding results file, else nothing."""
+    path = fe["problems"][problem].get("ddt_file", "")
+    return ["--ddt-file", path] if path else []
+
+
+def ddt_inputs(fe: dict, problem: str, targets: list[str]) -> list[str]:
+    """The receding results file as an input only when some rule makes it."""
+    path = fe["problems"][problem].get("ddt_file", "")
+    return [path] if path and path in targets else []
+
+
+def ddt_args(config: dict, problem: str) -> list[str]:
+    """The reference's discretisation beyond N for ``contactlab fe compare``: lambda and
+    e of the line load (config ``receding.line``), lambda_b and (e - w)/c of the patch
+    (config ``receding.patches``), nothing for the gap problem."""
+    if problem == "line":
+        line = config["receding"]["line"]
+        return ["--lam", str(line["lambda"]), "--e", str(line["e"])]
+    if problem == "uniform":
+        patches = config["receding"]["patches"]
+        return ["--lam-b", str(patches["lambda_b"]), "--e-minus-w", str(patches["e_minus_w"])]
+    return []
+
+
+def ddt_sources(problem: str, root: str = ".") -> list[str]:
+    """The source file of the receding solver the comparison calls (``fe.ddt.SOLVERS``).
+
+    As an input of ``fe_compare`` it makes the comparison rerun when the solver changes.
+    Relative to ``root`` (the working directory) when the package lives below it.
+    """
+    import inspect
+
+    from contactlab.fe.ddt import SOLVERS
+
+    path = Path(inspect.getsourcefile(SOLVERS[problem]) or "").resolve()
+    try:
+        return [path.relative_to(Path(root).resolve()).as_posix()]
+    except ValueError:
+        return [str(path)]
+
+
+def convergence_runs(fe: dict, problem: str, results: str = "results/") -> list[str]:
+    """The FE runs of a problem's mesh convergence study (sec. 8.3)."""
+    levels = fe["problems"][problem].get("convergence", [])
+    return [f"{results}fe/runs/{problem}_{level}.nc" for level in levels]
+
+
+def convergence_files(fe: dict, results: str = "results/") -> list[str]:
+    """<results>fe/convergence_<problem>.nc of every problem with a convergence study."""
+    if not fe.get("enabled", False):
+        return []
+    return [f"{results}fe/convergence_{p}.nc" for p, spec in fe.get("problems", {}).items()
+            if spec.get("convergence")]
+
+
+def asperity_runs(fe: dict, results: str = "results/") -> list[str]:
+    """<results>fe/asperity/sy<sigma_y>.nc: the elastic model (sy0) and each yield stress."""
+    spec = fe.get("asperity", {})
+    if not (fe.get("enabled", False) and spec.get("enabled", False)):
+        return []
+    return [f"{results}fe/asperity/sy{sy:g}.nc" for sy in [0, *spec["yield_stress"]]]
+
+
+def asperity_args(fe: dict) -> list[str]:
+    """Mesh, material and loading arguments of ``contactlab fe asperity``."""
+    return [word for key, value in fe["asperity"].items()
+            if key not in ("enabled", "yield_stress")
+            for word in (f"--{key.replace('_', '-')}", str(value))]
