@@ -142,3 +142,24 @@ def test_the_checker_sees_an_upward_import() -> None:
     found = [name for _, name in imports_in(source, me)]
     assert found == ["contactlab.report.section", "contactlab.stiffness.cli"]
     assert all(layer(_existing(name)) > layer(me) for name in found)
+
+
+def test_rule_files_import_no_heavy_science() -> None:
+    """Snakemake parses the rule files at every start (each dry run, each cluster job):
+    their ``contactlab`` imports load no scipy, matplotlib or xarray (2 s a start)."""
+    import re
+    import subprocess
+    import sys
+
+    root = SRC.parent
+    files = [root / "Snakefile", *sorted((root / "workflow" / "rules").glob("*.smk"))]
+    modules = sorted({m for f in files for m in re.findall(
+        r"^\s*from (contactlab[\w.]*) import|^\s*import (contactlab[\w.]*)",
+        f.read_text(), re.M) for m in m if m})
+    assert "contactlab.rulehelpers" in modules
+    code = ("import importlib, sys\n"
+            f"for m in {modules!r}: importlib.import_module(m)\n"
+            "print(' '.join(m for m in ('scipy', 'matplotlib', 'xarray') if m in sys.modules))")
+    heavy = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           check=True).stdout.split()
+    assert heavy == [], (modules, heavy)
