@@ -39,6 +39,20 @@ def _files(root: Path) -> list[str]:
                   if p.is_file())
 
 
+def _equal_but_ccx_iterations(a: Path, b: Path) -> bool:
+    """An FE run equal in every value but CalculiX's contact iteration count.
+
+    ccx's count of contact iterations varies between identical runs (29-32 seen for
+    line_coarse, the same input deck and binary); every displacement and stress it writes
+    is bitwise equal. The count stays in the result as a diagnostic of the run.
+    """
+    if a.suffix != ".nc" or a.parent.name != "runs" or a.parent.parent.name != "fe":
+        return False
+    with xr.open_dataset(a) as one, xr.open_dataset(b) as two:
+        one, two = one.load(), two.load()
+    return one.drop_vars("iterations").identical(two.drop_vars("iterations"))
+
+
 def test_cf_checker_finds_a_fill_value_on_a_coordinate(tmp_path: Path) -> None:
     """The check below can fail: xarray's default _FillValue on a coordinate is an error."""
     ds = xr.Dataset({"v": ("f", np.arange(3.0), {"long_name": "v", "units": "1"})},
@@ -64,7 +78,8 @@ def test_small_targets_rebuild_byte_identical(
     files = _files(again)
     assert "results/surfaces/texture.nc" in files and len(files) > 50
     assert files == _files(first)
-    differ = [f for f in files if not filecmp.cmp(first / f, again / f, shallow=False)]
+    differ = [f for f in files if not filecmp.cmp(first / f, again / f, shallow=False)
+              and not _equal_but_ccx_iterations(first / f, again / f)]
     assert differ == []
     # the timings are in the logs instead
     logs = sorted((again / "logs" / "surfaces" / "texture").glob("*.log"))
