@@ -41,6 +41,8 @@ SLIP_TARGET = 0.97
 #: 1/um in kN/mm^3 per kN/mm^2: stiffness per area from a pressure over a length in um.
 PER_UM = 1000.0
 VARIANTS = ("elastic", "plastic")
+#: Flag value of a solution that is not attempted (the set stiffness with the cap).
+NOT_SOLVED = 2
 DIRECTIONS = ("x", "y")
 
 
@@ -92,7 +94,7 @@ class VariantResult:
     """Everything solved for one variant (see the module docstring)."""
 
     normal: NormalSolution
-    tangent: NormalSolution
+    solved: NormalSolution  # every level solved, the two beside the test load included
     stuck: dict
     normal_set: object
     slip: object
@@ -224,11 +226,14 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
         per_level["approach"].append(n.separation[0] - n.separation)
         per_level["contact_fraction"].append(n.contact_fraction)
         per_level["plastic_fraction"].append(n.plastic_fraction)
-        per_level["Kn_An"].append(-PER_UM * np.gradient(n.pressure, n.separation))
+        # central differences over every solved level (the extra ones at the test's load
+        # included), so the last main level is not a one-sided difference
+        slope = -PER_UM * np.gradient(r.solved.pressure, r.solved.separation)
+        per_level["Kn_An"].append(slope[np.isin(r.solved.pressure, n.pressure)])
         per_level["normal_iterations"].append(n.iterations)
         per_level["normal_residual"].append(n.residual)
         per_level["normal_converged"].append(n.converged.astype(np.int8))
-        kn_max = _tangent_at_max(r.tangent, p_max)
+        kn_max = _tangent_at_max(r.solved, p_max)
         fit = normal_fit(n.separation[0] - n.separation, load_kN, area_mm2, load_kN[-1])
         scalar["Kn_An_max"].append(kn_max)
         for key in ("alpha_n", "beta_n", "P0", "beta_n_moe", "gof", "Kn_An_fit"):
@@ -239,9 +244,9 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
                                    else PER_UM * nset.interface_stiffness / window)
         scalar["set_iterations"].append(0 if nset is None else nset.iterations)
         scalar["set_residual"].append(np.nan if nset is None else nset.residual)
-        scalar["set_converged"].append(0 if nset is None else int(nset.converged))
-        scalar["contact_fraction_max"].append(float(np.mean(r.tangent.contact)))
-        scalar["plastic_fraction_max"].append(float(np.mean(r.tangent.plastic)))
+        scalar["set_converged"].append(NOT_SOLVED if nset is None else int(nset.converged))
+        scalar["contact_fraction_max"].append(float(np.mean(r.solved.contact)))
+        scalar["plastic_fraction_max"].append(float(np.mean(r.solved.plastic)))
         per_dir["Kt0_An_stuck"].append([PER_UM * r.stuck[d].interface_stiffness / window
                                         for d in DIRECTIONS])
         per_dir["stuck_iterations"].append([r.stuck[d].iterations for d in DIRECTIONS])
@@ -255,7 +260,7 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
         per_slip["slip_iterations"].append(s.iterations)
         per_slip["slip_residual"].append(s.residual)
         per_slip["slip_converged"].append(s.converged.astype(np.int8))
-        pressure_maps.append(r.tangent.pressure_field.astype(np.float32))
+        pressure_maps.append(r.solved.pressure_field.astype(np.float32))
     dims_l, dims_s, dims_d, dims_q = (("variant", "Pn_An"), ("variant",),
                                       ("variant", "direction"), ("variant", "slip"))
     flag = {"flag_values": np.array([0, 1], dtype=np.int8), "flag_meanings": "no yes"}
@@ -266,7 +271,7 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
         "contact_fraction": (dims_l, "1", "real contact area over the window area"),
         "plastic_fraction": (dims_l, "1", "area at the hardness over the window area"),
         "Kn_An": (dims_l, "kN/mm3", "normal contact stiffness per nominal area, "
-                                    "d(Pn/An)/d(separation), finite differences"),
+                                    "d(Pn/An)/d(separation), central differences"),
         "normal_iterations": (dims_l, "1", "Polonsky-Keer iterations"),
         "normal_residual": (dims_l, "1", "largest penetration over Sq or tensile force over "
                                          "the mean cell force at exit"),
@@ -284,7 +289,7 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
                                         "contact set at the test's load (elastic only)"),
         "set_iterations": (dims_s, "1", "conjugate-gradient iterations of the set stiffness"),
         "set_residual": (dims_s, "1", "relative residual of the set stiffness"),
-        "set_converged": (dims_s, "1", "set stiffness converged"),
+        "set_converged": (dims_s, "1", "set stiffness converged (not solved with the cap)"),
         "contact_fraction_max": (dims_s, "1", "real contact fraction at the test's load"),
         "plastic_fraction_max": (dims_s, "1", "plastic contact fraction at the test's load"),
         "Kt0_An_stuck": (dims_d, "kN/mm3", "tangential stiffness per nominal area of the "
@@ -309,6 +314,9 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
         attrs = _attrs(long_name, units)
         if name.endswith("converged"):
             attrs.update(flag)
+            if name == "set_converged":
+                attrs.update(flag_values=np.array([0, 1, NOT_SOLVED], dtype=np.int8),
+                             flag_meanings="no yes not_solved")
             values = np.asarray(data[name], dtype=np.int8)
         else:
             values = np.asarray(data[name], dtype=np.int64 if name.endswith("iterations")
