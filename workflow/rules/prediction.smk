@@ -39,7 +39,7 @@ rule prediction_pair:
         hardness=_PRED["hardness_GPa"],
         plastic="on" if _PRED["plastic_cap"] else "off",
         slip=_PRED["slip_points"],
-        tol=_PRED["tol"],
+        tol=_PRED["solver_tol"],
     log:
         logs("prediction/{test}.log"),
     shell:
