@@ -71,3 +71,16 @@ def test_summary_beside_measured(result: xr.Dataset) -> None:
     assert float(elastic["predicted_Kt0_An_slip_fit"]) == pytest.approx(slip, rel=0.05)
     consistent = float(elastic["predicted_f_consistent"])
     assert np.isnan(consistent) or consistent < 0.3  # the fit's f overshoots the model's
+
+
+def test_report_section_is_written(result: xr.Dataset, tmp_path: Path) -> None:
+    from contactlab.prediction.report import write_section
+    from contactlab.prediction.validation import sphere
+
+    summary = summarize([result], {}, 0.125, sphere(32))
+    write_section(summary, [result], tmp_path, tmp_path / "sections" / "25_prediction.html")
+    html = (tmp_path / "sections" / "25_prediction.html").read_text()
+    assert "Mindlin ratio" in html and "Hertz load-approach" in html
+    for name in ("tables/prediction.csv", "tables/prediction_validation.csv",
+                 "figures/prediction_stiffness.png", "figures/prediction_coupling.png"):
+        assert (tmp_path / name).is_file(), name
