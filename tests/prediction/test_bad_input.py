@@ -10,7 +10,7 @@ import pandas as pd
 import pytest
 
 from contactlab.prediction.composite import composite_from_files
-from contactlab.prediction.pairs import pair_surfaces
+from contactlab.prediction.pairs import find_pair, pair_surfaces
 from contactlab.surfaces.sheet import SurfaceSpec
 
 
@@ -77,3 +77,28 @@ def test_grid_larger_than_the_scans_names_the_setting(tmp_path, write_scan) -> N
     a = write_scan(tmp_path / "a.x3p", heights, 5.0)
     with pytest.raises(ValueError, match=r"grid_points = 64 .*a\.x3p"):
         composite_from_files(a, a, 100.0, 100.0, 64, 0.0)
+
+
+def test_find_pair_of_one_test() -> None:
+    pair = find_pair(_tests(), {"spec_B": _spec("spec_B", "s.x3p"), "pad": _spec("pad", "p.x3p")},
+                     "T1", "tests.csv", "surfaces.csv")
+    assert pair.specimen.surface == "spec_B"
+
+
+def test_workflow_names_the_missing_areal_scan_only_when_the_prediction_is_planned(
+        workflow_copy: Path, snakemake) -> None:
+    """A surface sheet without RU1_pad_B's areal scan: planning RU1's prediction stops with
+    the sheet, surface and column; the surface targets still plan."""
+    sheet = workflow_copy / "config" / "surfaces.csv"
+    text = sheet.read_text()
+    row = next(line for line in text.splitlines() if line.startswith("RU1_pad_B,"))
+    fields = row.split(",")
+    fields[2] = ""  # areal_scan
+    sheet.write_text(text.replace(row, ",".join(fields)))
+    run = snakemake(workflow_copy, "-n", "results/prediction/RU1.nc")
+    assert run.returncode != 0
+    message = run.stdout + run.stderr
+    assert "config/surfaces.csv: surface RU1_pad_B (pad of test RU1), column 'areal_scan'" \
+        in message, message[-2000:]
+    run = snakemake(workflow_copy, "-n", "results/surfaces/texture.nc")
+    assert run.returncode == 0, run.stderr[-2000:]

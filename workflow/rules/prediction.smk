@@ -5,29 +5,33 @@
 
 import re
 
-from contactlab.prediction.pairs import pair_surfaces
+from contactlab.prediction.pairs import find_pair
 
 _PRED = config["prediction"]
-try:
-    PAIRS = pair_surfaces(TESTS, SURFACE_ROWS, config["tests"], SURFACE_SHEET)
-except ValueError as exc:
-    raise WorkflowError(str(exc)) from None
-_PAIR_PATTERN = "|".join(re.escape(t) for t in PAIRS) or "(?!)"
+PREDICTION_TESTS = list(TEST_IDS)
+_PAIR_PATTERN = "|".join(re.escape(t) for t in PREDICTION_TESTS) or "(?!)"
+
+
+def _pair(test):
+    """The test's two surfaces; a missing areal scan stops the planning of its job with a
+    message naming sheet, test, surface and column (other targets are unaffected)."""
+    return find_pair(TESTS, SURFACE_ROWS, test, config["tests"], SURFACE_SHEET)
+
 
 
 rule prediction_pair:
     """Composite topography, normal BEM over the load levels, stuck and slipping tangential
     stiffness of one test's pair (elastic and, with plastic_cap, capped at the hardness)."""
     input:
-        specimen=lambda wc: str(PAIRS[wc.test].specimen.areal_scan),
-        pad=lambda wc: str(PAIRS[wc.test].pad.areal_scan),
+        specimen=lambda wc: str(_pair(wc.test).specimen.areal_scan),
+        pad=lambda wc: str(_pair(wc.test).pad.areal_scan),
     output:
         result("prediction/{test}.nc"),
     wildcard_constraints:
         test=_PAIR_PATTERN,
     params:
-        specimen_lambda_c=lambda wc: PAIRS[wc.test].specimen.lambda_c_um,
-        pad_lambda_c=lambda wc: PAIRS[wc.test].pad.lambda_c_um,
+        specimen_lambda_c=lambda wc: _pair(wc.test).specimen.lambda_c_um,
+        pad_lambda_c=lambda wc: _pair(wc.test).pad.lambda_c_um,
         max_undefined=config["surfaces"]["max_undefined_fraction"],
         load=lambda wc: float(TESTS.loc[wc.test, "max_normal_load_kN"]),
         area=lambda wc: float(TESTS.loc[wc.test, "nominal_area_mm2"]),
@@ -60,7 +64,7 @@ rule prediction_summary:
     """Predicted beside measured (raw data and published steps), partial slip at the
     measured f in the tests' reversed cycles."""
     input:
-        predictions=expand(result("prediction/{test}.nc"), test=list(PAIRS)),
+        predictions=expand(result("prediction/{test}.nc"), test=PREDICTION_TESTS),
         raw=result("stiffness/summary.nc"),
         published=result("stiffness/summary_from_published_steps.nc"),
     output:
@@ -79,7 +83,7 @@ rule report_prediction:
     """Report section: predicted beside measured Kn/An, beta_n, beta_n Seq, Kt0/An, Cc."""
     input:
         summary=result("prediction/summary.nc"),
-        predictions=expand(result("prediction/{test}.nc"), test=list(PAIRS)),
+        predictions=expand(result("prediction/{test}.nc"), test=PREDICTION_TESTS),
     output:
         section=result("report/sections/25_prediction.html"),
         table=result("report/tables/prediction.csv"),
@@ -104,7 +108,7 @@ rule report_prediction:
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
 
 
-ALL_TARGETS.extend(expand(result("prediction/{test}.nc"), test=list(PAIRS)))
+ALL_TARGETS.extend(expand(result("prediction/{test}.nc"), test=PREDICTION_TESTS))
 ALL_TARGETS.append(result("prediction/summary.nc"))
 REPORT_SECTIONS.append(result("report/sections/25_prediction.html"))
 

@@ -21,26 +21,33 @@ class Pair:
     pad: SurfaceSpec
 
 
+def find_pair(tests: pd.DataFrame, surfaces: Mapping[str, SurfaceSpec], test: str,
+              test_sheet: str | Path, surface_sheet: str | Path) -> Pair:
+    """The :class:`Pair` of one test. A surface missing from the surface sheet, or one
+    without an areal scan, raises ValueError naming the sheets, the test, the surface and
+    the column. The rules call it when a prediction job is planned, so a sheet without the
+    scans still serves every other target."""
+    row = tests.loc[test]
+    line = tests.attrs.get("line", {}).get(test, "?")
+    found = {}
+    for role in ("specimen", "pad"):
+        name = surface_id(row[role], row.get(f"{role}_side"))
+        spec = surfaces.get(name)
+        if spec is None:
+            raise ValueError(f"{test_sheet}: line {line} (test {test}), column '{role}': surface "
+                             f"{name!r} is not in the surface sheet {surface_sheet}; add a row "
+                             "with its 'areal_scan' (the prediction needs the scans of both "
+                             "sides)")
+        if spec.areal_scan is None:
+            raise ValueError(f"{surface_sheet}: surface {name} ({role} of test {test}), column "
+                             "'areal_scan': empty; the stiffness prediction needs an areal "
+                             "scan of both surfaces of every test")
+        found[role] = spec
+    return Pair(found["specimen"], found["pad"])
+
+
 def pair_surfaces(tests: pd.DataFrame, surfaces: Mapping[str, SurfaceSpec],
                   test_sheet: str | Path, surface_sheet: str | Path) -> dict[str, Pair]:
-    """Test id -> :class:`Pair`. A surface missing from the surface sheet, or one without
-    an areal scan, raises ValueError naming the sheets, the test, the surface and column."""
-    pairs: dict[str, Pair] = {}
-    lines = tests.attrs.get("line", {})
-    for test, row in tests.iterrows():
-        found = {}
-        for role in ("specimen", "pad"):
-            name = surface_id(row[role], row.get(f"{role}_side"))
-            where = f"{test_sheet}: line {lines.get(test, '?')} (test {test})"
-            spec = surfaces.get(name)
-            if spec is None:
-                raise ValueError(f"{where}, column '{role}': surface {name!r} is not in the "
-                                 f"surface sheet {surface_sheet}; add a row with its "
-                                 "'areal_scan' (the prediction needs the scans of both sides)")
-            if spec.areal_scan is None:
-                raise ValueError(f"{surface_sheet}: surface {name} ({role} of test {test}), "
-                                 "column 'areal_scan': empty; the stiffness prediction needs "
-                                 "an areal scan of both surfaces of every test")
-            found[role] = spec
-        pairs[str(test)] = Pair(found["specimen"], found["pad"])
-    return pairs
+    """Test id -> :class:`Pair` for every test of the sheet (:func:`find_pair`)."""
+    return {str(test): find_pair(tests, surfaces, test, test_sheet, surface_sheet)
+            for test in tests.index}
