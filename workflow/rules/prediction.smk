@@ -5,18 +5,14 @@
 
 import re
 
-from contactlab.prediction.pairs import find_pair
+from contactlab.prediction.pairs import pair_lookup
 
 _PRED = config["prediction"]
 PREDICTION_TESTS = list(TEST_IDS)
 _PAIR_PATTERN = "|".join(re.escape(t) for t in PREDICTION_TESTS) or "(?!)"
-
-
-def _pair(test):
-    """The test's two surfaces; a missing areal scan stops the planning of its job with a
-    message naming sheet, test, surface and column (other targets are unaffected)."""
-    return find_pair(TESTS, SURFACE_ROWS, test, config["tests"], SURFACE_SHEET)
-
+# a test's two surfaces, looked up when its job is planned: a missing areal scan stops
+# that planning with the sheet, test, surface and column; other targets are unaffected
+_pair = pair_lookup(TESTS, SURFACE_ROWS, config["tests"], SURFACE_SHEET)
 
 
 rule prediction_pair:

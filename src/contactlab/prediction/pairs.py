@@ -3,7 +3,7 @@ surface sheet (helper of ``workflow/rules/prediction.smk``, kept here to be test
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -51,3 +51,9 @@ def pair_surfaces(tests: pd.DataFrame, surfaces: Mapping[str, SurfaceSpec],
     """Test id -> :class:`Pair` for every test of the sheet (:func:`find_pair`)."""
     return {str(test): find_pair(tests, surfaces, test, test_sheet, surface_sheet)
             for test in tests.index}
+
+
+def pair_lookup(tests: pd.DataFrame, surfaces: Mapping[str, SurfaceSpec],
+                test_sheet: str | Path, surface_sheet: str | Path) -> Callable[[str], Pair]:
+    """``test -> Pair`` by :func:`find_pair`, for the rules' input and params functions."""
+    return lambda test: find_pair(tests, surfaces, test, test_sheet, surface_sheet)
