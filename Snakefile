@@ -28,6 +28,7 @@ include: "workflow/rules/receding.smk"
 include: "workflow/rules/asperity.smk"
 include: "workflow/rules/stiffness.smk"
 include: "workflow/rules/stiffness_published.smk"
+include: "workflow/rules/prediction.smk"
 include: "workflow/rules/fe.smk"
 include: "workflow/rules/report.smk"
 

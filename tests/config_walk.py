@@ -1,11 +1,12 @@
 """The config walk: change each parameter of a finished study and see what Snakemake replans.
 
 Used by the end-to-end test on its finished workspace. For every leaf of the receding,
-asperity, surfaces and stiffness sections, the value is changed within the schema's limits,
-the whole section is passed back with ``--config`` (so the nested-override coercion is
-exercised too) and a dry run lists the jobs that would rerun and their commands. The
-parameter passes when some job of its own branch reruns, no job of another branch does, and
-the new value is on a rerun job's command line (so it lands in that result's ``history``).
+asperity, surfaces, stiffness and prediction sections, the value is changed within the
+schema's limits, the whole section is passed back with ``--config`` (so the
+nested-override coercion is exercised too) and a dry run lists the jobs that would rerun and
+their commands. The parameter passes when some job of its own branch reruns, no job of
+another branch does, and the new value is on a rerun job's command line (so it lands in that
+result's ``history``).
 """
 
 from __future__ import annotations
@@ -20,8 +21,10 @@ from typing import Any
 
 #: Rules a parameter of each branch may rerun (prefixes), besides the report page.
 BRANCH_RULES = {
-    "surfaces": ("surfaces_", "report_surfaces", "stiffness_summary", "report_stiffness"),
-    "stiffness": ("stiffness_", "report_stiffness"),
+    "surfaces": ("surfaces_", "report_surfaces", "stiffness_summary", "report_stiffness",
+                 "prediction_", "report_prediction"),
+    "stiffness": ("stiffness_", "report_stiffness", "prediction_summary", "report_prediction"),
+    "prediction": ("prediction_", "report_prediction"),
     "asperity": ("asperity_", "report_asperity", "fe_asperity"),
     # the FE cross-checks solve the line load and the patch with the receding settings
     "receding": ("receding_", "report_receding", "fe_compare", "report_fe"),

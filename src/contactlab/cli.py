@@ -20,6 +20,7 @@ from contactlab.cliutil import Parser
 COMMAND_MODULES: tuple[str, ...] = (
     "contactlab.surfaces.cli",
     "contactlab.stiffness.cli",
+    "contactlab.prediction.cli",
     "contactlab.asperity.cli",
     "contactlab.receding.cli",
     "contactlab.fe.cli",

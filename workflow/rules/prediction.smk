@@ -1,0 +1,115 @@
+# Prediction branch (thesis ch. 2, beyond it): the contact stiffness of each tested pair
+# predicted by a rough-contact BEM of its two areal scans, beside the measured laws.
+# One job per test (every row of the test sheet), a summary beside the measured values
+# and a report section.
+
+import re
+
+from contactlab.prediction.pairs import pair_lookup
+
+_PRED = config["prediction"]
+PREDICTION_TESTS = list(TEST_IDS)
+_PAIR_PATTERN = "|".join(re.escape(t) for t in PREDICTION_TESTS) or "(?!)"
+# a test's two surfaces, looked up when its job is planned: a missing areal scan stops
+# that planning with the sheet, test, surface and column; other targets are unaffected
+_pair = pair_lookup(TESTS, SURFACE_ROWS, config["tests"], SURFACE_SHEET)
+
+
+rule prediction_pair:
+    """Composite topography, normal BEM over the load levels, stuck and slipping tangential
+    stiffness of one test's pair (elastic and, with plastic_cap, capped at the hardness)."""
+    input:
+        specimen=lambda wc: str(_pair(wc.test).specimen.areal_scan),
+        pad=lambda wc: str(_pair(wc.test).pad.areal_scan),
+    output:
+        result("prediction/{test}.nc"),
+    wildcard_constraints:
+        test=_PAIR_PATTERN,
+    params:
+        specimen_lambda_c=lambda wc: _pair(wc.test).specimen.lambda_c_um,
+        pad_lambda_c=lambda wc: _pair(wc.test).pad.lambda_c_um,
+        max_undefined=config["surfaces"]["max_undefined_fraction"],
+        load=lambda wc: float(TESTS.loc[wc.test, "max_normal_load_kN"]),
+        area=lambda wc: float(TESTS.loc[wc.test, "nominal_area_mm2"]),
+        grid=_PRED["grid_points"],
+        load_min=_PRED["load_min_fraction"],
+        load_points=_PRED["load_points"],
+        young=_PRED["youngs_modulus_GPa"],
+        nu=_PRED["poissons_ratio"],
+        hardness=_PRED["hardness_GPa"],
+        plastic="on" if _PRED["plastic_cap"] else "off",
+        slip=_PRED["slip_points"],
+        tol=_PRED["solver_tol"],
+    log:
+        logs("prediction/{test}.log"),
+    shell:
+        "contactlab prediction pair --test {wildcards.test:q}"
+        " --specimen-scan {input.specimen:q} --pad-scan {input.pad:q}"
+        " --specimen-lambda-c-um {params.specimen_lambda_c:q}"
+        " --pad-lambda-c-um {params.pad_lambda_c:q}"
+        " --max-undefined-fraction {params.max_undefined:q}"
+        " --max-normal-load-kN {params.load:q} --nominal-area-mm2 {params.area:q}"
+        " --grid-points {params.grid:q} --load-min-fraction {params.load_min:q}"
+        " --load-points {params.load_points:q} --youngs-modulus-GPa {params.young:q}"
+        " --poissons-ratio {params.nu:q} --hardness-GPa {params.hardness:q}"
+        " --plastic-cap {params.plastic:q} --slip-points {params.slip:q} --tol {params.tol:q}"
+        " --out {output:q} > {log:q} 2>&1"
+
+
+rule prediction_summary:
+    """Predicted beside measured (raw data and published steps), partial slip at the
+    measured f in the tests' reversed cycles."""
+    input:
+        predictions=expand(result("prediction/{test}.nc"), test=PREDICTION_TESTS),
+        raw=result("stiffness/summary.nc"),
+        published=result("stiffness/summary_from_published_steps.nc"),
+    output:
+        result("prediction/summary.nc"),
+    params:
+        ratio=_PRED["tangential_ratio"],
+    log:
+        logs("prediction/summary.log"),
+    shell:
+        "contactlab prediction summarize {input.predictions:q} --raw-summary {input.raw:q}"
+        " --published-summary {input.published:q} --tangential-ratio {params.ratio:q}"
+        " --out {output:q} 2> {log:q}"
+
+
+rule report_prediction:
+    """Report section: predicted beside measured Kn/An, beta_n, beta_n Seq, Kt0/An, Cc."""
+    input:
+        summary=result("prediction/summary.nc"),
+        predictions=expand(result("prediction/{test}.nc"), test=PREDICTION_TESTS),
+    output:
+        section=result("report/sections/25_prediction.html"),
+        table=result("report/tables/prediction.csv"),
+        figure=report(
+            result("report/figures/prediction_stiffness.png"),
+            caption="../report/prediction.rst",
+            category="Contact stiffness",
+            subcategory="prediction",
+        ),
+        coupling=report(
+            result("report/figures/prediction_coupling.png"),
+            caption="../report/prediction.rst",
+            category="Contact stiffness",
+            subcategory="prediction",
+        ),
+    params:
+        report_dir=lambda wildcards, output: Path(output.section).parent.parent,
+    log:
+        logs("report/prediction.log"),
+    shell:
+        "contactlab prediction report {input.predictions:q} --summary {input.summary:q}"
+        " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
+
+
+ALL_TARGETS.extend(expand(result("prediction/{test}.nc"), test=PREDICTION_TESTS))
+ALL_TARGETS.append(result("prediction/summary.nc"))
+REPORT_SECTIONS.append(result("report/sections/25_prediction.html"))
+
+
+# Seconds-long gathers and reports: on a cluster they run in the Snakemake process itself.
+localrules:
+    prediction_summary,
+    report_prediction,
