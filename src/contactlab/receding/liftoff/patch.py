@@ -20,7 +20,8 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from contactlab.receding.core.solution import check_friction
-from contactlab.receding.liftoff.line import flag_no_stick, line_guess
+from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT, solve_no_stick
+from contactlab.receding.liftoff.line import fallbacks, line_guess
 from contactlab.receding.liftoff.loading import Load, make_load
 from contactlab.receding.liftoff.solver import LiftoffSolution, solve_liftoff
 
@@ -35,21 +36,24 @@ def default_lambdas(w: float) -> tuple[float, float]:
 
 def _continuation(load: Load, f: float, n: int, lam_a: float, lam_b: float, e_extra: float,
                   preformed: bool) -> tuple[float, float] | None:
-    """(a, b) reached by continuation in w from the line load at a coarse N."""
+    """(a, b) reached by continuation in w from the line load at a coarse N, each step's
+    seed moved with the patch edge (a - w and b - w change slowly with w, Fig. 7.10)."""
     from contactlab.receding.liftoff.solver import COARSE_N
 
-    guess = line_guess(f)
+    a, b = line_guess(f)
+    previous = 0.0
     steps = [w for w in (0.1, 0.25, 0.5, 1.0, 2.0, 3.0, 5.0, 7.5, 10.0, 14.0, 20.0, 30.0)
              if w < load.w] + [load.w]
     for w in steps:
         step_load = load if w == load.w else _scaled(load, w)
         la, lb = (lam_a, lam_b) if w == load.w else default_lambdas(w)
         sol = solve_liftoff(step_load, f, min(n, COARSE_N), la, lb, w + e_extra, preformed,
-                            guess, checks=False)
+                            (a + w - previous, b + w - previous), checks=False,
+                            continuous=False)
         if not sol.converged:
             return None
-        guess = (sol.a, sol.b)
-    return guess
+        a, b, previous = sol.a, sol.b, w
+    return a, b
 
 
 def _scaled(load: Load, w: float) -> Load:
@@ -62,12 +66,15 @@ def _scaled(load: Load, w: float) -> Load:
 def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int = 100,
                 lam_a: float | None = None, lam_b: float | None = None,
                 e: float | None = None, table: Mapping[str, Sequence[float]] | None = None,
-                guess: tuple[float, float] | None = None,
-                preformed: bool = True) -> LiftoffSolution:
+                guess: tuple[float, float] | None = None, preformed: bool = True,
+                stick_zone_limit: float = STICK_ZONE_LIMIT) -> LiftoffSolution:
     """A pressure patch at friction f and half-width w_hat (see module docstring).
 
     ``law`` is uniform/hertz/punch (aliases: constant, A1, A2, A3) or ``table`` with
-    ``table = {"x": [...], "p": [...]}`` (w_hat is then the table's extent).
+    ``table = {"x": [...], "p": [...]}`` (w_hat is then the table's extent). Where no
+    root is found: the stick-zone limit at low f (``limit``, below ``stick_zone_limit``),
+    then the continuous slip rule (``solver``), as for the line load (``line.fallbacks``).
+    A ``guess`` with a = 0 (a neighbour in the stick-zone limit) goes to the limit first.
     """
     check_friction(f, zero=True)
     load = make_load(law, w_hat, table)
@@ -80,17 +87,27 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
 
         return solve_frictionless(load, n, lam_a, lam_b, e, problem=load.law,
                                   preformed=preformed)
+    if guess is not None and guess[0] == 0 and stick_zone_limit > 0:
+        lim = solve_no_stick(load, f, n, lam_a, lam_b, e, load.law, preformed, guess[1])
+        if lim.converged and lim.log10_a < np.log10(stick_zone_limit):
+            return lim
+        guess = None
     if guess is None:
         a0, b0 = line_guess(f)
         guess = (a0 + 0.15 * load.w, b0 + 0.5 * load.w)
-    sol = solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, load.law)
+    sol = solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, load.law,
+                        continuous=False)
+    seed = guess
     if not sol.converged:
-        seed = _continuation(load, f, n, lam_a, lam_b, e - load.w, preformed)
-        if seed is not None:
-            sol = solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, seed, load.law)
-    if not sol.converged:
-        sol = flag_no_stick(sol, lam_a, lam_b)
-    return sol
+        seed = _continuation(load, f, n, lam_a, lam_b, e - load.w, preformed) or guess
+        if seed is not guess:
+            sol = solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, seed, load.law,
+                                continuous=False)
+    if sol.converged:
+        return sol
+    return fallbacks(sol, lambda: solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, seed,
+                                                load.law, continuous=True),
+                     lam_a, lam_b, stick_zone_limit, guess[1])
 
 
 def solve_uniform(f: float = 0.3, w_hat: float = 2.5, n: int = 100) -> LiftoffSolution:
