@@ -321,36 +321,41 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
     xb = climb.collocation
     xa = glide.collocation
     m = n + 1
+    extra = 1 if preformed else 0
+    # one matrix, filled block by block (no stacking copies at N = 500: 8 MB each)
+    matrix = np.empty((2 * m + extra, 2 * n + extra))
+    rhs = np.empty(2 * m + extra)
+    rows_n, rows_s = matrix[:m], matrix[m:2 * m]
     # separate calls per point set: at its own collocation points an interval uses the
     # classical Gauss-Chebyshev sum (exact there), elsewhere the exact transform; only
     # the normal traction is needed on the rows of [b, inf)
-    gn_b = glide.normal_influence(xb)
+    rows_n[:, :n] = glide.normal_influence(xb)
+    rows_n[:, n:2 * n] = climb.collocation_influence()[1]
     gs_a, gn_a = glide.collocation_influence()
-    cn_b = climb.collocation_influence()[1]
     cs_a, cn_a = climb.influence(xa)
-    nb = load.bilateral(xb)[1]
+    rhs[:m] = -load.bilateral(xb)[1]
     sb, nb_a = load.bilateral(xa)
     # H(b - x) f on the shear rows; ``continuous``: f on every row (N = 0 beyond b)
     h = np.full_like(xa, f) if continuous else np.where(xa < b, f, 0.0)
-    cols_n = [gn_b, cn_b]
-    cols_s = [gs_a + h[:, None] * gn_a, cs_a + h[:, None] * cn_a]
-    rhs_n = -nb
-    rhs_s = -(sb + h * nb_a)
+    hc = h[:, None]
+    np.multiply(hc, gn_a, out=rows_s[:, :n])
+    rows_s[:, :n] += gs_a
+    np.multiply(hc, cn_a, out=rows_s[:, n:2 * n])
+    rows_s[:, n:2 * n] += cs_a
+    rhs[m:2 * m] = -(sb + h * nb_a)
     if preformed:
         pre = Preformed(load, b, e)
         pn_b = pre.normal_stress(xb)
         ps, pn = pre.stresses(xa)
-        cols_n.append(pn_b[:, 1:2])
-        cols_s.append(ps[:, 1:2] + h[:, None] * pn[:, 1:2])
-        rhs_n = rhs_n - pn_b[:, 0]
-        rhs_s = rhs_s - (ps[:, 0] + h * pn[:, 0])
-    matrix = np.vstack([np.hstack(cols_n), np.hstack(cols_s)])
-    rhs = np.concatenate([rhs_n, rhs_s])
-    if preformed:
+        rows_n[:, 2 * n] = pn_b[:, 1]
+        rows_s[:, 2 * n] = ps[:, 1] + h * pn[:, 1]
+        rhs[:m] -= pn_b[:, 0]
+        rhs[m:2 * m] -= ps[:, 0] + h * pn[:, 0]
         t_e = climb.preimage(np.array([e]))
-        row = np.concatenate([np.zeros(n), interpolation_matrix(t_e, n)[0], [0.0]])
-        matrix = np.vstack([matrix, row])
-        rhs = np.concatenate([rhs, [0.0]])
+        matrix[2 * m, :n] = 0.0
+        matrix[2 * m, n:2 * n] = interpolation_matrix(t_e, n)[0]
+        matrix[2 * m, 2 * n] = 0.0
+        rhs[2 * m] = 0.0
     centre = n // 2 if drop is None else drop
     return LinearSystem(matrix, rhs, leftover=[centre, m + centre]), glide, climb
 
