@@ -202,7 +202,9 @@ def _diagnostics_note(sweeps: list[xr.Dataset]) -> str:
     for one in sweeps:
         counts = sweep_counts(one)
         left = unsolved_points(one)
-        text = (f"N = {one.attrs['N']}: {counts['points']} points, {counts['solved']} solved "
+        shown_as_is = int(one.attrs.get("refine_max_n", one.attrs["N"])) == one.attrs["N"]
+        text = (f"N = {one.attrs['N']}{' (not refined)' if shown_as_is else ''}: "
+                f"{counts['points']} points, {counts['solved']} solved "
                 f"and within the check tolerance ({counts['stick_zone_limit']} in the limit "
                 f"of a vanishing stick zone, {counts['refined']} after raising N, "
                 f"{counts['continuation']} from a neighbour), {counts['failed']} not "
