@@ -276,14 +276,30 @@ def _diagnostics(line: xr.Dataset, patches: dict[str, xr.Dataset]) -> str:
     text = "Diagnostics: " + "; ".join(parts) + "."
     text += (" Every point failed or outside the check tolerance: " + "; ".join(left) + "."
              if left else " No point is left failed or outside the check tolerance.")
-    return text + (
-        " Below the critical friction (the first glide node ~8.6 lambda/N^2 beyond a) the "
-        "stick zone is solved in its limit a -> 0 (regime no_stick, a = 0, log10_a by "
-        "matching); where the H(b - x)-switched slip rule has no root, the friction term "
-        "sits on every shear row (N = 0 beyond b), flag continuous_slip_rule: this is what "
-        "the Chaise et al. model needed for f >= 0.7 at N = 500, so its missing roots were "
-        "a property of the switched discretisation, not of the model. See the summary "
-        "table for the counts per sweep.")
+    flagged = {name: 0 for name in FLAGS}
+    for ds, suffix in [(line, ""), (line, "_chaise"), *[(v, "") for v in patches.values()]]:
+        if "flags" + suffix in ds:
+            for name, count in sweep_counts(ds, suffix).items():
+                if name in flagged:
+                    flagged[name] += count
+    notes = {
+        "stick_zone_limit": "below the critical friction (the first glide node lies ~8.6 "
+                            "lambda/N^2 beyond a) the stick zone is solved in its limit "
+                            "a -> 0 (regime no_stick, a = 0, log10_a by matching)",
+        "continuous_slip_rule": "where the H(b - x)-switched slip rule has no root the "
+                                "friction term sits on every shear row, the same condition "
+                                "since N = 0 beyond b (the Chaise et al. model needs it for "
+                                "f >= 0.7 at N = 500: its missing roots were a property of "
+                                "the switched discretisation, not of the model)",
+        "refined": "points outside the check tolerance are solved again at larger N "
+                   "(n_used; max_check_at_n keeps the check at the sweep's N)",
+        "continuation": "points that failed from their seeds are solved from a solved "
+                        "neighbour",
+    }
+    used = [f"{notes[name]} ({count} points)" for name, count in flagged.items() if count]
+    if used:
+        text += " How points were solved: " + "; ".join(used) + "."
+    return text + " See the summary table for the counts per sweep."
 
 
 def build_section(line_path: Path, patch_paths: list[Path], profile_paths: list[Path],
