@@ -289,8 +289,9 @@ def solve_slip(w: float, f: float, n: int = 100,
     size. A root is accepted only if its slip zone covers the zone where the bilateral
     tractions violate the friction limit (this rejects the trivial roots with a collapsed
     zone, a1 = a2, at the ends of that zone) and if the log map still resolves it: at
-    most N decades between a1 and a2 (about one node per decade). Closer to f_sep the
-    slip branch is reported as not converged rather than as an unresolved solution.
+    most N decades between a1 and a2 (about one node per decade). Closer to f_sep (and
+    to f = 0) the slip branch has no resolved root here; ``solve_gap`` then solves it in
+    its limit a1 -> 0 (``solve_slip_at_limit``).
     """
     zone = bilateral_slip_zone(w, f)
     if zone is None:

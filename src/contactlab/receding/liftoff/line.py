@@ -11,9 +11,10 @@ distribution A_y, the slope K and eq. (6.22), glide and climb densities on [a, i
 [b, inf) both bounded at both ends. The climb density then integrates to a finite total,
 so the separation tends to a constant far away instead of growing linearly (Fig. 6.6),
 while the tractions near the load are close to those of the full model (Fig. 6.5). With
-lambda = 3.5 its discrete equations have no root for f >= 0.7 (N = 100 and 500): the
-leftover residuals jump where a collocation point of the glide set crosses b; those points
-are reported as not converged.
+lambda = 3.5 its H(b - x)-switched shear rows have no root for f >= 0.7 at N = 500 (the
+leftover residuals jump where a collocation point of the glide set crosses b); those
+points are solved with the continuous slip rule (``solver``, flag ``continuous_slip_rule``),
+so the missing roots were a property of the switched discretisation, not of the model.
 
 Stick-zone limit: the central stick zone shrinks very fast as f falls (a = 0.25 c at
 f = 0.5, 0.018 c at 0.2, 2.5e-4 c at 0.1, 6e-6 c at 0.08 with N = 100). Solving the same
