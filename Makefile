@@ -1,5 +1,7 @@
 # Two entry points (see README): `make all` runs the workflow, `make test` the tests.
-# Both create the virtual environment from environment.lock when it is missing.
+# Both create the virtual environment from environment.lock when it is missing, then
+# install system packages only when the config needs them and they are missing
+# (contactlab.setup_check: CalculiX and the gmsh wheel's libraries, for the FE branch).
 VENV ?= .venv
 PY := $(VENV)/bin/python
 # rules call the `contactlab` command: put the environment first on PATH
@@ -9,28 +11,31 @@ JOBS ?= 2
 # the Snakefile is at the top level, so Snakemake does not find workflow/profiles/default
 SNAKEMAKE := $(VENV)/bin/snakemake --workflow-profile workflow/profiles/default
 
+# system packages for the config files each entry point runs (merged in order)
+SETUP_CHECK := $(PY) -m contactlab.setup_check
+
 .PHONY: all test env ccx slurm lint report lock rulegraph clean
 
 all: $(STAMP)
+	$(SETUP_CHECK) --config config/config.yaml
 	$(SNAKEMAKE) -j$(JOBS) all
 
 test: $(STAMP) slurm
+	$(SETUP_CHECK) --config config/config.yaml --config tests/e2e_config.yaml
 	$(PY) -m pytest -n $(JOBS) tests
 
 env: $(STAMP)
 
 $(STAMP): environment.lock pyproject.toml
-	command -v ccx >/dev/null || $(MAKE) ccx
 	test -x $(PY) || python3.11 -m venv $(VENV) || python3 -m venv $(VENV)
 	$(PY) -m pip install --quiet --require-hashes --no-deps -r environment.lock
 	$(PY) -m pip install --quiet --no-deps --no-build-isolation -e .
 	touch $(STAMP)
 
-# CalculiX, the finite element solver of the FE cross-checks (Debian package calculix-ccx).
-ccx:
-	@if [ "$$(id -u)" = 0 ]; then SUDO=; else SUDO=sudo; fi; \
-	$$SUDO apt-get update -qq && $$SUDO apt-get install -y -qq calculix-ccx >/dev/null \
-	|| { echo "error: could not install CalculiX (apt package calculix-ccx); install it and rerun" >&2; exit 1; }
+# What the FE branch needs whatever the config says: CalculiX (Debian calculix-ccx) unless
+# ccx is on PATH or $CCX is set, and the gmsh wheel's libraries if gmsh does not import.
+ccx: $(STAMP)
+	$(SETUP_CHECK) --fe
 
 # Slurm and munge for the cluster test (tests/test_slurm.py starts them with .ci/slurm-local):
 # installed from Debian (slurm-wlm, munge) only when missing, and only as root; without
@@ -50,9 +55,12 @@ report: $(STAMP)
 	$(SNAKEMAKE) --report results/report/snakemake-report.zip
 
 lock:
+	@command -v uv >/dev/null || { echo "error: make lock needs uv (pip install uv)" >&2; exit 1; }
 	uv pip compile --python-version 3.11 --generate-hashes --custom-compile-command "make lock" requirements.in -o environment.lock
 
 rulegraph: $(STAMP)
+	@command -v dot >/dev/null || { echo "error: make rulegraph needs graphviz's dot" \
+	  "(Debian package graphviz)" >&2; exit 1; }
 	$(VENV)/bin/snakemake --rulegraph dot all | dot -Tsvg > docs/rulegraph.svg
 	$(VENV)/bin/snakemake --rulegraph mermaid-js all > docs/rulegraph.mmd
 

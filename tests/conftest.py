@@ -13,6 +13,10 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[1]
 
+#: Tests run away from any Slurm cluster of the host (see the file's comment);
+#: tests/test_slurm.py lifts this for its own cluster.
+os.environ["SLURM_CONF"] = str(REPO / "tests" / "data" / "slurm-none.conf")
+
 
 @pytest.fixture(scope="session")
 def repo() -> Path:

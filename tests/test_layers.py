@@ -4,8 +4,8 @@ The map (also in docs/CONVENTIONS.md, "Layers"), lowest first; a module may impo
 of its own layer and of the layers below it, never above:
 
 0. ground floor: ``contactlab`` itself, ``io``, ``study``, ``published``, ``testsheet``,
-   ``csvlines``, ``config_check``, ``config_docs`` -- files, provenance, the thesis's
-   transcribed tables, the test sheet;
+   ``csvlines``, ``config_check``, ``config_docs``, ``setup_check`` -- files, provenance,
+   the thesis's transcribed tables, the test sheet, the set-up's system packages;
 1. science: every module of a branch package (``surfaces``, ``stiffness``, ``asperity``,
    ``receding``, ``fe`` and their sub-packages) that is not a report builder or a command
    line -- numbers and files in, numbers and datasets out;
@@ -31,7 +31,7 @@ SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = SRC / "contactlab"
 GROUND = {"contactlab", "contactlab.__init__", "contactlab.io", "contactlab.study",
           "contactlab.published", "contactlab.testsheet", "contactlab.csvlines",
-          "contactlab.config_check", "contactlab.config_docs"}
+          "contactlab.config_check", "contactlab.config_docs", "contactlab.setup_check"}
 BRANCHES = ("surfaces", "stiffness", "asperity", "receding", "fe")
 LAYERS = ("ground floor", "science", "report toolkit", "report builder", "command line",
           "workflow")
@@ -142,3 +142,24 @@ def test_the_checker_sees_an_upward_import() -> None:
     found = [name for _, name in imports_in(source, me)]
     assert found == ["contactlab.report.section", "contactlab.stiffness.cli"]
     assert all(layer(_existing(name)) > layer(me) for name in found)
+
+
+def test_rule_files_import_no_heavy_science() -> None:
+    """Snakemake parses the rule files at every start (each dry run, each cluster job):
+    their ``contactlab`` imports load no scipy, matplotlib or xarray (2 s a start)."""
+    import re
+    import subprocess
+    import sys
+
+    root = SRC.parent
+    files = [root / "Snakefile", *sorted((root / "workflow" / "rules").glob("*.smk"))]
+    modules = sorted({m for f in files for m in re.findall(
+        r"^\s*from (contactlab[\w.]*) import|^\s*import (contactlab[\w.]*)",
+        f.read_text(), re.M) for m in m if m})
+    assert "contactlab.rulehelpers" in modules
+    code = ("import importlib, sys\n"
+            f"for m in {modules!r}: importlib.import_module(m)\n"
+            "print(' '.join(m for m in ('scipy', 'matplotlib', 'xarray') if m in sys.modules))")
+    heavy = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                           check=True).stdout.split()
+    assert heavy == [], (modules, heavy)

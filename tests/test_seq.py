@@ -9,7 +9,7 @@ import pytest
 from contactlab.published import read_published
 from contactlab.surfaces.roughness import published_roughness
 from contactlab.surfaces.seq import add_scan_seq, equivalent_roughness, seq_dataset
-from contactlab.testsheet import read_test_sheet
+from contactlab.testsheet import read_test_sheet, surface_id
 
 
 def test_equivalent_roughness_is_the_root_sum_of_squares() -> None:
@@ -67,3 +67,21 @@ def test_scan_seq_insists_on_a_scan_for_every_surface(repo) -> None:
     sq = pd.Series({"rough_specimen_B": 1.4})
     with pytest.raises(KeyError, match=r"test SU1: no areal Sq of surface 'smooth_specimen_B'"):
         add_scan_seq(ds, sheet, sq)
+
+
+def test_scan_seq_of_a_refused_scan_is_nan_and_the_others_are_computed(repo) -> None:
+    """A surface whose areal scan was refused gives NaN Seq_scan for its tests only."""
+    sheet = read_test_sheet(repo / "config" / "tests.csv")
+    ds = seq_dataset(sheet, published_roughness())
+    surfaces = {surface_id(r.specimen, r.specimen_side) for r in sheet.itertuples()}
+    surfaces |= {surface_id(r.pad, r.pad_side) for r in sheet.itertuples()}
+    sq = pd.Series(dict.fromkeys(sorted(surfaces), 0.3))
+    refused = surface_id(sheet.loc["RU1", "pad"], sheet.loc["RU1", "pad_side"])
+    sq[refused] = np.nan
+    out = add_scan_seq(ds, sheet, sq, refused={refused})
+    uses = [r.Index for r in sheet.itertuples()
+            if refused in (surface_id(r.specimen, r.specimen_side), surface_id(r.pad, r.pad_side))]
+    assert "RU1" in uses
+    assert np.isnan(out["Seq_scan"].sel(test=uses)).all()
+    others = out["Seq_scan"].drop_sel(test=uses)
+    np.testing.assert_allclose(others, np.hypot(0.3, 0.3))

@@ -57,13 +57,15 @@ def slurm_cluster():
         if os.environ.get("CI"):
             pytest.fail(f"{reason}; CI must run the tests as root")
         pytest.skip(reason)
-    was_running = _slurm_answers()
-    start = subprocess.run([str(SLURM_LOCAL), "start"], capture_output=True, text=True,
-                           check=False)
-    assert start.returncode == 0, start.stdout + start.stderr
-    yield
-    if not was_running:
-        subprocess.run([str(SLURM_LOCAL), "stop"], capture_output=True, check=False)
+    with pytest.MonkeyPatch.context() as env:
+        env.delenv("SLURM_CONF", raising=False)  # the host's slurm.conf (conftest.py)
+        was_running = _slurm_answers()
+        start = subprocess.run([str(SLURM_LOCAL), "start"], capture_output=True, text=True,
+                               check=False)
+        assert start.returncode == 0, start.stdout + start.stderr
+        yield
+        if not was_running:
+            subprocess.run([str(SLURM_LOCAL), "stop"], capture_output=True, check=False)
 
 
 def _timing_free(ds: xr.Dataset) -> xr.Dataset:

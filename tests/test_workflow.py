@@ -10,6 +10,7 @@ from pathlib import Path
 import pytest
 import xarray as xr
 import yaml
+from cf_check import cf_errors
 from config_walk import check_all
 from snakemake.utils import validate
 
@@ -23,6 +24,7 @@ def planned_rules(result: subprocess.CompletedProcess[str]) -> set[str]:
 
 
 @pytest.mark.slow
+@pytest.mark.filterwarnings("ignore:The ioos_sos checker:DeprecationWarning")
 def test_workflow_end_to_end(workflow_copy: Path, snakemake) -> None:
     run = snakemake(workflow_copy, "-j2", "all")
     assert run.returncode == 0, run.stderr[-3000:]
@@ -35,6 +37,10 @@ def test_workflow_end_to_end(workflow_copy: Path, snakemake) -> None:
         assert table["a"].dims == ("f", "w_hat") and bool(table["converged"].all())
     page = (results / "report" / "index.html").read_text()
     assert "Seq" in page and "figures/seq.png" in page
+    # every netCDF file of the run passes a real CF checker (no failed "must" check)
+    netcdf = sorted(results.rglob("*.nc"))
+    assert len(netcdf) > 60
+    assert {path.name: errors for path in netcdf if (errors := cf_errors(path))} == {}
     check_every_file_is_declared(workflow_copy, snakemake)
 
     again = snakemake(workflow_copy, "-n", "all")

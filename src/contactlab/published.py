@@ -16,11 +16,13 @@ from pathlib import Path
 import pandas as pd
 
 __all__ = [
+    "GROUP_TABLES",
     "MEAN_ROW_TABLES",
     "NOMINAL_AREA_MM2",
     "NORMAL_LOAD_KN",
     "PER_STEP_FIT_TABLES",
     "PUBLISHED_DIR",
+    "PUBLISHED_TESTS",
     "TANGENTIAL_TABLES",
     "mean_row_stiffness",
     "per_step_fits",
@@ -36,6 +38,15 @@ NORMAL_LOAD_KN: dict[str, float] = {
     "RU1": 4.0, "RU2": 8.0, "RU3": 12.0,
     "SU1": 4.0, "SU2": 8.0, "SU3": 12.0,
     "S1": 8.0, "S2": 8.0, "S3": 8.0,
+}
+
+#: The thesis's tests whose fits are published (the ones the demo data reconstruct).
+PUBLISHED_TESTS: tuple[str, ...] = tuple(NORMAL_LOAD_KN)
+
+#: Thesis table numbers of ch. 2 per test group: (normal, tangential means, beta_n Seq, Cc).
+GROUP_TABLES: dict[str, tuple[str, str, str, str]] = {
+    "ground": ("2.1", "2.2", "2.3", "2.4"),
+    "structured": ("2.7", "2.8", "2.10", "2.9"),
 }
 """Maximum normal load -Pn of each test (sec. 2.6, 2.8; Table A.1 group labels)."""
 

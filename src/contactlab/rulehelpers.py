@@ -21,6 +21,8 @@ from typing import Any
 
 import pandas as pd
 
+from contactlab.published import PUBLISHED_TESTS
+
 # --------------------------------------------------------------------------- report files
 
 
@@ -35,6 +37,12 @@ def pdf_files(*png: str) -> list[str]:
 
 
 # --------------------------------------------------------------------------- stiffness
+
+
+def demo_data_files(directory: str = "results/demo") -> list[str]:
+    """The raw-data paths the demo rule writes (accepted as missing at start-up)."""
+    return [f"{directory}/{test}/{name}" for test in PUBLISHED_TESTS
+            for name in ("load_log.csv", "fields.nc")]
 
 
 def has_path(sheet: pd.DataFrame, test: str, column: str) -> bool:

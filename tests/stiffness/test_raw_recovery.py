@@ -18,10 +18,10 @@ import pytest
 import xarray as xr
 
 from contactlab.io import write_netcdf
-from contactlab.published import NORMAL_LOAD_KN, read_published
+from contactlab.published import NORMAL_LOAD_KN, PUBLISHED_TESTS, read_published
 from contactlab.stiffness import demo
 from contactlab.stiffness.compare import THESIS_DISCREPANCIES, summary_within_margins
-from contactlab.stiffness.demo import DEMO_TESTS, generate_test, write_demo
+from contactlab.stiffness.demo import generate_test, write_demo
 from contactlab.stiffness.errors import ErrorModel
 from contactlab.stiffness.process import load_inputs, process_test
 from contactlab.stiffness.raw_summary import summarize_raw
@@ -32,7 +32,7 @@ from contactlab.stiffness.recovery import recovery_table
 def raw_run(tmp_path_factory: pytest.TempPathFactory, repo: Path) -> dict[str, object]:
     root = tmp_path_factory.mktemp("raw")
     results, designs = [], []
-    for test in DEMO_TESTS:
+    for test in PUBLISHED_TESTS:
         paths = write_demo(test, root / "demo" / test)
         designs.append(pd.read_csv(paths["design"], comment="#"))
         frames, rows, sources = load_inputs(paths["load_log"], paths["fields"])
@@ -142,9 +142,9 @@ def test_steps_used_are_the_published(raw_run: dict[str, object]) -> None:
 def test_summary_netcdf_is_cf(raw_run: dict[str, object]) -> None:
     with xr.open_dataset(raw_run["root"] / "summary.nc") as ds:
         assert ds["Kt0_An"].attrs["units"] == "kN/mm3"
-        assert set(ds["test"].values) == set(DEMO_TESTS)
+        assert set(ds["test"].values) == set(PUBLISHED_TESTS)
         assert "RECONSTRUCTED" in ds.attrs["note"]
-        assert int(ds["reconstructed"].sum()) == len(DEMO_TESTS)
+        assert int(ds["reconstructed"].sum()) == len(PUBLISHED_TESTS)
 
 
 def test_margin_check_flags_a_value_outside_and_a_missing_one() -> None:

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from contactlab.stiffness.demo import demo_data_files
+from contactlab.rulehelpers import demo_data_files
 from contactlab.testsheet import TestSheetError, check_data_files, read_test_sheet
 
 

@@ -33,7 +33,8 @@ def processed(repo: Path, tmp_path_factory: pytest.TempPathFactory) -> pd.DataFr
         write_netcdf(ds, work / f"{ds.attrs['surface']}.nc")
     summary = stamp(summary_dataset(datasets), title="t", source="s", history="h")
     write_netcdf(summary, work / "texture.nc")
-    table = summary.drop_vars(["undefined_reason", "parameter"]).to_dataframe()
+    table = summary.drop_vars(["undefined_reason", "parameter", "refused_reason", "scan"]
+                              ).to_dataframe()
     table.attrs["undefined"] = summary["undefined_reason"].to_pandas()
     table.attrs["work"] = work
     return table

@@ -150,7 +150,7 @@ def test_surface_files_are_cf_and_hold_spectra(processed: pd.DataFrame) -> None:
         assert ds["Sq"].attrs["units"] == "um"
         assert ds["psd_areal"].sizes["q_areal"] > 10 and ds["psd_profile"].sizes["q_profile"] > 10
         # histogram is a density: integrates to one
-        widths = np.gradient(ds["height"].values)
+        widths = np.gradient(ds["roughness_height"].values)
         assert float(np.sum(ds["height_density"].values * widths)) == pytest.approx(1, abs=0.02)
         assert ds.attrs["profile_direction"] == "lengthwise"
         assert int(ds["n_profiles"]) == 5 and int(ds["n_sampling_lengths"]) == 5

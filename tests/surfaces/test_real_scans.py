@@ -3,8 +3,8 @@
 The files are SurfaceTopography's format examples (tests/data/scans/, MIT licence, see
 the README there): an Alicona AL3D, a Bruker Dektak OPDX line with the instrument's own
 ASCII export, an ISO 25178-71 SDF small enough to check by hand, an Agilent/Keysight MI
-(AFM) file, and same-format crops of a Wyko OPD (with undefined points) and of a
-MountainsMap X3P (whose ACF does not decay along the lay).
+(AFM) file, and same-format crops of a Wyko OPD (with undefined points), of a
+MountainsMap X3P (whose ACF does not decay along the lay) and of a Sensofar PLU.
 
 The independent values come from code written here without the project's filter,
 plane, ACF or parameter functions: direct-sum Gaussian weights (ISO 16610-21/61,
@@ -21,7 +21,14 @@ import pytest
 
 from contactlab.surfaces.scans import read_scan
 from contactlab.surfaces.sheet import SurfaceSpec
-from contactlab.surfaces.texture import FILL_SETTING, profile_texture, surface_texture
+from contactlab.surfaces.texture import (
+    FILL_SETTING,
+    profile_texture,
+    refused_scans,
+    summary_dataset,
+    surface_dataset,
+    surface_texture,
+)
 
 DATA = Path(__file__).resolve().parents[1] / "data" / "scans"
 ALPHA = np.sqrt(np.log(2) / np.pi)  # ISO 16610-21 Gaussian constant
@@ -38,9 +45,10 @@ def gaussian_mean(z: np.ndarray, lambda_c: float, spacing: float, axis: int) -> 
     x = np.arange(-half, half + 1) * spacing
     weights = np.exp(-np.pi * (x / (ALPHA * lambda_c)) ** 2)
     moved = np.moveaxis(z, axis, -1)
-    ones = np.convolve(np.ones(moved.shape[-1]), weights, mode="same")
-    out = np.array([np.convolve(row, weights, mode="same") / ones
-                    for row in moved.reshape(-1, moved.shape[-1])])
+    n = moved.shape[-1]  # centred part of the full convolution (also when n < the kernel)
+    ones = np.convolve(np.ones(n), weights)[half:half + n]
+    out = np.array([np.convolve(row, weights)[half:half + n] / ones
+                    for row in moved.reshape(-1, n)])
     return np.moveaxis(out.reshape(moved.shape), -1, axis)
 
 
@@ -56,9 +64,11 @@ def independent_roughness(z: np.ndarray, dx: float, dy: float, lambda_c: float) 
     return rough - rough.mean()
 
 
-def independent_str(z: np.ndarray, dx: float, dy: float, s: float = 0.2) -> float:
-    """Str from a zero-padded FFT ACF (divided by the overlap counts) searched along rays
-    every 0.5 deg, with bilinear interpolation written out, up to half the smaller side."""
+def independent_acf_rays(z: np.ndarray, dx: float, dy: float
+                         ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(angles in deg from x, radii in um, ACF on each ray) from a zero-padded FFT ACF
+    divided by the overlap counts, on rays every 0.5 deg up to half the smaller side, with
+    bilinear interpolation written out."""
     nx, ny = z.shape
     power = np.abs(np.fft.rfft2(z, (2 * nx, 2 * ny))) ** 2
     acf = np.fft.fftshift(np.fft.irfft2(power, (2 * nx, 2 * ny)))  # lag 0 at [nx, ny]
@@ -69,14 +79,23 @@ def independent_str(z: np.ndarray, dx: float, dy: float, s: float = 0.2) -> floa
     acf /= acf[nx, ny]
     limit = 0.5 * min(nx * dx, ny * dy)
     radii = np.arange(0.0, limit, 0.1 * min(dx, dy))
-    lengths = []
-    for angle in np.deg2rad(np.arange(0.0, 180.0, 0.5)):
+    angles = np.arange(0.0, 180.0, 0.5)
+    rays = []
+    for angle in np.deg2rad(angles):
         px = nx + radii * np.cos(angle) / dx
         py = ny + radii * np.sin(angle) / dy
         i, j = np.floor(px).astype(int), np.floor(py).astype(int)
         fx, fy = px - i, py - j
-        values = ((1 - fx) * (1 - fy) * acf[i, j] + fx * (1 - fy) * acf[i + 1, j]
-                  + (1 - fx) * fy * acf[i, j + 1] + fx * fy * acf[i + 1, j + 1])
+        rays.append((1 - fx) * (1 - fy) * acf[i, j] + fx * (1 - fy) * acf[i + 1, j]
+                    + (1 - fx) * fy * acf[i, j + 1] + fx * fy * acf[i + 1, j + 1])
+    return angles, radii, np.array(rays)
+
+
+def independent_str(z: np.ndarray, dx: float, dy: float, s: float = 0.2) -> float:
+    """Str from :func:`independent_acf_rays`: shortest over longest decay length to ``s``."""
+    _, radii, rays = independent_acf_rays(z, dx, dy)
+    lengths = []
+    for values in rays:
         below = np.flatnonzero(values <= s)
         assert below.size, "the ACF must decay in every direction for a defined Str"
         k = below[0]
@@ -198,3 +217,83 @@ def test_mi_afm_file_reads_in_um() -> None:
     assert scan.size_um == pytest.approx((20.0, 20.0))
     texture = surface_texture(areal_spec("afm", "mi-1.mi", 8.0), 80, 0.0)
     assert 0 < texture.values["Sa"] < texture.values["Sq"] < texture.values["Sp"]
+
+
+def test_plu_heights_by_hand() -> None:
+    """Sensofar SPM layout: calibration at byte 388 (y and x counts, then um per pixel in x
+    and y as float32), the one height layer's counts at byte 500 and its float32 heights in
+    um (x fastest) from byte 508; read directly, they are the heights SurfaceTopography
+    gives."""
+    import struct
+
+    raw = (DATA / "plu-1-crop.plu").read_bytes()
+    ny, nx = struct.unpack_from("<2I", raw, 388)
+    pixel_x, pixel_y = struct.unpack_from("<2f", raw, 388 + 16)
+    assert (ny, nx) == (192, 256) and struct.unpack_from("<2I", raw, 500) == (ny, nx)
+    heights = np.frombuffer(raw, "<f4", nx * ny, 508).reshape(ny, nx).T
+    scan = read_scan(DATA / "plu-1-crop.plu", 0.0)
+    assert scan.dx == pytest.approx(pixel_x) and scan.dy == pytest.approx(pixel_y)
+    assert scan.dx == pytest.approx(1.66, rel=1e-6)
+    np.testing.assert_array_equal(scan.heights, heights)
+    assert scan.instrument == "Sensofar PLu neox" and scan.filled_fraction == 0.0
+
+
+def test_plu_areal_parameters_and_undefined_str_against_an_independent_evaluation() -> None:
+    """Sensofar interferometer crop, lambda_c 80 um: Sa, Sq, Sp within 1e-6 of the
+    independent chain; 91-92 deg from x the independent ACF stays above 0.2 up to half the
+    scan's smaller side (at 90 and 93 deg it falls below within 111 and 127 um), so Str is
+    NaN with that reason."""
+    texture = surface_texture(areal_spec("sensofar", "plu-1-crop.plu", 80.0), 80, 0.0)
+    scan = read_scan(DATA / "plu-1-crop.plu", 0.0)
+    rough = independent_roughness(scan.heights, scan.dx, scan.dy, 80.0)
+    v = texture.values
+    assert v["Sa"] == pytest.approx(np.mean(np.abs(rough)), rel=1e-6)
+    assert v["Sq"] == pytest.approx(np.sqrt(np.mean(rough**2)), rel=1e-6)
+    assert v["Sp"] == pytest.approx(rough.max(), rel=1e-6)
+    angles, radii, rays = independent_acf_rays(rough, scan.dx, scan.dy)
+    assert radii[-1] < 0.5 * 192 * scan.dy
+    assert all(rays[angles == angle].min() > 0.2 for angle in (91.0, 92.0))
+    assert all(rays[angles == angle].min() < 0.2 for angle in (90.0, 93.0))
+    assert np.isnan(v["Str"])
+    assert (f"stays above s = 0.2 up to {0.5 * 192 * scan.dy:.4g} um (half the scan) at 2 "
+            "directions, 91-92 deg from x") in texture.undefined["Str"]
+
+
+def test_sdf_areal_parameters_against_an_independent_evaluation() -> None:
+    """The 7 x 4 SDF with lambda_c 2.5 um: Sa, Sq, Sp within 1e-6 of the independent chain;
+    Str and the fractal dimension are NaN with their reasons (too small a scan for either)."""
+    texture = surface_texture(areal_spec("sdf", "sdf-1.sdf", 2.5), 80, 0.0)
+    scan = read_scan(DATA / "sdf-1.sdf", 0.0)
+    rough = independent_roughness(scan.heights, scan.dx, scan.dy, 2.5)
+    v = texture.values
+    assert v["Sa"] == pytest.approx(np.mean(np.abs(rough)), rel=1e-6)
+    assert v["Sq"] == pytest.approx(np.sqrt(np.mean(rough**2)), rel=1e-6)
+    assert v["Sp"] == pytest.approx(rough.max(), rel=1e-6)
+    assert sorted(texture.undefined) == ["Str", "fractal_dimension"]
+    assert np.isnan(v["Str"]) and np.isnan(v["fractal_dimension"])
+    assert "too small" in texture.undefined["fractal_dimension"]
+
+
+def test_a_refused_scan_is_recorded_with_its_reason_beside_good_ones() -> None:
+    """With ``record_refused`` a refused areal scan (0.19 % undefined against a 0.1 % limit)
+    leaves its parameters NaN and the reason in the result; the surface's profile scan
+    and other surfaces are still evaluated, and the summary lists the refusal."""
+    path = DATA / "opd-1-crop.opd"
+    mixed = SurfaceSpec("mixed", "other", path, DATA / "opdx-3.opdx", "x", "lengthwise",
+                        50.0, 8.0)
+    with pytest.raises(ValueError, match=r"more than the 0\.1 %"):
+        surface_texture(mixed, 80, 0.001)
+    texture = surface_texture(mixed, 80, 0.001, record_refused=True)
+    assert list(texture.refused) == ["areal"]
+    assert "opd-1-crop.opd: 95 of 49152 points" in texture.refused["areal"]
+    assert all(np.isnan(texture.values[n]) for n in ("Sa", "Sq", "Sp", "Str"))
+    assert all(np.isfinite(texture.values[n]) for n in ("Ra", "Rq", "Rz"))
+    good = surface_texture(areal_spec("alicona", "al3d-1.al3d", 25.0), 80, 0.001,
+                           record_refused=True)
+    datasets = [surface_dataset(texture), surface_dataset(good)]
+    assert datasets[0].attrs["refused_areal_scan"] == texture.refused["areal"]
+    assert "refused_areal_scan" not in datasets[1].attrs
+    summary = summary_dataset(datasets)
+    assert refused_scans(summary) == [("mixed", "areal", texture.refused["areal"])]
+    assert np.isfinite(float(summary["Sq"].sel(surface="alicona")))
+    assert np.isnan(float(summary["filled_fraction_areal"].sel(surface="mixed")))

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -63,3 +64,36 @@ def test_report_without_texture_keeps_the_published_seq_section(repo: Path,
                  "--report-dir", str(tmp_path / "report"), "--out", str(out)]) == 0
     table = pd.read_csv(tmp_path / "report" / "tables" / "seq.csv")
     assert table["Seq"].iloc[0] == pytest.approx(2.038, abs=5e-4)
+
+
+def test_section_lists_refused_scans_and_still_shows_the_others(repo: Path,
+                                                                 tmp_path: Path) -> None:
+    """A texture summary with a refused scan (issue 22): the section names it with its
+    reason in a table of its own and keeps the evaluated surface in the other tables."""
+    from contactlab.surfaces.sheet import SurfaceSpec
+    from contactlab.surfaces.texture import summary_dataset, surface_dataset, surface_texture
+
+    data = repo / "tests" / "data" / "scans"
+    specs = [SurfaceSpec("alicona", "other", data / "al3d-1.al3d", None, "x", None, None, 25.0),
+             SurfaceSpec("wyko", "other", data / "opd-1-crop.opd", None, "x", None, None, 8.0)]
+    datasets = [surface_dataset(surface_texture(spec, 20, 0.001, record_refused=True))
+                for spec in specs]
+    for ds in datasets:
+        write_netcdf(stamp(ds, title="t", source="s", history="h"),
+                     tmp_path / f"{ds.attrs['surface']}.nc")
+    write_netcdf(stamp(summary_dataset(datasets), title="t", source="s", history="h"),
+                 tmp_path / "texture.nc")
+    sheet = read_test_sheet(repo / "config" / "tests.csv")
+    write_netcdf(stamp(seq_dataset(sheet, published_roughness()), title="t", source="s",
+                       history="h"), tmp_path / "seq.nc")
+    report = tmp_path / "report"
+    out = report / "sections" / "10_surfaces.html"
+    assert main(["surfaces", "report", "--seq", str(tmp_path / "seq.nc"),
+                 "--texture", str(tmp_path / "texture.nc"), "--surface-dir", str(tmp_path),
+                 "--report-dir", str(report), "--out", str(out)]) == 0
+    page = out.read_text()
+    assert "1 scan(s) were refused" in page and "opd-1-crop.opd: 95 of 49152 points" in page
+    refused = pd.read_csv(report / "tables" / "surfaces_refused.csv")
+    assert list(zip(refused["surface"], refused["scan"], strict=True)) == [("wyko", "areal")]
+    other = pd.read_csv(report / "tables" / "surfaces_other.csv").set_index("surface")
+    assert other.loc["alicona", "Sq"] > 0 and np.isnan(other.loc["wyko", "Sq"])

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import xarray as xr
 from SurfaceTopography import Topography
 
 from contactlab.surfaces.scans import read_scan
@@ -177,7 +178,10 @@ def test_areal_texture_of_crossed_sines(tmp_path: Path) -> None:
     assert 2.0 <= v["fractal_dimension"] < 2.1
 
 
-def test_cli_refuses_a_corrupt_scan_in_one_line(tmp_path: Path) -> None:
+def test_cli_records_a_corrupt_scan_in_one_line_and_the_check_fails_naming_it(
+        tmp_path: Path) -> None:
+    """``texture`` records the refusal (one stderr line, NaN parameters, the reason in the
+    result); ``texture-check`` on the summary exits 2 naming the file, unless allowed."""
     bad = tmp_path / "broken.x3p"
     bad.write_bytes(b"not a scan at all")
     sheet = tmp_path / "surfaces.csv"
@@ -186,14 +190,31 @@ def test_cli_refuses_a_corrupt_scan_in_one_line(tmp_path: Path) -> None:
         "profile_length_mm,lambda_c_um\n"
         f"pad,20x,{bad},,,,,800\n"
     )
-    run = subprocess.run(
-        [sys.executable, "-m", "contactlab", "surfaces", "texture", "--sheet", str(sheet),
-         "--out-dir", str(tmp_path / "out"), "--max-undefined-fraction", "0.05",
-         "--bins", "80"],
-        capture_output=True, text=True, check=False,
-    )
-    assert run.returncode == 2
-    assert "broken.x3p" in run.stderr and len(run.stderr.strip().splitlines()) == 1
+
+    def contactlab(*args: str) -> subprocess.CompletedProcess[str]:
+        return subprocess.run([sys.executable, "-m", "contactlab", "surfaces", *args],
+                              capture_output=True, text=True, check=False)
+
+    out = tmp_path / "out"
+    run = contactlab("texture", "--sheet", str(sheet), "--out-dir", str(out),
+                     "--max-undefined-fraction", "0.05", "--bins", "80")
+    assert run.returncode == 0, run.stderr
+    (line,) = [line for line in run.stderr.splitlines() if "refused" in line]
+    assert line.startswith("pad: areal scan refused") and "broken.x3p" in line
+    with xr.open_dataset(out / "pad.nc") as ds:
+        assert "broken.x3p: cannot read scan" in ds.attrs["refused_areal_scan"]
+        assert np.isnan(float(ds["Sq"]))
+    assert contactlab("texture-summary", str(out / "pad.nc"), "--out",
+                      str(out / "texture.nc")).returncode == 0
+    check = contactlab("texture-check", str(out / "texture.nc"), "--out",
+                       str(out / "refused.csv"))
+    assert check.returncode == 2 and not (out / "refused.csv").exists()
+    assert "1 scan(s) of 1 surfaces refused" in check.stderr
+    assert "pad (areal scan): " in check.stderr and "broken.x3p" in check.stderr
+    allowed = contactlab("texture-check", str(out / "texture.nc"), "--allow-refused",
+                         "--out", str(out / "refused.csv"))
+    assert allowed.returncode == 0, allowed.stderr
+    assert "broken.x3p" in (out / "refused.csv").read_text()
 
 
 def test_spec_defaults_are_plain() -> None:

@@ -7,6 +7,7 @@ import shutil
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 import xarray as xr
 
@@ -40,40 +41,89 @@ REAL_ROWS = {
     "wyko": "other,data/opd-1-crop.opd,,,,,8,",
     "mountains": "other,data/x3p-2-crop.x3p,,,,,25,",
     "dektak": "other,,data/opdx-3.opdx,x,lengthwise,0.05,8,",
+    "sensofar": "other,data/plu-1-crop.plu,,,,,80,",
+    "afm": "other,data/mi-1.mi,,,,,8,",
+    "softgauge": "other,data/sdf-1.sdf,,,,,2.5,",
+}
+BAD_ROWS = {
+    "broken": "other,data/broken.x3p,,,,,25,",  # not a zip archive
+    "holey": "other,data/holey.x3p,,,,,25,",  # 31 % undefined points
 }
 
 
-def test_real_scans_run_one_job_each_and_a_refused_one_fails_alone(
+def write_bad_scans(data: Path) -> None:
+    """An X3P that is not an archive and one with a third of its points undefined."""
+    from contactlab.surfaces.demo import write_demo_scan
+
+    (data / "broken.x3p").write_bytes(b"PK\x03\x04 not a zip archive")
+    heights = np.random.default_rng(22).normal(size=(64, 64))
+    heights[:, :20] = np.nan
+    write_demo_scan(heights, 1.0, 1.0, data / "holey.x3p")
+
+
+def test_real_scans_one_job_each_and_refused_ones_listed_with_their_reason(
         workflow_copy: Path, snakemake, repo: Path) -> None:
-    """Real instrument files in the surface sheet (issue 22): with --keep-going a corrupt
-    scan fails only its own job, the others are written; without it the summary has the
-    filled fraction of the OPD, Str of the X3P as NaN with its reason, and the limit."""
+    """Real instrument files in the surface sheet (issue 22), one job each, with two bad
+    scans among them: with --keep-going every good surface is evaluated, the summary lists
+    all nine surfaces with the bad ones' reasons, and surfaces_texture_check fails the run
+    naming both; allow_refused_scans accepts them; without them the summary has the filled
+    fraction of the OPD and Str of the X3P and the PLU as NaN with the reason."""
     shutil.copytree(repo / "tests" / "data" / "scans", workflow_copy / "data")
-    (workflow_copy / "data" / "broken.x3p").write_bytes(b"PK\x03\x04 not a zip archive")
+    write_bad_scans(workflow_copy / "data")
     header = ",".join(COLUMNS)
     rows = [f"{name},{row}" for name, row in REAL_ROWS.items()]
+    bad = [f"{name},{row}" for name, row in BAD_ROWS.items()]
     sheet = workflow_copy / "config" / "real.csv"
-    sheet.write_text("\n".join([header, *rows, "broken,other,data/broken.x3p,,,,,25,"]) + "\n")
+    sheet.write_text("\n".join([header, *rows, *bad]) + "\n")
     config = ("--config", "surfaces={sheet: config/real.csv}")
-    run = snakemake(workflow_copy, "-j2", "--keep-going", "--show-failed-logs",
-                    "results/surfaces/texture.nc", *config)
+    targets = ("results/surfaces/texture.nc", "results/surfaces/refused.csv")
+    run = snakemake(workflow_copy, "-j2", "--keep-going", "--show-failed-logs", *targets,
+                    *config)
     assert run.returncode != 0
-    assert "data/broken.x3p: cannot read scan" in run.stdout + run.stderr
+    out = run.stdout + run.stderr
+    assert "2 scan(s) of 9 surfaces refused" in out, out[-3000:]
+    assert "broken (areal scan): data/broken.x3p: cannot read scan" in out
+    assert "holey (areal scan): data/holey.x3p: 1280 of 4096 points (31.2 %)" in out
+    assert "allow_refused_scans" in out
     results = workflow_copy / "results" / "surfaces"
-    assert sorted(p.stem for p in results.glob("*.nc")) == sorted(REAL_ROWS)
+    assert sorted(p.stem for p in results.glob("*.nc")) == sorted(
+        [*REAL_ROWS, *BAD_ROWS, "texture"])
+    assert not (results / "refused.csv").exists()
+    with xr.open_dataset(results / "texture.nc") as texture:
+        assert sorted(texture["surface"].values) == sorted([*REAL_ROWS, *BAD_ROWS])
+        reasons = texture["refused_reason"].sel(scan="areal")
+        assert "cannot read scan" in str(reasons.sel(surface="broken").item())
+        assert "more than the 5 %" in str(reasons.sel(surface="holey").item())
+        assert all(not reasons.sel(surface=name).item() for name in REAL_ROWS)
+        assert np.isnan(texture["Sq"].sel(surface=list(BAD_ROWS))).all()
+        assert np.isfinite(texture["Sq"].sel(surface=[n for n in REAL_ROWS if n != "dektak"])
+                           ).all()
+
+    accept = ("--config", "surfaces={sheet: config/real.csv, allow_refused_scans: true}")
+    plan = snakemake(workflow_copy, "-n", *targets, *accept)
+    assert "surfaces_texture_check" in plan.stdout and "surfaces_texture:" not in plan.stdout
+    run = snakemake(workflow_copy, "-j1", *targets, *accept)
+    assert run.returncode == 0, run.stderr[-3000:]
+    refused = pd.read_csv(results / "refused.csv")
+    assert sorted(refused["surface"]) == sorted(BAD_ROWS) and set(refused["scan"]) == {"areal"}
 
     sheet.write_text("\n".join([header, *rows]) + "\n")
-    plan = snakemake(workflow_copy, "-n", "results/surfaces/texture.nc", *config)
-    assert "surfaces_texture_summary" in plan.stdout and "rule surfaces_texture:" not in plan.stdout
-    run = snakemake(workflow_copy, "-j1", "results/surfaces/texture.nc", *config)
+    plan = snakemake(workflow_copy, "-n", *targets, *config)
+    assert "surfaces_texture_summary" in plan.stdout
+    assert "rule surfaces_texture:" not in plan.stdout
+    run = snakemake(workflow_copy, "-j1", *targets, *config)
     assert run.returncode == 0, run.stderr[-3000:]
+    assert len(pd.read_csv(results / "refused.csv")) == 0
     with xr.open_dataset(results / "texture.nc") as texture:
         assert texture.attrs["max_undefined_fraction"] == 0.05  # the schema's default
+        assert sorted(texture["surface"].values) == sorted(REAL_ROWS)
         assert float(texture["filled_fraction_areal"].sel(surface="wyko")) == pytest.approx(
             95 / (256 * 192))
-        assert np.isnan(float(texture["Str"].sel(surface="mountains")))
-        reason = str(texture["undefined_reason"].sel(surface="mountains", parameter="Str").item())
-        assert "stays above s = 0.2" in reason
+        for surface in ("mountains", "sensofar", "softgauge"):
+            assert np.isnan(float(texture["Str"].sel(surface=surface)))
+            reason = str(texture["undefined_reason"].sel(surface=surface, parameter="Str").item())
+            assert "stays above s = 0.2" in reason
         assert np.isfinite(float(texture["Rz"].sel(surface="dektak")))
+        assert np.isfinite(texture["Sq"].sel(surface=["sensofar", "afm", "softgauge"])).all()
     with xr.open_dataset(results / "mountains.nc") as ds:
         assert "stays above s = 0.2" in ds["Str"].attrs["undefined_reason"]

@@ -11,7 +11,7 @@ from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
 from contactlab.config_check import ConfigError, check_config, load_yaml_file
-from contactlab.stiffness.demo import demo_data_files
+from contactlab.rulehelpers import demo_data_files
 from contactlab.study import changes, coerce, export_provenance, logs_dir, results_dir
 from contactlab.testsheet import TestSheetError, check_data_files, check_rows, read_test_sheet
 

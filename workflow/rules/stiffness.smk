@@ -4,10 +4,8 @@
 
 import re
 
-from contactlab.published import TANGENTIAL_TABLES
+from contactlab.published import GROUP_TABLES, PUBLISHED_TESTS, TANGENTIAL_TABLES
 from contactlab.rulehelpers import pdf_files, raw_data_option, raw_inputs, raw_tests, table_files
-from contactlab.stiffness.demo import DEMO_TESTS
-from contactlab.stiffness.raw_summary import CHAPTER_TABLES
 
 _RAW = config["stiffness"]["raw"]
 _ERR = config["stiffness"]["errors"]
@@ -27,7 +25,7 @@ _ERROR_OPTIONS = [
 
 RAW_TESTS = raw_tests(TESTS)
 _RAW_TEST_PATTERN = "|".join(re.escape(t) for t in RAW_TESTS) or "(?!)"
-RAW_TABLES = [result(f"report/tables/table_{t}.csv") for tables in CHAPTER_TABLES.values()
+RAW_TABLES = [result(f"report/tables/table_{t}.csv") for tables in GROUP_TABLES.values()
               for t in tables]
 RAW_TABLES += [result(f"report/tables/table_{t}.csv")
                for t, (test, _, _) in TANGENTIAL_TABLES.items() if test in RAW_TESTS]
@@ -44,7 +42,7 @@ rule stiffness_demo:
         fields="results/demo/{test}/fields.nc",
         design="results/demo/{test}/design.csv",
     wildcard_constraints:
-        test="|".join(DEMO_TESTS),
+        test="|".join(PUBLISHED_TESTS),
     params:
         seed=_RAW["demo_seed"],
         published=PUBLISHED,

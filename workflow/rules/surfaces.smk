@@ -41,7 +41,9 @@ if DEMO_SCANS:
 rule surfaces_texture:
     """Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz of one surface from its scans.
 
-    One job per surface: a refused scan fails only its own job (see --keep-going). The
+    One job per surface. A scan the analysis refuses (unreadable, too many undefined
+    points...) leaves the surface's parameters NaN with the reason in its result, so the
+    summary lists every surface; surfaces_texture_check then fails the run naming it. The
     sheet row is a param, not the sheet an input, so editing one row reruns one surface.
     """
     input:
@@ -76,6 +78,21 @@ rule surfaces_texture_summary:
         logs("surfaces/texture_summary.log"),
     shell:
         "contactlab surfaces texture-summary {input:q} --out {output:q} > {log:q} 2>&1"
+
+
+rule surfaces_texture_check:
+    """Fails naming every refused scan (unless surfaces.allow_refused_scans); lists them."""
+    input:
+        result("surfaces/texture.nc"),
+    output:
+        result("surfaces/refused.csv"),
+    params:
+        allow=["--allow-refused"] if SURFACES_CONFIG["allow_refused_scans"] else [],
+    log:
+        logs("surfaces/texture_check.log"),
+    shell:
+        "contactlab surfaces texture-check {input:q} {params.allow:q} --out {output:q}"
+        " > {log:q} 2>&1"
 
 
 rule surfaces_seq:
@@ -152,12 +169,15 @@ rule report_surfaces:
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
 
 
-ALL_TARGETS.extend([result("surfaces/seq.nc"), result("surfaces/texture.nc")])
+ALL_TARGETS.extend(
+    [result("surfaces/seq.nc"), result("surfaces/texture.nc"), result("surfaces/refused.csv")]
+)
 REPORT_SECTIONS.append(result("report/sections/10_surfaces.html"))
 
 
 # Seconds-long gathers, light solves and reports: on a cluster they run in the
 # Snakemake process itself instead of queueing as jobs of their own.
 localrules:
+    surfaces_texture_check,
     surfaces_seq,
     report_surfaces,

@@ -21,17 +21,15 @@ import pandas as pd
 import xarray as xr
 
 from contactlab.io import load_datasets, stamp, write_netcdf, write_table
-from contactlab.published import TANGENTIAL_TABLES
+from contactlab.published import GROUP_TABLES, TANGENTIAL_TABLES
 from contactlab.stiffness.errors import ErrorModel
 from contactlab.stiffness.process import step_tables
 from contactlab.stiffness.summary import published_inputs, read_seq, summary_dataset
-from contactlab.stiffness.tables import GROUP_TABLES, build_tables, write_tables
+from contactlab.stiffness.tables import build_tables, write_tables
 from contactlab.testsheet import read_test_sheet
 
-__all__ = ["CHAPTER_TABLES", "raw_tables", "summarize_raw", "table_files", "tests_of"]
+__all__ = ["raw_tables", "summarize_raw", "table_files", "tests_of"]
 
-#: Chapter tables by test group: (normal, tangential means, beta_n Seq, Cc).
-CHAPTER_TABLES = GROUP_TABLES
 STEP_COLUMNS = ["test", "direction", "step", "Kt0_An", "Kt0_An_moe", "Kt0_An_moe_cov",
                 "alpha_t", "alpha_t_moe", "beta_t", "beta_t_moe", "Qs", "Qs_moe", "f", "f_moe",
                 "gof", "corr_beta_t_Qs", "used", "converged", "fit_message", "n_frames"]

@@ -28,16 +28,11 @@ from pathlib import Path
 import pandas as pd
 
 from contactlab.io import write_table
+from contactlab.published import GROUP_TABLES
 from contactlab.stiffness import aggregate
 from contactlab.stiffness.errors import ErrorModel
 
-__all__ = ["GROUP_TABLES", "TABLE_COLUMNS", "build_tables", "split_by_group", "write_tables"]
-
-#: Thesis table numbers per test group: (normal, tangential means, beta_n Seq, Cc).
-GROUP_TABLES: dict[str, tuple[str, str, str, str]] = {
-    "ground": ("2.1", "2.2", "2.3", "2.4"),
-    "structured": ("2.7", "2.8", "2.10", "2.9"),
-}
+__all__ = ["TABLE_COLUMNS", "build_tables", "split_by_group", "write_tables"]
 
 _NORMAL = ["test", "direction", "gof", "Pn_An", "Kn_An", "Kn_An_moe", "beta_n", "beta_n_moe",
            "alpha_n", "alpha_n_moe", "P0", "P0_moe", "Kn_An_moe_cov"]

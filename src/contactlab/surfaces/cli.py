@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 from pathlib import Path
 
@@ -37,7 +38,8 @@ def _texture(args: argparse.Namespace) -> None:
     history = (f"contactlab surfaces texture --sheet {args.sheet} "
                f"--max-undefined-fraction {args.max_undefined_fraction}")
     for spec in specs:
-        texture = surface_texture(spec, args.bins, args.max_undefined_fraction)
+        texture = surface_texture(spec, args.bins, args.max_undefined_fraction,
+                                  record_refused=True)
         ds = surface_dataset(texture)
         stamp(ds, title=f"Surface texture of {spec.surface}",
               source="scans named in the surface sheet; undefined points filled by harmonic "
@@ -50,6 +52,9 @@ def _texture(args: argparse.Namespace) -> None:
                 print(f"{spec.surface}: filled {100 * fraction:.3g} % of the {kind} scan")
         for name, reason in texture.undefined.items():
             print(f"{spec.surface}: {name} undefined: {reason}")
+        for kind, reason in texture.refused.items():
+            print(f"{spec.surface}: {kind} scan refused, its parameters are NaN: {reason}",
+                  file=sys.stderr)
     print(f"processed {len(specs)} surface(s) in {time.perf_counter() - started:.2f} s")
 
 
@@ -66,6 +71,31 @@ def _texture_summary(args: argparse.Namespace) -> None:
     write_netcdf(summary, args.out)
 
 
+def _texture_check(args: argparse.Namespace) -> None:
+    import pandas as pd
+    import xarray as xr
+
+    from contactlab.io import write_text
+    from contactlab.surfaces.texture import refused_scans
+
+    with xr.open_dataset(args.texture) as summary:
+        refused = refused_scans(summary.load())
+        n_surfaces = summary.sizes["surface"]
+    lines = [f"  {surface} ({kind} scan): {reason}" for surface, kind, reason in refused]
+    if refused and not args.allow_refused:
+        raise ValueError(
+            f"{args.texture}: {len(refused)} scan(s) of {n_surfaces} surfaces refused; their "
+            "parameters are NaN in the summary and the report:\n" + "\n".join(lines)
+            + "\nFix or remove them, change the setting the reason names, or accept them with "
+            "surfaces: allow_refused_scans: true (run with --keep-going to build the summary "
+            "and report meanwhile)")
+    for line in lines:
+        print(f"accepted refusal:{line}")
+    table = pd.DataFrame(refused, columns=["surface", "scan", "reason"])
+    write_text(table.to_csv(index=False), args.out)
+    print(f"{len(refused)} refused scan(s) of {n_surfaces} surfaces")
+
+
 def _seq(args: argparse.Namespace) -> None:
     from contactlab.io import stamp, write_netcdf
     from contactlab.surfaces.roughness import published_roughness
@@ -79,10 +109,17 @@ def _seq(args: argparse.Namespace) -> None:
     if args.texture is not None:
         import xarray as xr
 
+        from contactlab.surfaces.texture import refused_scans
+
         with xr.open_dataset(args.texture) as texture:
-            sq = texture["Sq"].load().to_series()
-        ds = add_scan_seq(ds, sheet, sq, str(args.texture))
+            texture = texture.load()
+        sq = texture["Sq"].to_series()
+        refused = {surface for surface, kind, _ in refused_scans(texture) if kind == "areal"}
+        ds = add_scan_seq(ds, sheet, sq, str(args.texture), refused)
         source += f"; *_scan from the Sq computed from scans ({args.texture})"
+        if refused:
+            source += ("; *_scan NaN where the areal scan of a surface was refused "
+                       f"({', '.join(sorted(refused))}; reasons in {args.texture})")
     ds = add_beta_n(ds, args.published_dir)
     source += "; beta_n: published loading values, Tables 2.1 and 2.7"
     stamp(
@@ -114,6 +151,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                  "--out-dir results/surfaces --bins 80 --max-undefined-fraction 0.01\n"
                  "  contactlab surfaces texture-summary results/surfaces/pad.nc "
                  "results/surfaces/rough_specimen.nc --out results/surfaces/texture.nc\n"
+                 "  contactlab surfaces texture-check results/surfaces/texture.nc "
+                 "--out results/surfaces/refused.csv\n"
                  "  contactlab surfaces seq --tests config/tests.csv "
                  "--texture results/surfaces/texture.nc --out results/surfaces/seq.nc\n")
     published = "directory of the transcribed thesis tables (default: the packaged copy)"
@@ -137,7 +176,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description="Undefined points filled (harmonic interpolation, up to a limit), form "
                     "removal, Gaussian filter (ISO 16610-21/61) and the areal and profile "
                     "parameters Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz (um) of every "
-                    "surface in the sheet, one <surface>.nc each.")
+                    "surface in the sheet, one <surface>.nc each. A scan that cannot be "
+                    "evaluated (unreadable, too many undefined points, smaller than lambda_c) "
+                    "is recorded as refused, parameters NaN and the reason in the file, and "
+                    "named on stderr; texture-check turns refusals into an error.")
     texture.add_argument("--sheet", type=input_file, required=True,
                          help="surface sheet (CSV)")
     texture.add_argument("--out-dir", type=Path, required=True,
@@ -159,6 +201,20 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     summary.add_argument("surfaces", type=input_file, nargs="+", help="<surface>.nc files")
     summary.add_argument("--out", type=Path, required=True, help="netCDF output")
     summary.set_defaults(func=_texture_summary)
+
+    check = add_command(
+        commands, "texture-check", help="fail when a scan was refused (list: refused.csv)",
+        description="List the scans the texture analysis refused (unreadable, too many "
+                    "undefined points, smaller than lambda_c...) with the reason, from a "
+                    "texture summary; exit with an error naming them unless --allow-refused.")
+    check.add_argument("texture", type=input_file,
+                       help="texture summary (results/surfaces/texture.nc)")
+    check.add_argument("--allow-refused", action="store_true",
+                       help="list refused scans and succeed (config "
+                            "surfaces.allow_refused_scans); default: fail")
+    check.add_argument("--out", type=Path, required=True,
+                       help="CSV of the refused scans: surface, scan, reason")
+    check.set_defaults(func=_texture_check)
 
     seq = add_command(
         commands, "seq", help="Seq of each test's interface",

@@ -16,7 +16,7 @@ import xarray as xr
 
 from contactlab.published import read_published
 from contactlab.report.section import Section
-from contactlab.surfaces.texture import AREAL, PROFILE
+from contactlab.surfaces.texture import AREAL, PROFILE, refused_scans
 
 #: Thesis tables that print Seq per test (ground and structured tests).
 SEQ_TABLES = ("2.3", "2.10")
@@ -123,6 +123,11 @@ def undefined_table(texture: xr.Dataset) -> pd.DataFrame:
     return pd.DataFrame(rows, columns=["surface", "parameter", "reason"])
 
 
+def refused_table(texture: xr.Dataset) -> pd.DataFrame:
+    """One row per scan the analysis refused (its parameters are NaN), with the reason."""
+    return pd.DataFrame(refused_scans(texture), columns=["surface", "scan", "reason"])
+
+
 def filled_table(texture: xr.Dataset) -> pd.DataFrame:
     """Surfaces whose scans had undefined points filled: the filled percentage per scan."""
     table = pd.DataFrame({
@@ -186,8 +191,8 @@ def _spectra_figure(datasets: dict[str, xr.Dataset]) -> plt.Figure:
         if "psd_areal" not in ds:
             continue
         ax_psd.loglog(ds["q_areal"], ds["psd_areal"], lw=0.7, label=surface)
-        ax_hist.plot(ds["height"] / float(ds["Sq"]), ds["height_density"] * float(ds["Sq"]),
-                     lw=0.7)
+        sq = float(ds["Sq"])
+        ax_hist.plot(ds["roughness_height"] / sq, ds["height_density"] * sq, lw=0.7)
     z = np.linspace(-4, 4, 200)
     ax_hist.plot(z, np.exp(-z**2 / 2) / np.sqrt(2 * np.pi), "k--", lw=1, label="Gaussian")
     ax_hist.set_yscale("log")
@@ -215,7 +220,8 @@ def build_section(seq_path: Path, report_dir: Path, published_dir: Path | None,
         with xr.open_dataset(texture_path) as texture:
             texture = texture.load()
         undefined = undefined_table(texture)
-        texture = texture.drop_vars(["undefined_reason", "parameter"])
+        refused = refused_table(texture)
+        texture = texture.drop_vars(["undefined_reason", "parameter", "refused_reason", "scan"])
         synthetic = [str(s) for s, flag in zip(texture["surface"].values,
                                                texture["synthetic"].values, strict=True) if flag]
         section.paragraph(
@@ -230,6 +236,15 @@ def build_section(seq_path: Path, report_dir: Path, published_dir: Path | None,
             "sampling lengths = lambda_c (30 pixels of 167 nm for S3) no profile with S3's "
             "Ra/Rq reaches its published Rz (at most 6.3 Rq against 6.9 Rq)."
         )
+        if len(refused):
+            section.note(
+                f"{len(refused)} scan(s) were refused and not evaluated: their surfaces' "
+                "parameters are missing (NaN) in the tables below. The reasons are listed in "
+                "the table that follows; fix or replace the scan, or change the setting the "
+                "reason names."
+            )
+            section.table(refused, "Refused scans and why (no parameters from them)",
+                          report_dir / "tables" / "surfaces_refused.csv")
         if synthetic:
             section.note(
                 f"{len(synthetic)} of {texture.sizes['surface']} surfaces are evaluated from "

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Collection
 from pathlib import Path
 
 import numpy as np
@@ -69,13 +70,17 @@ def seq_dataset(sheet: pd.DataFrame, roughness: pd.DataFrame) -> xr.Dataset:
 
 
 def add_scan_seq(ds: xr.Dataset, sheet: pd.DataFrame, sq_um: pd.Series,
-                 source: str = "texture summary") -> xr.Dataset:
+                 source: str = "texture summary", refused: Collection[str] = ()) -> xr.Dataset:
     """Add Sq_specimen_scan, Sq_pad_scan and Seq_scan (um) from Sq computed from scans.
 
-    ``sq_um`` maps surface id -> Sq (um) (``results/surfaces/texture.nc``).
+    ``sq_um`` maps surface id -> Sq (um) (``results/surfaces/texture.nc``). Surfaces in
+    ``refused`` (areal scan refused; the summary says why) give NaN; any other missing
+    Sq is an error naming the test and the surface.
     """
     def lookup(surface: str, test: str) -> float:
         value = sq_um.get(surface)
+        if surface in refused:
+            return float("nan")
         if value is None or not np.isfinite(value):
             raise KeyError(f"test {test}: no areal Sq of surface {surface!r} in {source} "
                            "(name an areal scan for it in the surface sheet)")

@@ -13,6 +13,11 @@ per sampling length (the sheet's ``sampling_length_um``, by default lambda_c as 
 Undefined scan points are filled when reading (:mod:`contactlab.surfaces.scans`),
 and the filled fraction is recorded. A parameter the standard leaves undefined for
 a scan is NaN with an ``undefined_reason`` attribute, never a number.
+
+A scan the analysis refuses (unreadable, too many undefined points, smaller than
+lambda_c or the profile length) leaves its parameters NaN and its reason in the
+result (``refused_<kind>_scan``), so a summary can list every surface with its
+parameters or why they are missing; :func:`refused_scans` turns that into an error.
 """
 
 from __future__ import annotations
@@ -40,6 +45,7 @@ N_PROFILES = 5
 #: Largest side of the stored height map used for the report picture (pixels).
 MAP_PIXELS = 256
 
+SCAN_KINDS = ("areal", "profile")
 AREAL = ("Sa", "Sq", "Sp", "Str", "fractal_dimension")
 PROFILE = ("Ra", "Rq", "Rz")
 ATTRS = {
@@ -67,7 +73,8 @@ class SurfaceTexture:
     """Parameters and spectra of one surface (NaN where a scan is absent).
 
     ``undefined`` maps a parameter left NaN for a scan to the reason; ``filled``
-    maps ``areal``/``profile`` to the fraction of that scan's points filled.
+    maps ``areal``/``profile`` to the fraction of that scan's points filled;
+    ``refused`` maps ``areal``/``profile`` to why that scan was not evaluated.
     """
 
     spec: SurfaceSpec
@@ -77,6 +84,7 @@ class SurfaceTexture:
     synthetic: bool = False
     undefined: dict[str, str] = field(default_factory=dict)
     filled: dict[str, float] = field(default_factory=dict)
+    refused: dict[str, str] = field(default_factory=dict)
     max_undefined_fraction: float = field(kw_only=True)
 
 
@@ -213,33 +221,39 @@ def profile_texture(scan: Scan, axis: str, length_um: float, lambda_c: float,
     return {"values": values, "undefined": dict(results[0].undefined), "arrays": arrays}
 
 
-def surface_texture(spec: SurfaceSpec, histogram_bins: int,
-                    max_undefined_fraction: float) -> SurfaceTexture:
+def surface_texture(spec: SurfaceSpec, histogram_bins: int, max_undefined_fraction: float,
+                    record_refused: bool = False) -> SurfaceTexture:
     """Everything the sheet asks for one surface.
 
     Scans with at most ``max_undefined_fraction`` undefined points are filled
-    (:func:`contactlab.surfaces.scans.read_scan`); more is refused.
+    (:func:`contactlab.surfaces.scans.read_scan`); more is refused. A refused
+    scan raises ValueError naming the file, or with ``record_refused`` leaves
+    its parameters NaN and the message in ``refused[kind]``.
     """
     texture = SurfaceTexture(spec, dict.fromkeys(AREAL + PROFILE, np.nan),
                              max_undefined_fraction=max_undefined_fraction)
-    if spec.areal_scan is not None:
-        scan = read_scan(spec.areal_scan, max_undefined_fraction, FILL_SETTING)
+    for kind in SCAN_KINDS:
+        path = spec.areal_scan if kind == "areal" else spec.profile_scan
+        if path is None:
+            continue
+        try:
+            scan = read_scan(path, max_undefined_fraction, FILL_SETTING)
+            if kind == "areal":
+                result = areal_texture(scan, spec.lambda_c_um, histogram_bins)
+            else:
+                assert spec.profile_length_um is not None
+                result = profile_texture(scan, spec.profile_axis, spec.profile_length_um,
+                                         spec.lambda_c_um, spec.sampling_length)
+        except ValueError as exc:
+            if not record_refused:
+                raise
+            texture.refused[kind] = str(exc)
+            continue
         texture.synthetic |= scan.synthetic
-        texture.filled["areal"] = scan.filled_fraction
-        result = areal_texture(scan, spec.lambda_c_um, histogram_bins)
+        texture.filled[kind] = scan.filled_fraction
         texture.values.update(result["values"])
         texture.undefined.update(result["undefined"])
-        texture.areal = result["arrays"]
-    if spec.profile_scan is not None:
-        assert spec.profile_length_um is not None
-        scan = read_scan(spec.profile_scan, max_undefined_fraction, FILL_SETTING)
-        texture.synthetic |= scan.synthetic
-        texture.filled["profile"] = scan.filled_fraction
-        result = profile_texture(scan, spec.profile_axis, spec.profile_length_um,
-                                 spec.lambda_c_um, spec.sampling_length)
-        texture.values.update(result["values"])
-        texture.undefined.update(result["undefined"])
-        texture.profile = result["arrays"]
+        setattr(texture, kind, result["arrays"])
     return texture
 
 
@@ -264,9 +278,9 @@ def surface_dataset(texture: SurfaceTexture) -> xr.Dataset:
     if texture.areal:
         a = texture.areal
         centres = 0.5 * (a["edges"][1:] + a["edges"][:-1])
-        coords["height"] = xr.Variable("height", centres, {
+        coords["roughness_height"] = xr.Variable("roughness_height", centres, {
             "long_name": "height from the mean plane (bin centre)", "units": "um"})
-        data["height_density"] = xr.Variable("height", a["density"], {
+        data["height_density"] = xr.Variable("roughness_height", a["density"], {
             "long_name": "probability density of the roughness heights", "units": "1/um"})
         coords["q_areal"] = xr.Variable("q_areal", a["q"], {
             "long_name": "wavevector magnitude", "units": "1/um"})
@@ -312,6 +326,7 @@ def surface_dataset(texture: SurfaceTexture) -> xr.Dataset:
         profile_length_mm=(spec.profile_length_um or 0.0) / 1000.0,
         synthetic_scans=int(texture.synthetic),
         max_undefined_fraction=texture.max_undefined_fraction,
+        **{f"refused_{kind}_scan": reason for kind, reason in texture.refused.items()},
     )
     return ds
 
@@ -343,7 +358,13 @@ def summary_dataset(datasets: list[xr.Dataset]) -> xr.Dataset:
                   for ds in datasets], dtype=object),
         {"long_name": "why the parameter is NaN (ISO leaves it undefined for the scan); "
                       "empty if defined"})
-    for kind in ("areal", "profile"):
+    data["refused_reason"] = xr.Variable(
+        ("surface", "scan"),
+        np.array([[ds.attrs.get(f"refused_{kind}_scan", "") for kind in SCAN_KINDS]
+                  for ds in datasets], dtype=object),
+        {"long_name": "why the scan was not evaluated (its parameters are NaN); empty if it "
+                      "was evaluated or the sheet names no such scan"})
+    for kind in SCAN_KINDS:
         data[f"filled_fraction_{kind}"] = xr.Variable(
             "surface", [_scalar(ds, f"filled_fraction_{kind}") for ds in datasets], FILLED[kind])
     data["lambda_c"] = xr.Variable("surface", [float(ds["lambda_c"]) for ds in datasets], {
@@ -366,6 +387,15 @@ def summary_dataset(datasets: list[xr.Dataset]) -> xr.Dataset:
         "surface": ("surface", surfaces, {"long_name": "surface id"}),
         "parameter": ("parameter", np.array(AREAL + PROFILE, dtype=object),
                       {"long_name": "texture parameter"}),
+        "scan": ("scan", np.array(SCAN_KINDS, dtype=object), {"long_name": "kind of scan"}),
     })
     summary.attrs["max_undefined_fraction"] = limits.pop()
     return summary
+
+
+def refused_scans(summary: xr.Dataset) -> list[tuple[str, str, str]]:
+    """(surface, scan kind, reason) of every refused scan in a texture summary."""
+    reasons = summary["refused_reason"]
+    return [(str(surface), str(kind), str(reasons.sel(surface=surface, scan=kind).item()))
+            for surface in summary["surface"].values for kind in summary["scan"].values
+            if reasons.sel(surface=surface, scan=kind).item()]

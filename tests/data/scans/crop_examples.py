@@ -1,7 +1,7 @@
-"""How opd-1-crop.opd and x3p-2-crop.x3p were made from SurfaceTopography's example files.
+"""How the *-crop.* files were made from SurfaceTopography's example files.
 
 The originals (test/file_format_examples/ of github.com/ContactEngineering/SurfaceTopography,
-MIT licence, see LICENSE-SurfaceTopography.md) are 4.0 and 3.2 MB. These crops keep the
+MIT licence, see LICENSE-SurfaceTopography.md) are 4.0, 3.2 and 3.2 MB. These crops keep the
 instrument's own file layout and metadata and only cut the height matrix, so the reader,
 the filling of undefined points and the texture analysis meet the same kind of file:
 
@@ -10,6 +10,10 @@ the filling of undefined points and the texture analysis meet the same kind of f
   arrays (SecArr_0, Modulation, Image) are given zero length, which the format allows.
 - x3p-2.x3p (MountainsMap export, 650 x 650 doubles): the first 320 x 320 points, with the
   sizes and both MD5 checksums of ISO 5436-2 updated.
+- plu-1.plu (Sensofar PLu neox, 768 x 576 float32 heights in um): the first 256 x 192
+  points (x, y), with the point counts of the header and the layer updated; the colour
+  image and the other blocks after the height layer, which no reader of this project
+  uses, are left out.
 
 Run as ``python crop_examples.py ORIGINALS_DIR`` from this directory.
 """
@@ -29,6 +33,10 @@ OPD_X = slice(0, 256)  # x pixels kept (file order: x index first)
 OPD_Y = slice(0, 192)  # rows kept in file order (the reader flips y)
 OPD_DROPPED = (b"SecArr_0", b"Modulation", b"Image")
 X3P_SIZE = 320
+PLU_X, PLU_Y = 256, 192  # points kept along x and y
+#: Byte offsets of Sensofar's SPM layout (SurfaceTopography's IO/PLU.py, Gwyddion's sensofar.c):
+#: date (128 s), time (I), comment (256 s), then the calibration block.
+PLU_CALIBRATION = 388
 
 
 def crop_opd(source: Path, target: Path) -> None:
@@ -76,7 +84,34 @@ def crop_x3p(source: Path, target: Path) -> None:
                          f"{hashlib.md5(xml.encode()).hexdigest()} *main.xml\n")
 
 
+def crop_plu(source: Path, target: Path) -> None:
+    """Rewrite a Sensofar PLU topography (one layer) with the height matrix cropped.
+
+    Counts are stored as y then x (calibration, layer) and as y, x, y, x in the
+    scan settings; the matrix is float32 with x fastest. Only the sizes change.
+    """
+    data = bytearray(source.read_bytes())
+    ny, nx, n_tall = struct.unpack_from("<3I", data, PLU_CALIBRATION)
+    struct.pack_into("<3I", data, PLU_CALIBRATION, PLU_Y, PLU_X, PLU_X)
+    area_type = struct.unpack_from("<I", data, PLU_CALIBRATION + 40 + 16)[0]
+    if area_type == 6 or n_tall != nx:  # coordinates area: a different settings block
+        raise ValueError(f"{source}: layout not handled by this script")
+    settings = PLU_CALIBRATION + 40 + 20
+    assert struct.unpack_from("<4I", data, settings) == (ny, nx, ny, nx)
+    struct.pack_into("<4I", data, settings, PLU_Y, PLU_X, PLU_Y, PLU_X)
+    layer = settings + 40 + 12
+    assert data[settings + 40 + 1] == 1, "one layer expected"
+    assert struct.unpack_from("<2I", data, layer) == (ny, nx)
+    struct.pack_into("<2I", data, layer, PLU_Y, PLU_X)
+    start = layer + 8
+    heights = np.frombuffer(bytes(data[start:start + 4 * nx * ny]), "<f4").reshape(ny, nx)
+    min_max = data[start + 4 * nx * ny:start + 4 * nx * ny + 8]
+    cropped = np.ascontiguousarray(heights[:PLU_Y, :PLU_X]).tobytes()
+    target.write_bytes(bytes(data[:start]) + cropped + bytes(min_max))
+
+
 if __name__ == "__main__":
     originals = Path(sys.argv[1])
     crop_opd(originals / "opd-1.opd", Path("opd-1-crop.opd"))
     crop_x3p(originals / "x3p-2.x3p", Path("x3p-2-crop.x3p"))
+    crop_plu(originals / "plu-1.plu", Path("plu-1-crop.plu"))
