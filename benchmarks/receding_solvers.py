@@ -1,14 +1,19 @@
 """CPU time of one receding-contact solution per problem against the targets of issue 14.
 
-Run: python benchmarks/receding_solvers.py            (prints before / after / ratio)
-     python benchmarks/receding_solvers.py --record   (stores the figures as "before")
+Run: OPENBLAS_NUM_THREADS=1 python benchmarks/receding_solvers.py
+         prints before / previous / now, the ratio now : previous and the target
+     python benchmarks/receding_solvers.py --record             stores the figures as "before"
+     python benchmarks/receding_solvers.py --record-previous    ... as "previous"
 
 Each problem is solved cold (no seed, as a single ``contactlab receding ... solve``
 would) in-process with one BLAS thread, after one warm-up call that fills the caches
 of the quadrature rules. CPU time (``time.process_time``) is the minimum over the
 repeats, wall time is printed beside it; on a shared machine CPU time is the fairer
 figure. "before" is read from ``receding_solvers_before.json`` next to this script,
-measured the same way at the commit it names (before the speed work of issue 14).
+measured the same way at the commit it names (before the speed work of issue 14);
+"previous" from ``receding_solvers_previous.json``, the figures of the last round (the
+commit it names; record them by running this script at that commit with
+``--record-previous``, e.g. with PYTHONPATH pointing at an export of its src/).
 """
 
 from __future__ import annotations
@@ -27,6 +32,7 @@ from contactlab.receding.liftoff.patch import solve_patch
 from contactlab.receding.liftoff.sweep import sweep_patch
 
 BEFORE = Path(__file__).with_name("receding_solvers_before.json")
+PREVIOUS = Path(__file__).with_name("receding_solvers_previous.json")
 
 #: name -> (solve, repeats, target CPU seconds or None)
 PROBLEMS: dict[str, tuple[Callable[[], object], int, float | None]] = {
@@ -60,34 +66,46 @@ def measure(solve: Callable[[], object], repeats: int) -> tuple[float, float]:
     return min(cpu), min(wall)
 
 
+def _load(path: Path) -> dict:
+    return json.loads(path.read_text()) if path.exists() else {}
+
+
 def main(argv: list[str]) -> None:
     record = "--record" in argv
-    before = json.loads(BEFORE.read_text()) if BEFORE.exists() and not record else {}
+    record_previous = "--record-previous" in argv
+    before, previous = _load(BEFORE), _load(PREVIOUS)
     figures: dict[str, dict[str, float]] = {}
     solve_line(0.5, 64, 3.5, 5.0)  # warm-up: quadrature rules and load tables
     solve_gap(2.5, 0.5, 100)
-    print(f"{'problem':<44} {'before':>8} {'after':>8} {'ratio':>6} {'target':>7}  wall")
+    print(f"{'problem':<44} {'before':>8} {'previous':>8} {'now':>8} {'now:prev':>8} "
+          f"{'target':>7}  wall")
     for name, (solve, repeats, target) in PROBLEMS.items():
         cpu, wall = measure(solve, repeats)
         if "per point" in name:
             cpu, wall = cpu / SWEEP_POINTS, wall / SWEEP_POINTS
         figures[name] = {"cpu": cpu, "wall": wall}
         old = before.get("figures", {}).get(name, {}).get("cpu")
-        ratio = f"{old / cpu:5.1f}x" if old else "     -"
+        prev = previous.get("figures", {}).get(name, {}).get("cpu")
+        ratio = f"{cpu / prev:7.2f}x" if prev else "       -"
         old_s = f"{old:7.3f}s" if old else "       -"
+        prev_s = f"{prev:7.3f}s" if prev else "       -"
         tgt = f"{target:6.3f}s" if target else "      -"
         met = "" if target is None else (" ok" if cpu < target else " MISSED")
-        print(f"{name:<44} {old_s} {cpu:7.3f}s {ratio} {tgt} {wall:6.3f}s{met}")
-    if before:
-        print(f"before: commit {before['commit'][:10]} ({before['note']})")
-    if record:
+        print(f"{name:<44} {old_s} {prev_s} {cpu:7.3f}s {ratio} {tgt} {wall:6.3f}s{met}")
+    for label, data in (("before", before), ("previous", previous)):
+        if data:
+            print(f"{label}: commit {data['commit'][:10]} ({data['note']})")
+    if record or record_previous:
+        path = BEFORE if record else PREVIOUS
         commit = subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True, text=True,
-                                cwd=BEFORE.parent).stdout.strip()
-        BEFORE.write_text(json.dumps({
-            "commit": commit, "figures": figures,
-            "note": "CPU s, min of repeats, one BLAS thread, measured before issue 14",
-        }, indent=1) + "\n")
-        print(f"recorded as before: {BEFORE}")
+                                cwd=path.parent).stdout.strip()
+        note = ("CPU s, min of repeats, one BLAS thread, measured before issue 14" if record
+                else "CPU s, min of repeats, one BLAS thread, measured before this round")
+        if record_previous and "--commit" in argv:
+            commit = argv[argv.index("--commit") + 1]
+        path.write_text(json.dumps({"commit": commit, "figures": figures, "note": note},
+                                   indent=1) + "\n")
+        print(f"recorded as {'before' if record else 'previous'}: {path}")
 
 
 if __name__ == "__main__":

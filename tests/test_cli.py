@@ -24,6 +24,8 @@ from contactlab.cli import build_parser, main
 HEAVY = ("numpy", "scipy", "xarray", "pandas", "matplotlib", "lmfit", "SurfaceTopography")
 LINE = ["--lam", "3.5", "--e", "5"]
 PATCH = ["--lam-b", "2", "--e-minus-w", "5"]
+#: the options of issue 19 (config receding.*.stick_zone_limit, refine_max_n)
+ROBUST = ["--stick-zone-limit", "1e-4", "--refine-max-n", "100"]
 
 
 def _subparsers(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
@@ -136,13 +138,13 @@ def _bad_input_cases(tmp: Path) -> list[tuple[list[str], list[str]]]:
     return [
         (["receding", "solve", "--problem", "gap", "--f", "0.5", "--w-hat", "2.5",
           "--n", "100000"], ["--n 100000", "GiB"]),
-        (["receding", "gap-sweep", "--w-hat", "1", "--f", "0.5", "--n", "100000",
-          "--out", out], ["--n 100000", "GiB"]),
+        (["receding", "gap-sweep", "--w-hat", "1", "--f", "0.5", "--n", "100000", *ROBUST,
+          "--continuation", "--out", out], ["--n 100000", "GiB"]),
         (["receding", "line-sweep", "--f", "0.5", "--n", "1000000", *LINE, "--chaise",
-          "--out", out], ["--n 1000000", "GiB"]),
+          *ROBUST, "--continuation", "--out", out], ["--n 1000000", "GiB"]),
         (["receding", "liftoff-profile", "--problem", "uniform", "--f", "0.3", "--w-hat", "1",
           "--n", "100", *PATCH, "--no-chaise", "--x-max", "12", "--points", "10000000000",
-          "--out", out], ["--points 10000000000", "GiB"]),
+          *ROBUST, "--out", out], ["--points 10000000000", "GiB"]),
         (["asperity", "bem", "--law", "coulomb", "--f", "1", "--nu", "0.3", "--cells",
           "100000", "--q-points", "11", "--out", out], ["--cells 100000", "GiB"]),
         (["asperity", "grid", "--N", "3", "1000001", "--pt-over-pd", "0.1", "--load-min",
@@ -317,7 +319,7 @@ def test_line_and_patch_science_take_their_parameters_explicitly() -> None:
 
 def test_liftoff_profile_uses_lambda_e_and_chaise_options(tmp_path: Path) -> None:
     base = ["receding", "liftoff-profile", "--problem", "line", "--f", "0.5", "--n", "40",
-            "--x-max", "4", "--points", "9"]
+            "--x-max", "4", "--points", "9", *ROBUST[:2], "--refine-max-n", "40"]
     runs = {"thesis": [*LINE, "--no-chaise"], "other": ["--lam", "3", "--e", "6", "--chaise"]}
     for name, extra in runs.items():
         assert main([*base, *extra, "--out", str(tmp_path / f"{name}.nc")]) == 0
@@ -328,7 +330,8 @@ def test_liftoff_profile_uses_lambda_e_and_chaise_options(tmp_path: Path) -> Non
         assert "shear_chaise" not in thesis and "shear_chaise" in other
     patch = ["receding", "liftoff-profile", "--problem", "uniform", "--f", "0.3", "--w-hat",
              "1", "--n", "40", "--lam-b", "3", "--e-minus-w", "4", "--no-chaise",
-             "--x-max", "4", "--points", "9", "--out", str(tmp_path / "patch.nc")]
+             "--x-max", "4", "--points", "9", *ROBUST[:2], "--refine-max-n", "40",
+             "--out", str(tmp_path / "patch.nc")]
     assert main(patch) == 0
     with xr.open_dataset(tmp_path / "patch.nc") as ds:
         assert (ds.attrs["lambda_b"], ds.attrs["e"]) == (3.0, 5.0)

@@ -116,7 +116,8 @@ def _count(spec: Any) -> int:
 
 
 def semantic_problems(config: Mapping[str, Any], sources: Sequence[Source]) -> list[str]:
-    """What the schema cannot say: empty sweep ranges, mesh levels that are not defined."""
+    """What the schema cannot say: empty sweep ranges, refinement limits below N, mesh
+    levels that are not defined."""
     lines = []
     receding = config.get("receding", {})
     for section, key in (("gap", "w"), ("gap", "f"), ("line", "f"), ("patches", "f"),
@@ -126,6 +127,13 @@ def semantic_problems(config: Mapping[str, Any], sources: Sequence[Source]) -> l
             keys = ["receding", section, key]
             lines.append(f"{source_of(keys, sources)}: {_dotted(keys)}: {_short(dict(spec))} "
                          "is an empty range: stop must be >= start")
+    for section in ("gap", "line", "patches"):
+        spec = receding.get(section, {})
+        if "refine_max_n" in spec and "n" in spec and spec["refine_max_n"] < spec["n"]:
+            keys = ["receding", section, "refine_max_n"]
+            lines.append(f"{source_of(keys, sources)}: {_dotted(keys)}: "
+                         f"{_short(spec['refine_max_n'])} is below receding.{section}.n = "
+                         f"{spec['n']}: refinement starts at n")
     fe = config.get("fe", {})
     if fe.get("enabled"):
         levels = fe.get("levels", {})

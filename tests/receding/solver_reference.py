@@ -2,7 +2,9 @@
 
 ``python tests/receding/solver_reference.py`` solves every case below and writes
 ``tests/receding/data/solver_reference.json``; ``test_solver_reference.py`` solves them
-again and compares. The cases cover the gap problem (ch. 5) in every regime at N = 100 and
+again and compares. ``--solved-only`` replaces only the points recorded as failed or
+inadmissible that are now solved, and lists them under ``updates`` (issue 19).
+The cases cover the gap problem (ch. 5) in every regime at N = 100 and
 at other N, the line load (ch. 6) at N = 500 with and without the preformed density, the
 three patch laws (ch. 7) at N = 100 including wide patches, and quick subsets of the
 default configuration's sweeps (``config/config.yaml``, section ``receding``).
@@ -118,14 +120,62 @@ def compute(group: str) -> dict[str, Any]:
 GROUPS = ("gap", "line", "patch", "sweeps")
 
 
+def _unsolved(record: dict[str, Any]) -> bool:
+    return not (record["converged"] and record["admissible"])
+
+
+def record_solved_only(group: str, data: dict[str, Any]) -> list[str]:
+    """Replace in ``data`` only the reference points that were failed or inadmissible and
+    are now solved (converged and admissible); return their names. Every other point keeps
+    its recorded value, so the comparison still guards them."""
+    new, ref = compute(group), data[group]
+    changed = []
+    for key, value in ref.items():
+        if isinstance(value, list):  # a gap sweep: one record per f
+            for i, (x, r) in enumerate(zip(new[key], value, strict=True)):
+                if _unsolved(r) and not _unsolved(x):
+                    value[i] = x
+                    changed.append(f"{group}: {key}[{i}]")
+        elif key.startswith("gap threshold"):
+            continue
+        elif "sweep" in key:
+            for suffix in ("", "_chaise"):
+                if "converged" + suffix not in value:
+                    continue
+                for i, (c, a) in enumerate(zip(value["converged" + suffix],
+                                               value["admissible" + suffix], strict=True)):
+                    now = new[key]["converged" + suffix][i] and new[key]["admissible" + suffix][i]
+                    if not (c and a) and now:
+                        for name in value:
+                            if name.endswith(suffix) and (suffix or not name.endswith("_chaise")):
+                                value[name][i] = new[key][name][i]
+                        changed.append(f"{group}: {key}{suffix}[{i}]")
+        elif _unsolved(value) and not _unsolved(new[key]):
+            ref[key] = new[key]
+            changed.append(f"{group}: {key}")
+    return changed
+
+
 def main(argv: list[str]) -> None:
-    groups = argv or list(GROUPS)
+    """``[groups]``: record those groups anew; ``--solved-only [groups]``: record only the
+    points that were failed or inadmissible and are now solved (listed in ``updates``)."""
+    solved_only = "--solved-only" in argv
+    groups = [g for g in argv if g != "--solved-only"] or list(GROUPS)
     data = json.loads(PATH.read_text()) if PATH.exists() else {}
+    commit = subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True,
+                            text=True, cwd=PATH.parent).stdout.strip()
     for group in groups:
-        data[group] = compute(group)
-        print(f"{group}: {len(data[group])} cases")
-    data["commit"] = subprocess.run(["git", "rev-parse", "HEAD"], capture_output=True,
-                                    text=True, cwd=PATH.parent).stdout.strip()
+        if solved_only:
+            changed = record_solved_only(group, data)
+            print(f"{group}: {len(changed)} points now solved: {changed}")
+            data.setdefault("updates", []).append(
+                {"commit": commit, "group": group, "points": changed,
+                 "note": "previously failed or inadmissible, now solved (issue 19)"})
+        else:
+            data[group] = compute(group)
+            print(f"{group}: {len(data[group])} cases")
+    if not solved_only:
+        data["commit"] = commit
     PATH.parent.mkdir(parents=True, exist_ok=True)
     PATH.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n")
 

@@ -18,6 +18,9 @@ from contactlab.io import check_cf
 
 LINE = ["--lam", "3.5", "--e", "5"]  # config receding.line (thesis sec. 6.4)
 PATCH = ["--lam-b", "2", "--e-minus-w", "5"]  # config receding.patches (sec. 7.4)
+#: issue 19's options as the config passes them (N = 40 misses the contact checks by up
+#: to 0.01 T next to b: refined to 80)
+ROBUST = ["--stick-zone-limit", "1e-4", "--refine-max-n", "80"]
 
 
 def test_cli_solve_json(capsys: pytest.CaptureFixture[str]) -> None:
@@ -45,36 +48,55 @@ def test_cli_solve_json(capsys: pytest.CaptureFixture[str]) -> None:
 def test_sweeps_gather_profile_report(tmp_path: Path) -> None:
     c0, c1 = tmp_path / "l0.nc", tmp_path / "l1.nc"
     assert main(["receding", "line-sweep", "--f", "0.5", "--n", "40", *LINE, "--chaise",
-                 "--out", str(c0)]) == 0
+                 *ROBUST, "--continuation", "--out", str(c0)]) == 0
     assert main(["receding", "line-sweep", "--f", "0.3", "0.0", "--n", "40", *LINE,
-                 "--chaise", "--out", str(c1)]) == 0
+                 "--chaise", *ROBUST, "--continuation", "--out", str(c1)]) == 0
     line = tmp_path / "line.nc"
     assert main(["receding", "liftoff-gather", str(c0), str(c1), "--out", str(line)]) == 0
     p0 = tmp_path / "u0.nc"
     assert main(["receding", "patch-sweep", "--problem", "uniform", "--f", "0.3", "0.5",
-                 "--w-hat", "1", "2.5", "--n", "40", *PATCH, "--out", str(p0)]) == 0
+                 "--w-hat", "1", "2.5", "--n", "40", *PATCH, *ROBUST, "--continuation",
+                 "--out", str(p0)]) == 0
     uniform = tmp_path / "uniform.nc"
     assert main(["receding", "liftoff-gather", str(p0), "--out", str(uniform)]) == 0
     prof_line = tmp_path / "line_f0.5.nc"
     assert main(["receding", "liftoff-profile", "--problem", "line", "--f", "0.3", "--n",
-                 "40", *LINE, "--chaise", "--x-max", "8", "--out", str(prof_line)]) == 0
+                 "40", *LINE, "--chaise", "--x-max", "8", *ROBUST, "--out",
+                 str(prof_line)]) == 0
     prof_patch = tmp_path / "patch.nc"
     assert main(["receding", "liftoff-profile", "--problem", "uniform", "--f", "0.3",
                  "--w-hat", "1", "--n", "40", *PATCH, "--no-chaise", "--x-max", "8",
-                 "--out", str(prof_patch)]) == 0
+                 *ROBUST, "--out", str(prof_patch)]) == 0
     with xr.open_dataset(line) as ds:
         check_cf(ds)
         assert list(ds["f"].values) == [0.0, 0.3, 0.5]
-        assert (ds["converged"] == 1).all()
+        assert (ds["converged"] == 1).all() and (ds["converged_chaise"] == 1).all()
         for key in ("a", "b", "K_T", "converged", "residual", "remote_slip_error",
-                    "a_chaise", "b_chaise"):
+                    "a_chaise", "b_chaise", "flags", "n_used", "max_check_at_n"):
             assert key in ds
         assert np.all(np.abs(ds["remote_slip_error"].values) < 3e-3)
-        # non-converged points stay in the sweep, flagged, with their residual
-        failed = ds["converged_chaise"].values == 0
-        assert failed.any() and np.all(np.isnan(ds["a_chaise"].values[failed]))
-        assert np.all(np.isfinite(ds["residual_chaise"].values[failed]))
-        assert np.all(ds["regime_chaise"].values[failed] == -1)
+        # the Chaise model at f = 0.5 alone in its chunk has no root of the H-switched
+        # rows at N = 40; the continuous slip rule solves it, and the flag says so
+        assert ds["flags_chaise"].attrs["flag_meanings"].split()[3] == "continuous_slip_rule"
+        assert int(ds["flags_chaise"].sel(f=0.5)) & 8
+        assert ds.attrs["summary_failed"] == 0 and ds.attrs["summary_chaise_failed"] == 0
+        assert ds.attrs["unsolved"] == "" and ds.attrs["summary_points"] == 3
+    # with the limit off, a point below the critical friction stays in the sweep, flagged
+    # no_stick and not converged, with its residual
+    low = tmp_path / "low.nc"
+    assert main(["receding", "line-sweep", "--f", "0.03", "--n", "40", *LINE, "--no-chaise",
+                 "--stick-zone-limit", "0", "--refine-max-n", "40", "--no-continuation",
+                 "--out", str(low)]) == 0
+    with xr.open_dataset(low) as ds:
+        assert int(ds["converged"][0]) == 0 and np.isnan(float(ds["a"][0]))
+        assert np.isfinite(float(ds["residual"][0]))
+        assert ds["regime"].attrs["flag_meanings"].split()[int(ds["regime"][0]) + 1] \
+            == "no_stick"
+    assert main(["receding", "line-sweep", "--f", "0.03", "--n", "40", *LINE, "--no-chaise",
+                 *ROBUST, "--no-continuation", "--out", str(low)]) == 0
+    with xr.open_dataset(low) as ds:  # the same point in the stick-zone limit
+        assert int(ds["converged"][0]) == 1 and float(ds["a"][0]) == 0.0
+        assert int(ds["flags"][0]) & 1 and float(ds["log10_a"][0]) < -4
     with xr.open_dataset(uniform) as ds:
         check_cf(ds)
         assert dict(ds.sizes) == {"f": 2, "w_hat": 2} and (ds["converged"] == 1).all()

@@ -120,7 +120,13 @@ def test_frictionless_limit() -> None:
 def test_critical_friction_and_no_stick_regime() -> None:
     crit = critical_friction(make_load("line"), 64, 3.5, 3.5, 5.0)
     assert crit["converged"] and 0.07 < crit["f_critical"] < 0.1
-    below = solve_line(0.5 * crit["f_critical"], 64, LAM, E)
+    # without the stick-zone limit the point below f_c is flagged, not solved
+    below = solve_line(0.5 * crit["f_critical"], 64, LAM, E, stick_zone_limit=0.0)
     assert not below.converged and below.regime == "no_stick" and np.isnan(below.a)
+    # with it: solved with a = 0, the stick zone ~1e-5 c by matching, and admissible
+    limit = solve_line(0.5 * crit["f_critical"], 64, LAM, E)
+    assert limit.converged and limit.regime == "no_stick" and limit.a == 0.0
+    assert limit.flags == ("stick_zone_limit",) and -9 < limit.log10_a < -4
+    assert limit.admissible and limit.residual < 1e-9
     with pytest.raises(ValueError, match="f must be >= 0"):
         solve_line(-0.1, 64, LAM, E)

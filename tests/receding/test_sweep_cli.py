@@ -80,17 +80,18 @@ def test_cli_solve_and_errors(capsys: pytest.CaptureFixture[str], tmp_path: Path
 def test_cli_chain(tmp_path: Path) -> None:
     """sweep chunks -> gather -> regimes -> profile -> report, as the rules run them."""
     chunk = [tmp_path / "c0.nc", tmp_path / "c1.nc"]
-    assert main(["receding", "gap-sweep", "--w-hat", "1.0", "--f", "0.3", "0.6", "--n", "20",
-                 "--out", str(chunk[0])]) == 0
-    assert main(["receding", "gap-sweep", "--w-hat", "2.5", "--f", "0.3", "0.6", "--n", "20",
-                 "--out", str(chunk[1])]) == 0
+    robust = ["--stick-zone-limit", "1e-30", "--refine-max-n", "80", "--continuation"]
+    assert main(["receding", "gap-sweep", "--w-hat", "1.0", "--f", "0.3", "0.6", "--n", "10",
+                 *robust, "--out", str(chunk[0])]) == 0
+    assert main(["receding", "gap-sweep", "--w-hat", "2.5", "--f", "0.3", "0.6", "--n", "10",
+                 *robust, "--out", str(chunk[1])]) == 0
     gap = tmp_path / "gap.nc"
     assert main(["receding", "gap-gather", str(chunk[1]), str(chunk[0]), "--out", str(gap)]) == 0
     regimes = tmp_path / "regimes.nc"
     assert main(["receding", "gap-regimes", "--sweep", str(gap), "--out", str(regimes)]) == 0
     profile = tmp_path / "p.nc"
     assert main(["receding", "gap-profile", "--w-hat", "2.5", "--f", "0.5", "--n", "20",
-                 "--x-max", "6", "--out", str(profile)]) == 0
+                 "--x-max", "6", *robust[:4], "--out", str(profile)]) == 0
     section = tmp_path / "report" / "sections" / "50_receding_gap.html"
     assert main(["receding", "report-gap", "--sweep", str(gap), "--regimes", str(regimes),
                  "--profiles", str(profile), "--report-dir", str(tmp_path / "report"),
@@ -98,6 +99,17 @@ def test_cli_chain(tmp_path: Path) -> None:
     with xr.open_dataset(gap) as ds:
         assert list(ds["w_hat"].values) == [1.0, 2.5]
         assert "f_sep" in ds and ds.attrs["title"].startswith("Gap problem")
+        # N = 10 misses the contact checks at w/c = 2.5, f = 0.3 (the kink at b): refined,
+        # with the check at N = 10 as its convergence record; at f = 0.6 the central stick
+        # zone is solved in its limit (a1 = 0, ~1e-70 c by matching)
+        assert ds.attrs["summary_inadmissible"] == 0 and ds.attrs["summary_failed"] == 0
+        point = ds.sel(w_hat=2.5, f=0.3)
+        assert int(point["flags"]) & 4 and int(point["n_used"]) == 20
+        assert float(point["max_check_at_n"]) > 5e-3 > float(point["max_slip_mismatch"])
+        limit = ds.sel(w_hat=2.5, f=0.6)
+        assert int(limit["flags"]) & 1 and float(limit["a1"]) == 0.0
+        assert -80 < float(limit["log10_a1"]) < -60
+        assert "--refine-max-n 80" in ds.attrs["history"]
     with xr.open_dataset(regimes) as ds:
         check_cf(ds)
         assert float(ds["w_onset"]) == pytest.approx(1.51116, abs=1e-5)

@@ -34,6 +34,12 @@ rule receding_gap_chunk:
         f=RECEDING_F,
         # f_stick/f_sep only at the main N (the comparison sweeps show the zones)
         thresholds=lambda wc: [] if int(wc.n) == RECEDING["n"] else ["--no-thresholds"],
+        stick_zone_limit=RECEDING["stick_zone_limit"],
+        # the comparison N (Fig. 5.5) shows that N as it is: no refinement there
+        refine_max_n=lambda wc: (
+            RECEDING["refine_max_n"] if int(wc.n) == RECEDING["n"] else int(wc.n)
+        ),
+        continuation=["--continuation"] if RECEDING["continuation"] else ["--no-continuation"],
     log:
         logs("receding/gap_N{n}_{chunk}.log"),
     benchmark:
@@ -41,7 +47,9 @@ rule receding_gap_chunk:
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding gap-sweep --w-hat {params.w:q} --f {params.f:q}"
-        " --n {wildcards.n:q} {params.thresholds:q} --out {output:q} 2> {log:q}"
+        " --n {wildcards.n:q} {params.thresholds:q}"
+        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
+        " {params.continuation:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_gap_gather:
@@ -93,12 +101,16 @@ rule receding_gap_profile:
         f=lambda wc: gap_profile_point(RECEDING["profiles"], wc.point)["f"],
         n=RECEDING["profile_n"],
         x_max=RECEDING["profile_x_max"],
+        stick_zone_limit=RECEDING["stick_zone_limit"],
+        refine_max_n=max(RECEDING["profile_n"], RECEDING["refine_max_n"]),
     log:
         logs("receding/gap_profile_{point}.log"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding gap-profile --w-hat {params.w:q} --f {params.f:q}"
-        " --n {params.n:q} --x-max {params.x_max:q} --out {output:q} 2> {log:q}"
+        " --n {params.n:q} --x-max {params.x_max:q}"
+        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
+        " --out {output:q} 2> {log:q}"
 
 
 rule report_receding_gap:
@@ -113,6 +125,7 @@ rule report_receding_gap:
         tables=table_files(
             result("report/tables/receding_gap_points.csv"),
             result("report/tables/receding_gap_thresholds.csv"),
+            result("report/tables/receding_gap_summary.csv"),
         ),
         pdfs=pdf_files(
             *[
@@ -193,6 +206,9 @@ rule receding_line_chunk:
         lam=LINE["lambda"],
         e=LINE["e"],
         chaise=["--chaise"] if LINE["chaise"] else ["--no-chaise"],
+        stick_zone_limit=LINE["stick_zone_limit"],
+        refine_max_n=LINE["refine_max_n"],
+        continuation=["--continuation"] if LINE["continuation"] else ["--no-continuation"],
     log:
         logs("receding/line_{chunk}.log"),
     benchmark:
@@ -200,7 +216,9 @@ rule receding_line_chunk:
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding line-sweep --f {params.f:q} --n {params.n:q}"
-        " --lam {params.lam:q} --e {params.e:q} {params.chaise:q} --out {output:q} 2> {log:q}"
+        " --lam {params.lam:q} --e {params.e:q} {params.chaise:q}"
+        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
+        " {params.continuation:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_line_gather:
@@ -228,6 +246,9 @@ rule receding_patch_chunk:
         n=PATCHES["n"],
         lam_b=PATCHES["lambda_b"],
         e_minus_w=PATCHES["e_minus_w"],
+        stick_zone_limit=PATCHES["stick_zone_limit"],
+        refine_max_n=PATCHES["refine_max_n"],
+        continuation=["--continuation"] if PATCHES["continuation"] else ["--no-continuation"],
     log:
         logs("receding/patch_{law}_{chunk}.log"),
     benchmark:
@@ -236,7 +257,9 @@ rule receding_patch_chunk:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding patch-sweep --problem {wildcards.law:q}"
         " --f {params.f:q} --w-hat {params.w:q} --n {params.n:q} --lam-b {params.lam_b:q}"
-        " --e-minus-w {params.e_minus_w:q} --out {output:q} 2> {log:q}"
+        " --e-minus-w {params.e_minus_w:q}"
+        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
+        " {params.continuation:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_patch_gather:
@@ -272,6 +295,9 @@ rule receding_table_chunk:
         n=PATCHES["n"],
         lam_b=PATCHES["lambda_b"],
         e_minus_w=PATCHES["e_minus_w"],
+        stick_zone_limit=PATCHES["stick_zone_limit"],
+        refine_max_n=PATCHES["refine_max_n"],
+        continuation=["--continuation"] if PATCHES["continuation"] else ["--no-continuation"],
     log:
         logs("receding/table_{name}_{chunk}.log"),
     benchmark:
@@ -281,7 +307,9 @@ rule receding_table_chunk:
         " contactlab receding patch-sweep --problem table"
         " --table-x {params.x:q} --table-p {params.p:q}"
         " --f {params.f:q} --w-hat {params.w:q} --n {params.n:q} --lam-b {params.lam_b:q}"
-        " --e-minus-w {params.e_minus_w:q} --out {output:q} 2> {log:q}"
+        " --e-minus-w {params.e_minus_w:q}"
+        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
+        " {params.continuation:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_table_gather:
@@ -309,13 +337,17 @@ rule receding_line_profile:
         e=LINE["e"],
         chaise=["--chaise"] if LINE["chaise"] else ["--no-chaise"],
         x_max=LINE["profile_x_max"],
+        stick_zone_limit=LINE["stick_zone_limit"],
+        refine_max_n=LINE["refine_max_n"],
     log:
         logs("receding/line_profile_f{f}.log"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding liftoff-profile --problem line --f {wildcards.f:q}"
         " --n {params.n:q} --lam {params.lam:q} --e {params.e:q} {params.chaise:q}"
-        " --x-max {params.x_max:q} --out {output:q} 2> {log:q}"
+        " --x-max {params.x_max:q}"
+        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
+        " --out {output:q} 2> {log:q}"
 
 
 rule receding_patch_profile:
@@ -332,6 +364,8 @@ rule receding_patch_profile:
         lam_b=PATCHES["lambda_b"],
         e_minus_w=PATCHES["e_minus_w"],
         x_max=PATCHES["profile_x_max"],
+        stick_zone_limit=PATCHES["stick_zone_limit"],
+        refine_max_n=PATCHES["refine_max_n"],
     log:
         logs("receding/{point}.log"),
     shell:
@@ -339,6 +373,7 @@ rule receding_patch_profile:
         " contactlab receding liftoff-profile --problem {params.law:q}"
         " --w-hat {params.w:q} --f {params.f:q} --n {params.n:q} --lam-b {params.lam_b:q}"
         " --e-minus-w {params.e_minus_w:q} --no-chaise --x-max {params.x_max:q}"
+        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
         " --out {output:q} 2> {log:q}"
 
 
@@ -357,6 +392,7 @@ rule report_receding_line_patch:
     output:
         section=result("report/sections/51_receding_line_patch.html"),
         tables=table_files(
+            result("report/tables/receding_liftoff_summary.csv"),
             result("report/tables/receding_line_sweep.csv"),
             result("report/tables/receding_patch_points.csv"),
             result("report/tables/receding_patch_fits.csv"),

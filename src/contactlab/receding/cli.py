@@ -16,13 +16,17 @@ from contactlab.receding.liftoff import cli as liftoff_cli
 
 EXAMPLES = """\
   contactlab receding solve --problem gap --f 0.5 --w-hat 2.5 --n 100 --json
-  contactlab receding gap-sweep --w-hat 1 2 --f 0.3 0.5 --n 100 --out chunk.nc
+  contactlab receding gap-sweep --w-hat 1 2 --f 0.3 0.5 --n 100 --stick-zone-limit 1e-30 \\
+      --refine-max-n 400 --continuation --out chunk.nc
   contactlab receding gap-gather chunk*.nc --out gap.nc
   contactlab receding gap-regimes --sweep gap.nc --out gap_regimes.nc
-  contactlab receding gap-profile --w-hat 2.5 --f 0.5 --n 100 --x-max 6 --out profile.nc
-  contactlab receding line-sweep --f 0.5 0.3 --n 500 --lam 3.5 --e 5 --chaise --out l.nc
+  contactlab receding gap-profile --w-hat 2.5 --f 0.5 --n 100 --x-max 6 \\
+      --stick-zone-limit 1e-30 --refine-max-n 400 --out profile.nc
+  contactlab receding line-sweep --f 0.5 0.3 --n 500 --lam 3.5 --e 5 --chaise \\
+      --stick-zone-limit 1e-4 --refine-max-n 1000 --continuation --out l.nc
   contactlab receding liftoff-profile --problem uniform --f 0.3 --w-hat 1 --n 100 \\
-      --lam-b 2 --e-minus-w 5 --no-chaise --x-max 12 --out profile.nc
+      --lam-b 2 --e-minus-w 5 --no-chaise --x-max 12 --stick-zone-limit 1e-4 \\
+      --refine-max-n 400 --out profile.nc
 Lengths are in units of the layer thickness c (w/c, x/c), tractions in units of the
 applied pressure or load; N is the number of Gauss-Chebyshev points.
 """
@@ -64,6 +68,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                        help="patches: map scale lambda_b (sec. 7.4; thesis 2)")
     solve.add_argument("--e-minus-w", type=float, default=None,
                        help="patches: (e - w)/c, end of the cubic of A_y (thesis 5)")
+    solve.add_argument("--stick-zone-limit", type=float, default=None,
+                       help="stick zone (c) below which an unresolved one is solved in its "
+                            "limit of zero width; 0: never (default: the solver's, 1e-30 for "
+                            "the gap problem, 1e-4 for line and patches)")
     solve.add_argument("--json", action="store_true", help="print one JSON object")
     solve.set_defaults(func=_solve)
     gap_cli.register(commands)

@@ -10,12 +10,22 @@ from __future__ import annotations
 
 import contextlib
 from collections.abc import Iterator
+from functools import lru_cache
 
-from threadpoolctl import threadpool_limits
+from threadpoolctl import ThreadpoolController
+
+
+@lru_cache(maxsize=1)
+def _controller() -> ThreadpoolController:
+    """The thread pools of the loaded libraries, found once: the search reads the process's
+    memory map, ~1 ms, which a gap solution of 20 ms would pay at every root finder."""
+    import scipy.linalg  # noqa: F401  (its BLAS among the libraries found)
+
+    return ThreadpoolController()
 
 
 @contextlib.contextmanager
 def single_thread() -> Iterator[None]:
     """Run the body with the BLAS of numpy and scipy limited to one thread."""
-    with threadpool_limits(limits=1, user_api="blas"):
+    with _controller().limit(limits=1, user_api="blas"):
         yield

@@ -52,7 +52,7 @@ from contactlab.receding.core.kernels import Kind, even_part, regular_pair
 from contactlab.receding.core.quadrature import (
     bounded_rule,
     cauchy_matrix,
-    cumulative_matrix,
+    cumulative_values,
     interpolation_matrix,
 )
 
@@ -171,7 +171,6 @@ class DensityInterval:
         t = self.preimage(x)
         if self.mapping == "linear":
             return cauchy_matrix(t, self.n)
-        out = np.empty_like(d)
         mapped = np.isfinite(t)
         if self.mapping == "semi-infinite":
             # below the interval by more than ~200/N^2 in t the plain sum agrees with the
@@ -179,11 +178,18 @@ class DensityInterval:
             # rho^-2N < 1e-17); skip the O(N) transform there (images, far points)
             mapped &= t > -1.0 - 200.0 / self.n**2
         if mapped.all():
-            out = self._mapped_cauchy(t, d, rule)
-        elif mapped.any():
-            out[mapped] = self._mapped_cauchy(t[mapped], d[mapped], rule)
-        if (~mapped).any():
-            out[~mapped] = self.weights[None, :] / (np.pi * d[~mapped])
+            return self._mapped_cauchy(t, d, rule)
+        if not mapped.any():
+            return self.weights[None, :] / (np.pi * d)
+        rows = np.flatnonzero(mapped)
+        if rows[-1] - rows[0] + 1 == rows.size:  # one block of rows (sorted points)
+            block = slice(rows[0], rows[-1] + 1)
+            out = self.weights[None, :] / (np.pi * d)
+            out[block] = self._mapped_cauchy(t[block], d[block], rule)
+            return out
+        out = np.empty_like(d)
+        out[mapped] = self._mapped_cauchy(t[mapped], d[mapped], rule)
+        out[~mapped] = self.weights[None, :] / (np.pi * d[~mapped])
         return out
 
     def _mapped_cauchy(self, t: np.ndarray, d: np.ndarray, rule) -> np.ndarray:
@@ -202,8 +208,8 @@ class DensityInterval:
         if self.parity:
             # image at -xi with parity * phi: H(x + xi) = kernel parity * H(-x - xi)
             ms, mn = self._own(-x)
-            shear = shear + self.parity * _KERNEL_PARITY[(self.kind, "shear")] * ms
-            normal = normal + self.parity * _KERNEL_PARITY[(self.kind, "normal")] * mn
+            _add(shear, ms, self.parity * _KERNEL_PARITY[(self.kind, "shear")])
+            _add(normal, mn, self.parity * _KERNEL_PARITY[(self.kind, "normal")])
         return shear, normal
 
     def normal_influence(self, x: np.ndarray) -> np.ndarray:
@@ -231,8 +237,9 @@ class DensityInterval:
         if not self.parity:
             return shear.copy(), normal.copy()
         ms, mn = self._own(-x)
-        return (shear + self.parity * _KERNEL_PARITY[(self.kind, "shear")] * ms,
-                normal + self.parity * _KERNEL_PARITY[(self.kind, "normal")] * mn)
+        # own + sign * image, written into the image's arrays (no new ones)
+        return (_add(ms, shear, self.parity * _KERNEL_PARITY[(self.kind, "shear")], True),
+                _add(mn, normal, self.parity * _KERNEL_PARITY[(self.kind, "normal")], True))
 
     # ---- densities and displacements
     def density(self, phi: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -258,7 +265,7 @@ class DensityInterval:
         """int_lo^x B_bar dxi (0 below lo, the total above hi)."""
         t = np.nan_to_num(self.preimage(x), nan=-2.0)
         values = np.asarray(phi, dtype=float) * self.derivative(bounded_rule(self.n).s)
-        return cumulative_matrix(t, self.n) @ values
+        return cumulative_values(t, self.n, values)
 
     def displacement(self, phi: np.ndarray, x: np.ndarray) -> np.ndarray:
         """Relative displacement -int_{-inf}^{x} B_bar dxi (slip or separation) at x.
@@ -272,6 +279,14 @@ class DensityInterval:
             # parity * (total - int_{-inf}^{-x} B)
             out = out - self.parity * (self.integral(phi) - self._cumulative(phi, -x))
         return out
+
+
+def _add(out: np.ndarray, other: np.ndarray, sign: int, reverse: bool = False) -> np.ndarray:
+    """In place: out += sign * other, or (``reverse``) out = other + sign * out; sign is +-1
+    (the same numbers as the expressions, without temporaries)."""
+    if not reverse:
+        return np.add(out, other, out=out) if sign > 0 else np.subtract(out, other, out=out)
+    return np.add(other, out, out=out) if sign > 0 else np.subtract(other, out, out=out)
 
 
 @lru_cache(maxsize=16)

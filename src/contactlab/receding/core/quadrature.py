@@ -179,13 +179,24 @@ def cumulative_matrix(t: np.ndarray, n: int) -> np.ndarray:
     (1/2) [sin((m+2) th)/(m+2) - sin(m th)/m] (m >= 1) and (1/2)[pi - th + sin(2 th)/2]
     (m = 0), th = arccos(t). Points beyond +1 get the full integral, below -1 zero.
     """
+    return _cumulative_modes(t, n) @ _coefficient_matrix(n)
+
+
+def cumulative_values(t: np.ndarray, n: int, phi: np.ndarray) -> np.ndarray:
+    """``cumulative_matrix(t, n) @ phi`` without the matrix: the U-coefficients of phi
+    first, then one product with the modes (O(len(t) N) instead of O(len(t) N^2))."""
+    return _cumulative_modes(t, n) @ (_coefficient_matrix(n) @ np.asarray(phi, dtype=float))
+
+
+def _cumulative_modes(t: np.ndarray, n: int) -> np.ndarray:
+    """G[k, m] = int_{-1}^{t_k} sqrt(1-s^2) U_m(s) ds (see ``cumulative_matrix``)."""
     t = np.clip(np.asarray(t, dtype=float).ravel(), -1.0, 1.0)
     th = np.arccos(t)[:, None]
     m = np.arange(n)[None, :]
     msafe = np.where(m == 0, 1, m)
     g = 0.5 * (np.sin((m + 2) * th) / (m + 2) - np.sin(m * th) / msafe)
     g[:, 0] = 0.5 * (np.pi - th[:, 0] + 0.5 * np.sin(2 * th[:, 0]))
-    return g @ _coefficient_matrix(n)
+    return g
 
 
 def legendre(n: int, lo: float, hi: float) -> tuple[np.ndarray, np.ndarray]:

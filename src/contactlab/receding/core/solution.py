@@ -13,7 +13,7 @@ when every check holds within :data:`CHECK_TOL`.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from typing import Protocol
+from typing import Protocol, TypeVar
 
 import numpy as np
 
@@ -27,6 +27,15 @@ CHECK_TOL = 5e-3
 CHECKS = ("max_tension", "max_stick_excess", "max_slip_mismatch", "max_separated_traction",
           "max_overlap")
 
+#: How a point was solved beyond one plain root-finder run (bit i of a sweep's ``flags``):
+#: ``stick_zone_limit`` -- the central stick zone is below anything double precision or the
+#: quadrature resolves and is solved in its limit (zero width, ``core.limit``);
+#: ``continuation`` -- solved from a solved neighbour of the sweep after the plain pass
+#: failed; ``refined`` -- N raised until the contact checks hold (``refine_in_n``);
+#: ``continuous_slip_rule`` -- lifting-off problems: the friction term on every shear row,
+#: where the H(b - x)-switched rows have no root (``liftoff.solver``).
+FLAGS = ("stick_zone_limit", "continuation", "refined", "continuous_slip_rule")
+
 
 class ContactSolution(Protocol):
     """The protocol of both problems' solutions (lengths in c, tractions in p or T)."""
@@ -39,6 +48,7 @@ class ContactSolution(Protocol):
     nfev: int
     message: str
     checks: dict[str, float]
+    flags: tuple[str, ...]
 
     @property
     def admissible(self) -> bool: ...
@@ -50,10 +60,54 @@ class ContactSolution(Protocol):
     def separation(self, x: np.ndarray) -> np.ndarray: ...
 
 
+S = TypeVar("S", bound=ContactSolution)
+
+
 def admissible(checks: Mapping[str, float]) -> bool:
     """Every contact check holds within :data:`CHECK_TOL` (False when none were run)."""
     return bool(checks) and all(v <= CHECK_TOL for k, v in checks.items()
                                 if k.startswith("max_"))
+
+
+def largest_check(checks: Mapping[str, float]) -> float:
+    """The largest contact check value (admissible when <= :data:`CHECK_TOL`; inf when none
+    were run): the violation that refinement in N drives down."""
+    values = [v for k, v in checks.items() if k.startswith("max_")]
+    return float(max(values)) if values else np.inf
+
+
+def refine_in_n(solve_at: Callable[[int, S], S], sol: S, n_max: int) -> tuple[S, float]:
+    """Raise N (doubling, at most ``n_max``) while a converged solution fails the contact
+    checks, each solve seeded by the last (``solve_at(n, seed)``); issue 19, item 2.
+
+    Next to a kink of the slip rule (eq. 5.19 at |x| = b) the checks fail by a small
+    margin that falls with N. Returns the admissible solution or, if none is reached by
+    ``n_max``, the one with the smallest violation (flag ``refined`` when N was raised),
+    and the violation at the starting N: the pair is the convergence record.
+    """
+    start = largest_check(sol.checks)
+    best, n = sol, sol.n
+    while sol.converged and not best.admissible and n < n_max:
+        n = min(2 * n, n_max - n_max % 2)
+        trial = solve_at(n, best)
+        if trial.converged and largest_check(trial.checks) < largest_check(best.checks):
+            best = trial
+    if best is not sol:
+        best.flags = (*best.flags, "refined")
+    return best, start
+
+
+def flag_bits(flags: Sequence[str]) -> int:
+    """The bit field of :data:`FLAGS` for one point."""
+    return sum(1 << FLAGS.index(name) for name in set(flags))
+
+
+def flag_attrs() -> dict:
+    """CF attributes of a sweep's ``flags`` variable (bit field of :data:`FLAGS`)."""
+    return {"long_name": "how the point was solved (bit field, 0: plain root finding)",
+            "units": "1", "flag_masks": np.array([1 << i for i in range(len(FLAGS))],
+                                                 dtype=np.int8),
+            "flag_meanings": " ".join(FLAGS)}
 
 
 def contact_checks(x: np.ndarray, f: float, s: np.ndarray, n: np.ndarray, *,

@@ -11,7 +11,10 @@ and the side condition"). The thesis minimised the leftovers with a simplex sear
 solves: a secant (Broyden) Newton iteration first, started from a finite-difference
 Jacobian or from one passed in (e.g. the coarse-N Jacobian of an N-continuation), and
 MINPACK hybrd from the same guess when that iteration stalls. The system at the root is
-returned with it, so callers need not assemble it again.
+returned with it, so callers need not assemble it again. Between the evaluations of one
+search the square systems are close, so the LU factors of the last factorisation serve as
+the preconditioner of iterative refinement (:class:`Factor`): one dense LU per search
+instead of one per evaluation, with the same backward error.
 """
 
 from __future__ import annotations
@@ -41,8 +44,9 @@ class LinearSystem:
     leftover: list[int]
     targets: list[int] | None = None
 
-    def solve(self) -> tuple[np.ndarray, np.ndarray]:
-        """(phi, leftover residuals) from the square subset of rows."""
+    def solve(self, factor: Factor | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """(phi, leftover residuals) from the square subset of rows (through ``factor``, which
+        may reuse the LU factors of a nearby system)."""
         keep = np.ones(self.matrix.shape[0], dtype=bool)
         keep[self.leftover] = False
         square = self.matrix[keep]
@@ -50,9 +54,66 @@ class LinearSystem:
             raise ValueError(
                 f"square subset is {square.shape}; need as many kept rows as unknowns"
             )
-        phi = linalg.solve(square, self.rhs[keep], check_finite=False)
+        if factor is None:
+            phi = linalg.solve(square, self.rhs[keep], check_finite=False)
+        else:
+            phi = factor.solve(square, self.rhs[keep])
         residual = self.matrix[self.leftover] @ phi - self.rhs[self.leftover]
         return phi, residual
+
+
+class Factor:
+    """Dense solves that reuse the LU factors of the last system of the same size.
+
+    Between the iterations of a root finder the transition points move little, and the
+    square system with them: the LU factors of the last full factorisation then serve as
+    the preconditioner of iterative refinement, x += (LU)^-1 (b - A x), each sweep O(n^2)
+    against the O(n^3) of a factorisation (n = 1001 at N = 500: 2 ms against 20 ms). The
+    sweeps stop at the backward error of a direct solve, |b - A x| <= 8 eps (|A| |x| +
+    |b|) in the max norm; where they stop contracting (a large step of the transition
+    points) the system is factorised afresh and its factors kept.
+    """
+
+    #: most refinement sweeps before a fresh factorisation
+    SWEEPS = 8
+
+    def __init__(self) -> None:
+        self.lu: tuple[np.ndarray, np.ndarray] | None = None
+        self.norm = np.inf
+        self.factorisations = 0
+        self.sweeps = 0
+
+    def solve(self, square: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        """x with square @ x = rhs; ``square`` may be overwritten (a fresh copy)."""
+        if self.lu is not None and self.lu[0].shape == square.shape:
+            x = self._refine(square, rhs)
+            if x is not None:
+                return x
+        # the max-norm of the rows, for the stopping rule of later refinements
+        self.norm = float(np.max(np.sum(np.abs(square), axis=1)))
+        self.lu = linalg.lu_factor(square, overwrite_a=True, check_finite=False)
+        self.factorisations += 1
+        return linalg.lu_solve(self.lu, rhs, check_finite=False)
+
+    def _refine(self, square: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
+        assert self.lu is not None
+        x = linalg.lu_solve(self.lu, rhs, check_finite=False)
+        if not np.all(np.isfinite(x)):
+            return None
+        norm_a = self.norm  # of the factorised system: the systems are close
+        norm_b = float(np.max(np.abs(rhs)))
+        previous = np.inf
+        for _ in range(self.SWEEPS):
+            r = rhs - square @ x
+            err = float(np.max(np.abs(r)))
+            self.sweeps += 1
+            if err <= 8.0 * np.finfo(float).eps * (norm_a * float(np.max(np.abs(x))) + norm_b):
+                return x
+            if not err < 0.25 * previous:  # not contracting: factorise afresh
+                return None
+            previous = err
+            x = x + linalg.lu_solve(self.lu, r, check_finite=False)
+        return None
 
 
 @dataclass
@@ -105,11 +166,13 @@ def find_transitions(
 class _Evaluations:
     """The leftover residuals of ``assemble(p)``, remembering the systems of recent points."""
 
-    def __init__(self, assemble: Callable[[np.ndarray], LinearSystem], size: int) -> None:
+    def __init__(self, assemble: Callable[[np.ndarray], LinearSystem], size: int,
+                 factor: Factor | None = None) -> None:
         self.assemble = assemble
         self.size = size
         self.count = 0
         self.recent: dict[bytes, tuple[LinearSystem | None, np.ndarray, np.ndarray]] = {}
+        self.factor = Factor() if factor is None else factor
 
     def full(self, p: np.ndarray) -> tuple[LinearSystem | None, np.ndarray, np.ndarray]:
         """(system, phi, all leftover residuals) at p, assembled at most once per point."""
@@ -117,7 +180,7 @@ class _Evaluations:
         if key not in self.recent:
             try:
                 system = self.assemble(p)
-                phi, res = system.solve()
+                phi, res = system.solve(self.factor)
             except (ValueError, np.linalg.LinAlgError, FloatingPointError):
                 system, phi, res = None, np.array([]), np.full(self.size, np.inf)
             self.count += 1

@@ -34,6 +34,7 @@ def solution_summary(sol: Any, seconds: float, problem: str = "gap") -> dict:
         "a1": sol.a1, "a2": sol.a2, "a3": sol.a3, "b": sol.b,
         "converged": bool(sol.converged), "admissible": bool(sol.admissible),
         "residual": sol.residual, "iterations": sol.nfev, "lambda": sol.lam,
+        "flags": " ".join(sol.flags), "log10_a1": sol.log10_a1,
         "seconds": round(seconds, 4), **sol.checks,
     })
 
@@ -46,7 +47,8 @@ def run_solve(args: argparse.Namespace) -> None:
     from contactlab.receding.gap.solver import solve_gap
 
     start = time.perf_counter()
-    sol = solve_gap(args.w_hat, args.f, args.n)
+    kwargs = {} if args.stick_zone_limit is None else {"stick_zone_limit": args.stick_zone_limit}
+    sol = solve_gap(args.w_hat, args.f, args.n, **kwargs)
     summary = solution_summary(sol, time.perf_counter() - start, args.problem)
     if args.json:
         print(json.dumps(summary))
@@ -66,20 +68,26 @@ def _sweep(args: argparse.Namespace) -> None:
     from contactlab.receding.gap.sweep import sweep_dataset
 
     ds = sweep_dataset(np.asarray(args.w_hat), np.asarray(args.f), args.n,
-                       thresholds=not args.no_thresholds)
+                       thresholds=not args.no_thresholds,
+                       stick_zone_limit=args.stick_zone_limit, refine_max_n=args.refine_max_n,
+                       continuation=args.continuation)
     stamp(ds, title=f"Gap problem (thesis ch. 5): transition points over (f, w/c), N = {args.n}",
           source=SOURCE,
           history=f"contactlab receding gap-sweep --w-hat {' '.join(map(str, args.w_hat))} "
-                  f"--f {' '.join(map(str, args.f))} --n {args.n}")
+                  f"--f {' '.join(map(str, args.f))} --n {args.n} --stick-zone-limit "
+                  f"{args.stick_zone_limit} --refine-max-n {args.refine_max_n} "
+                  f"--{'' if args.continuation else 'no-'}continuation")
     write_netcdf(ds, args.out)
 
 
 def _gather(args: argparse.Namespace) -> None:
     from contactlab.io import concat_chunks, stamp, write_netcdf
+    from contactlab.receding.core.summary import summary_attrs
 
     ds, parts = concat_chunks(args.chunks, "w_hat")
     if len({int(part.attrs.get("N", -1)) for part in parts}) != 1:
         raise ValueError(f"sweep chunks {', '.join(map(str, args.chunks))} differ in N")
+    ds.attrs.update(summary_attrs(ds))
     stamp(ds, title=f"Gap problem (thesis ch. 5): transition points over (f, w/c), "
                     f"N = {ds.attrs.get('N')}",
           source=SOURCE, history=f"contactlab receding gap-gather of {len(parts)} chunks")
@@ -120,11 +128,14 @@ def _profile(args: argparse.Namespace) -> None:
     from contactlab.io import stamp, write_netcdf
     from contactlab.receding.gap.sweep import profile_dataset
 
-    ds = profile_dataset(args.w_hat, args.f, args.n, args.x_max, args.points)
+    ds = profile_dataset(args.w_hat, args.f, args.n, args.x_max, args.points,
+                         stick_zone_limit=args.stick_zone_limit,
+                         refine_max_n=args.refine_max_n)
     stamp(ds, title=f"Gap problem (thesis ch. 5): interface profiles at w/c = {args.w_hat}, "
                     f"f = {args.f}", source=SOURCE,
           history=f"contactlab receding gap-profile --w-hat {args.w_hat} --f {args.f} "
-                  f"--n {args.n}")
+                  f"--n {args.n} --stick-zone-limit {args.stick_zone_limit} "
+                  f"--refine-max-n {args.refine_max_n}")
     write_netcdf(ds, args.out)
 
 
@@ -133,6 +144,17 @@ def _report(args: argparse.Namespace) -> None:
 
     build_section(args.sweep, args.compare, args.regimes, args.profiles, args.report_dir,
                   args.out)
+
+
+def add_robustness(parser: argparse.ArgumentParser, section: str) -> None:
+    """``--stick-zone-limit`` and ``--refine-max-n`` (required: the config is their home)."""
+    parser.add_argument("--stick-zone-limit", type=float, required=True,
+                        help="stick zone (units of c) below which an unresolved one is solved "
+                             f"in its limit of zero width; 0: never (config "
+                             f"{section}.stick_zone_limit)")
+    parser.add_argument("--refine-max-n", type=int, required=True,
+                        help="largest N to which a point failing the contact checks is "
+                             f"re-solved; --n: none (config {section}.refine_max_n)")
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -150,6 +172,10 @@ def register(commands: argparse._SubParsersAction) -> None:
     sweep.add_argument("--n", type=int, required=True, help=n_help)
     sweep.add_argument("--no-thresholds", action="store_true",
                        help="skip f_stick/f_sep per w/c")
+    add_robustness(sweep, "receding.gap")
+    sweep.add_argument("--continuation", action=argparse.BooleanOptionalAction, required=True,
+                       help="retry unconverged points from solved neighbours in f and w/c "
+                            "(config receding.gap.continuation)")
     sweep.add_argument("--out", type=Path, required=True, help="netCDF output (one chunk)")
     sweep.set_defaults(func=_sweep)
 
@@ -180,6 +206,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                          help="profile on x/c in [-x_max, x_max] (config "
                               "receding.gap.profile_x_max)")
     profile.add_argument("--points", type=int, default=601, help="points of the profile")
+    add_robustness(profile, "receding.gap")
     profile.add_argument("--out", type=Path, required=True, help="netCDF output")
     profile.set_defaults(func=_profile)
 

@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from contactlab.receding.core.summary import sweep_counts, unsolved_points
 from contactlab.report.section import Section
 
 FIGURES = {
@@ -18,7 +19,8 @@ FIGURES = {
     "tractions": "receding_gap_tractions.png",
     "displacements": "receding_gap_displacements.png",
 }
-TABLES = {"points": "receding_gap_points.csv", "thresholds": "receding_gap_thresholds.csv"}
+TABLES = {"points": "receding_gap_points.csv", "thresholds": "receding_gap_thresholds.csv",
+          "summary": "receding_gap_summary.csv"}
 
 
 def _open(path: Path) -> xr.Dataset:
@@ -26,8 +28,10 @@ def _open(path: Path) -> xr.Dataset:
         return ds.load()
 
 
-def regime_figure(regimes: xr.Dataset) -> plt.Figure:
-    """Fig. 5.4: f_stick(w) and f_sep(w) with the solved grid points by regime."""
+def regime_figure(regimes: xr.Dataset, sweep: xr.Dataset | None = None) -> plt.Figure:
+    """Fig. 5.4: f_stick(w) and f_sep(w) with the solved grid points by regime; with the
+    sweep, points solved in the stick-zone limit and points failing the contact checks are
+    marked too."""
     fig, ax = plt.subplots(figsize=(7.5, 4))
     w = regimes["w_hat"].values
     ax.plot(w, regimes["f_stick"], "k-", label="f_stick (bilateral, eqs 5.1-5.2)")
@@ -46,6 +50,17 @@ def regime_figure(regimes: xr.Dataset) -> plt.Figure:
             mask = code == value
             if mask.any():
                 ax.scatter(ww[mask], ff[mask], marker=marker, s=10, color=color, label=label)
+        if sweep is not None and "flags" in sweep:
+            flags = sweep["flags"].transpose("f", "w_hat").values.astype(int)
+            limit = (flags & 1).astype(bool) & (code >= 0)
+            if limit.any():
+                ax.scatter(ww[limit], ff[limit], marker="s", s=22, facecolors="none",
+                           edgecolors="k", linewidths=0.6, label="slip, stick zone a1 -> 0")
+            bad = (sweep["converged"] == 1) & (sweep["admissible"] == 0)
+            bad = bad.transpose("f", "w_hat").values
+            if bad.any():
+                ax.scatter(ww[bad], ff[bad], marker="+", s=30, color="m",
+                           label="fails the contact checks")
     if np.isfinite(onset):
         ax.axvline(onset, color="0.5", lw=0.8, ls=":")
         ax.annotate(f"separation only for w/c > {onset:.3f}", (onset, 0.02),
@@ -77,6 +92,12 @@ def zones_figure(sweeps: list[xr.Dataset], f_fixed: float, w_fixed: float) -> pl
             bottom.plot(col["f"], col[key], color=color, label=f"{key}, N = {n}", **style)
         style = dict(ls="-", marker=".", ms=3) if k == 0 else dict(ls="", marker="x", ms=5)
         log_a1.semilogy(col["f"], col["a1"], color="C0", label=f"a1, N = {n}", **style)
+        if "log10_a1" in col and np.isfinite(col["log10_a1"].values).any():
+            # a1 of the stick-zone limit by matching (reported as 0); below 1e-300 off scale
+            matched = np.power(10.0, np.clip(col["log10_a1"].values, -300, 0))
+            log_a1.semilogy(col["f"], np.where(np.isfinite(col["log10_a1"]), matched, np.nan),
+                            ls="", marker="s", mfc="none", color="C0" if k == 0 else "C7",
+                            ms=4, label=f"a1 -> 0 limit, matched, N = {n}")
     top.set_xlabel("w/c")
     top.set_title(f"f = {float(sweeps[0]['f'].sel(f=f_fixed, method='nearest')):g}",
                   fontsize=9)
@@ -151,8 +172,20 @@ def points_table(profiles: list[xr.Dataset]) -> pd.DataFrame:
             "a1/c": "–" if not np.isfinite(a["a1"]) else f"{a['a1']:.3e}",
             "a2/c": a["a2"], "b/c": a["b"], "a3/c": a["a3"],
             "residual": a["residual"], "converged": int(a["converged"]),
-            "admissible": int(a["admissible"]),
+            "admissible": int(a["admissible"]), "flags": a.get("flags", ""),
+            "log10 a1 (limit)": a.get("log10_a1", np.nan),
         })
+    return pd.DataFrame(rows)
+
+
+def summary_table(sweeps: list[xr.Dataset]) -> pd.DataFrame:
+    """How the points of each sweep were solved (``core.summary``), one row per N."""
+    rows = []
+    for one in sweeps:
+        counts = sweep_counts(one)
+        counts.pop("continuous_slip_rule", None)  # lifting-off problems only
+        rows.append({"N": int(one.attrs["N"]), **counts,
+                     "N refined up to": int(one.attrs.get("refine_max_n", one.attrs["N"]))})
     return pd.DataFrame(rows)
 
 
@@ -164,22 +197,32 @@ def thresholds_table(regimes: xr.Dataset, every: int = 1) -> pd.DataFrame:
 
 
 def _diagnostics_note(sweeps: list[xr.Dataset]) -> str:
-    """Counts of failed and flagged sweep points, by N and by likely cause."""
+    """What the summary table counts, and every point left failed or inadmissible."""
     parts = []
     for one in sweeps:
-        failed = int((one["converged"] == 0).sum())
-        flagged = (one["admissible"] == 0) & (one["converged"] == 1)
-        tiny = flagged & (one["regime"] == 1) & (one["a1"] < 1e-3)
-        parts.append(
-            f"N = {one.attrs['N']}: {int(one['converged'].size)} points, {failed} not "
-            f"converged, {int(flagged.sum())} converged but outside the check tolerance "
-            f"({int(tiny.sum())} of them slip solutions with a central stick zone a1 < 1e-3)"
-        )
+        counts = sweep_counts(one)
+        left = unsolved_points(one)
+        shown_as_is = int(one.attrs.get("refine_max_n", one.attrs["N"])) == one.attrs["N"]
+        text = (f"N = {one.attrs['N']}{' (not refined)' if shown_as_is else ''}: "
+                f"{counts['points']} points, {counts['solved']} solved "
+                f"and within the check tolerance ({counts['stick_zone_limit']} in the limit "
+                f"of a vanishing stick zone, {counts['refined']} after raising N, "
+                f"{counts['continuation']} from a neighbour), {counts['failed']} not "
+                f"converged, {counts['inadmissible']} converged but outside the tolerance")
+        if left:
+            shown = left if len(left) <= 12 else [*left[:12], f"... {len(left) - 12} more"]
+            text += " -- " + "; ".join(shown)
+        parts.append(text)
     return (
         "; ".join(parts) + ". Checks run between the nodes on a dense grid; the typical "
-        "misses are mismatches of a few 1e-3 p next to the kink of eq. (5.19) at |x| = b "
-        "and around a vanishing central stick zone, both shrinking with N. Every point keeps "
-        "its residual, checks and flag in the results file."
+        "misses, a few 1e-3 p next to the kink of eq. (5.19) at |x| = b, fall with N, so "
+        "such points are solved again at larger N (flag refined; the largest check at the "
+        "sweep's N stays in the result as max_check_at_n). Where the central stick zone a1 "
+        "is below anything the log map resolves (near f_sep and as f -> 0) the slip regime "
+        "is solved in its limit a1 -> 0: a log-singular glide density carries the jump of "
+        "the shear traction at x = 0, a1 is reported as 0 and its size by matching as "
+        "log10_a1 (flag stick_zone_limit). Every point keeps its residual, checks and flags "
+        "in the results file."
     )
 
 
@@ -218,8 +261,9 @@ def build_section(sweep_path: Path, compare_paths: list[Path], regimes_path: Pat
            if np.isfinite(onset) else "")
     )
     section.note(_diagnostics_note(sweeps))
-    section.figure(regime_figure(regimes),
-                   "Solution regimes against w/c and f (cf. Fig. 5.4)",
+    section.figure(regime_figure(regimes, sweep),
+                   "Solution regimes against w/c and f (cf. Fig. 5.4); hollow squares: slip "
+                   "solutions with the central stick zone in its limit a1 -> 0",
                    figures / FIGURES["regimes"])
     section.figure(zones_figure(sweeps, f_fixed, w_fixed),
                    f"Transition points: against w/c at f = {f_fixed} (top), against f at "
@@ -235,6 +279,9 @@ def build_section(sweep_path: Path, compare_paths: list[Path], regimes_path: Pat
                    figures / FIGURES["displacements"])
     section.table(points_table(profiles), "Transition points and solver diagnostics at the "
                   "profile points", tables / TABLES["points"], digits=4)
+    section.table(summary_table(sweeps), "How the sweep points were solved: solved (plain, "
+                  "in the stick-zone limit, from a neighbour, after raising N), failed, "
+                  "inadmissible (issue 19)", tables / TABLES["summary"], digits=0)
     every = max(1, regimes["w_hat"].size // 10)
     section.table(thresholds_table(regimes, every), "Friction thresholds of the regime map",
                   tables / TABLES["thresholds"], digits=4)

@@ -60,6 +60,8 @@ from contactlab.receding.core.solve import (
     difference_jacobian,
     find_transitions,
 )
+from contactlab.receding.gap.limit import FLAG as LIMIT_FLAG
+from contactlab.receding.gap.limit import limit_system, solve_slip_limit
 
 REGIMES = ("stick", "slip", "slip_separation")
 
@@ -101,13 +103,27 @@ def stick_friction(w: float) -> tuple[float, float]:
 
 
 def bilateral_slip_zone(w: float, f: float) -> tuple[float, float] | None:
-    """The part of x > 0 where the bilateral tractions violate |S| <= f|N| (None if none)."""
+    """The part of x > 0 where the bilateral tractions violate |S| <= f|N| (None if none).
+
+    Just below f_stick the zone is narrower than the search grid (0.006 c); it is then
+    bracketed around the point of the largest |S/N| by root finding."""
     grid = np.linspace(0.0, w + 40.0, 8001)
     s, n = gap_bilateral(grid, w)
     bad = np.abs(s) > f * np.abs(n)
-    if not bad.any():
+    if bad.any():
+        return float(grid[bad][0]), float(grid[bad][-1])
+    f_stick, x_stick = stick_friction(w)
+    if not f < f_stick:
         return None
-    return float(grid[bad][0]), float(grid[bad][-1])
+
+    def excess(x: float) -> float:
+        sx, nx = gap_bilateral(np.array([x]), w)
+        return float(abs(sx[0]) - f * abs(nx[0]))
+
+    step = 2.0 * (grid[1] - grid[0])
+    lo = optimize.brentq(excess, max(x_stick - step, 0.0), x_stick, xtol=1e-14)
+    hi = optimize.brentq(excess, x_stick, x_stick + step, xtol=1e-14)
+    return float(lo), float(hi)
 
 
 # --------------------------------------------------------------------------- solution
@@ -149,6 +165,12 @@ class GapSolution:
     p: float = 1.0
     #: scale of a semi-infinite quadrature map (sec. 6.4); the gap problem has none
     lam: float = np.nan
+    #: how the point was solved beyond the plain root finder: ``stick_zone_limit`` (slip
+    #: regime in its limit a1 -> 0, ``gap.limit``; a1 is reported as 0), ``continuation``
+    #: (seeded by a solved neighbour of a sweep), ``refined`` (N raised until admissible)
+    flags: tuple[str, ...] = ()
+    #: log10(a1/c) of a limit solution by matching (``core.limit``); NaN otherwise
+    log10_a1: float = np.nan
 
     # ---- fields
     def tractions(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -267,8 +289,9 @@ def solve_slip(w: float, f: float, n: int = 100,
     size. A root is accepted only if its slip zone covers the zone where the bilateral
     tractions violate the friction limit (this rejects the trivial roots with a collapsed
     zone, a1 = a2, at the ends of that zone) and if the log map still resolves it: at
-    most N decades between a1 and a2 (about one node per decade). Closer to f_sep the
-    slip branch is reported as not converged rather than as an unresolved solution.
+    most N decades between a1 and a2 (about one node per decade). Closer to f_sep (and
+    to f = 0) the slip branch has no resolved root here; ``solve_gap`` then solves it in
+    its limit a1 -> 0 (``solve_slip_at_limit``).
     """
     zone = bilateral_slip_zone(w, f)
     if zone is None:
@@ -303,6 +326,33 @@ def solve_slip(w: float, f: float, n: int = 100,
     sol.a1, sol.a2 = a1, a2
     sol.intervals = [glide]
     sol.phis = [root.phi]
+    return sol
+
+
+#: a1/c below which the slip regime may be reported in its limit a1 -> 0 (issue 19: "a1 <
+#: 1e-30, say"); the workflow passes receding.gap.stick_zone_limit
+STICK_ZONE_LIMIT = 1e-30
+
+
+def solve_slip_at_limit(w: float, f: float, n: int = 100, a2_guess: float | None = None,
+                        p: float = 1.0) -> GapSolution:
+    """The slip regime in its limit a1 -> 0 (``gap.limit``): a1 = 0, the flag
+    ``stick_zone_limit`` and log10(a1/c) from matching. Seeds of a2: ``a2_guess`` (a
+    neighbour's) and multiples of the end of the bilateral slip zone."""
+    zone = bilateral_slip_zone(w, f)
+    if zone is None:
+        raise ValueError(f"no slip at w_hat={w}, f={f}: the bilateral solution sticks")
+    hi = zone[1]
+    guesses = ([a2_guess] if a2_guess is not None else []) + [
+        hi * grow for grow in (1.2, 1.05, 1.5, 2.0)]
+    root, glide, a2 = solve_slip_limit(w, f, n, guesses, zone, p)
+    system = root.system if root.system is not None else limit_system(w, f, n, a2, p)[0]
+    sol = _from_root("slip", w, f, n, root, system, p)
+    sol.a1, sol.a2 = 0.0, a2
+    sol.intervals, sol.phis = [glide], [root.phi]
+    sol.flags = (LIMIT_FLAG,)
+    if root.phi.size == glide.size:
+        sol.log10_a1 = glide.log_inner_end(root.phi) / np.log(10.0)
     return sol
 
 
@@ -392,6 +442,48 @@ def _separation_intervals(b: float, a3: float, n: int) -> tuple[DensityInterval,
     return DensityInterval("climb", -b, b, n), DensityInterval("glide", -a3, a3, n)
 
 
+#: b and a3 - b of converged separation solutions (N = 100) on a (f, w_hat) grid, NaN
+#: where there is no separation; only to seed the root finder of a cold solve
+_SEP_GUESS_W = np.array([1.6, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0])
+_SEP_GUESS_F = np.array([0.02, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0])
+_nan = np.nan
+_SEP_GUESS_B = np.array([
+    [0.304, 0.967, 1.581, 2.144, 2.686, 3.215, 3.738, 4.256],
+    [_nan, 0.803, 1.450, 2.026, 2.574, 3.109, 3.634, 4.155],
+    [_nan, 0.528, 1.253, 1.850, 2.411, 2.950, 3.482, 4.005],
+    [_nan, _nan, 1.033, 1.661, 2.234, 2.784, 3.318, 3.846],
+    [_nan, _nan, 0.785, 1.463, 2.054, 2.612, 3.155, 3.685],
+    [_nan, _nan, 0.476, 1.255, 1.872, 2.444, 2.993, 3.527],
+    [_nan, _nan, _nan, 1.032, 1.684, 2.270, 2.828, 3.373],
+    [_nan, _nan, _nan, 0.771, 1.488, 2.095, 2.667, 3.218],
+    [_nan, _nan, _nan, 0.427, 1.275, 1.914, 2.499, 3.057],
+    [_nan, _nan, _nan, _nan, 1.039, 1.724, 2.328, 2.901],
+    [_nan, _nan, _nan, _nan, 0.757, 1.523, 2.150, 2.739]])
+_SEP_GUESS_SLIP = np.array([
+    [10.053, 10.849, 11.888, 12.838, 13.704, 14.496, 15.227, 15.906],
+    [_nan, 4.056, 4.183, 4.347, 4.511, 4.666, 4.810, 4.944],
+    [_nan, 3.021, 2.914, 2.915, 2.939, 2.971, 3.004, 3.037],
+    [_nan, _nan, 2.545, 2.478, 2.456, 2.449, 2.451, 2.455],
+    [_nan, _nan, 2.444, 2.312, 2.258, 2.230, 2.214, 2.206],
+    [_nan, _nan, 2.508, 2.268, 2.182, 2.134, 2.107, 2.090],
+    [_nan, _nan, _nan, 2.298, 2.173, 2.109, 2.069, 2.040],
+    [_nan, _nan, _nan, 2.399, 2.209, 2.122, 2.067, 2.031],
+    [_nan, _nan, _nan, 2.606, 2.284, 2.165, 2.096, 2.052],
+    [_nan, _nan, _nan, _nan, 2.397, 2.232, 2.145, 2.085],
+    [_nan, _nan, _nan, _nan, 2.566, 2.321, 2.211, 2.136]])
+
+
+def separation_guess(w: float, f: float) -> tuple[float, float] | None:
+    """(b, a3) at the tabulated point nearest (f, w_hat) with separation (b scaled by w
+    beyond the table), None when the table has no separation near there."""
+    i = int(np.argmin(np.abs(_SEP_GUESS_F - f)))
+    j = int(np.argmin(np.abs(_SEP_GUESS_W - w)))
+    if not np.isfinite(_SEP_GUESS_B[i, j]):
+        return None
+    b = float(_SEP_GUESS_B[i, j] * w / _SEP_GUESS_W[j])
+    return b, b + float(_SEP_GUESS_SLIP[i, j])
+
+
 def _sep_params(p: np.ndarray) -> tuple[float, float]:
     b = float(np.exp(min(p[0], 5.0)))
     return b, b + float(np.exp(min(p[1], 5.0)))
@@ -425,6 +517,9 @@ def solve_separation(w: float, f: float, n: int = 100,
     guesses = [] if seed is None else [seed]
     if guess is not None and np.all(np.isfinite(guess)) and guess[1] > guess[0] > 0:
         guesses.append(np.array([np.log(guess[0]), np.log(guess[1] - guess[0])]))
+    table = separation_guess(w, f) if seed is None and guess is None else None
+    if table is not None:
+        guesses.append(np.array([np.log(table[0]), np.log(table[1] - table[0])]))
     for b0, grow in ((0.2, 1.1), (0.5, 1.3), (0.05, 1.05), (0.8, 1.6)):
         a30 = grow * hi + 0.2
         guesses.append(np.array([np.log(b0 * hi), np.log(a30 - b0 * hi)]))
@@ -469,7 +564,7 @@ def _separation_likely(w: float, f: float) -> bool:
 
 
 def solve_gap(w: float, f: float, n: int = 100, guess: GapSolution | None = None,
-              p: float = 1.0) -> GapSolution:
+              p: float = 1.0, stick_zone_limit: float = STICK_ZONE_LIMIT) -> GapSolution:
     """The solution at (w_hat, f) in whichever regime satisfies the contact conditions.
 
     Stick if f >= f_stick(w); otherwise slip without separation if that solution keeps
@@ -477,14 +572,23 @@ def solve_gap(w: float, f: float, n: int = 100, guess: GapSolution | None = None
     otherwise slip and separation. ``guess`` (a neighbouring solution) seeds the root
     finder and picks the regime tried first, which is how sweeps continue along f or w;
     without it the regime more likely from the tabulated f_sep(w) is tried first.
+
+    Where the slip regime has no resolved root, its limit a1 -> 0 (``gap.limit``) is
+    tried and kept if it is in compression at the centre and matching puts a1 below
+    ``stick_zone_limit`` (units of c; 0 never uses the limit). A neighbour solved in the
+    limit sends the slip regime straight to the limit (a1 only shrinks further along a
+    sweep towards f_sep or f = 0).
     """
     check_gap_inputs(w, f, n)
     if not (np.isfinite(p) and p > 0):
         raise ValueError(f"pressure p must be positive, got {p}")
+    if not (np.isfinite(stick_zone_limit) and stick_zone_limit >= 0):
+        raise ValueError(f"stick_zone_limit must be >= 0, got {stick_zone_limit}")
     if f >= stick_friction(w)[0]:
         return solve_stick(w, f, n, p)
     slip_guess = sep_guess = None
-    if guess is not None and guess.regime == "slip":
+    at_limit = guess is not None and LIMIT_FLAG in guess.flags
+    if guess is not None and guess.regime == "slip" and not at_limit:
         slip_guess = (guess.a1, guess.a2)
     if guess is not None and guess.regime == "slip_separation":
         sep_guess = (guess.b, guess.a3)
@@ -494,23 +598,57 @@ def solve_gap(w: float, f: float, n: int = 100, guess: GapSolution | None = None
         first_separation = guess.regime == "slip_separation"
     order = ("separation", "slip") if first_separation else ("slip", "separation")
     tried: list[GapSolution] = []
+    limit_ok = stick_zone_limit > 0
+
+    def in_compression(sol: GapSolution) -> bool:
+        return sol.converged and centre_normal(sol) <= 0.0
+
+    def limit(a2_guess: float | None) -> GapSolution:
+        sol = solve_slip_at_limit(w, f, n, a2_guess, p)
+        if sol.converged and not in_compression(sol):
+            sol.message += "; rejected: tension at the centre"
+            sol.converged = False
+        elif sol.converged and not sol.log10_a1 < np.log10(stick_zone_limit):
+            sol.message += (f"; rejected: matching gives a1 = 10^{sol.log10_a1:.1f} c, not "
+                            f"below stick_zone_limit = {stick_zone_limit:g}")
+            sol.converged = False
+        return sol
+
     for regime in order:
         if regime == "slip":
-            sol = solve_slip(w, f, n, slip_guess, p)
-            if sol.converged and centre_normal(sol) <= 0.0:
-                sol.evaluate_checks()
-                return sol
-            if sol.converged and sep_guess is None:
-                sep_guess = (0.05, sol.a2)
-            if sol.converged:
-                sol.message += "; rejected: tension at the centre"
-                sol.converged = False
+            candidates = []
+            if at_limit and limit_ok:
+                candidates.append(limit(guess.a2))
+            if not (candidates and candidates[-1].converged):
+                sol = solve_slip(w, f, n, slip_guess, p)
+                candidates.append(sol)
+                if in_compression(sol):
+                    sol.evaluate_checks()
+                    if sol.admissible or not (limit_ok and sol.a1 < stick_zone_limit):
+                        return sol
+                    # a resolved but inaccurate stick zone (too many decades for N nodes)
+                    alt = limit(sol.a2)
+                    if alt.converged:
+                        alt.evaluate_checks()
+                    return alt if alt.converged and alt.admissible else sol
+                if sol.converged and sep_guess is None:
+                    sep_guess = (0.05, sol.a2)
+                if sol.converged:
+                    sol.message += "; rejected: tension at the centre"
+                    sol.converged = False
+                elif limit_ok and not at_limit:
+                    candidates.append(limit(sol.a2 if np.isfinite(sol.a2) else None))
+            best = candidates[-1]
+            if best.converged:
+                best.evaluate_checks()
+                return best
+            tried.extend(candidates)
         else:
             sol = solve_separation(w, f, n, sep_guess, p)
             if sol.converged:
                 sol.evaluate_checks()
                 return sol
-        tried.append(sol)
+            tried.append(sol)
     best = min(tried, key=lambda s: s.residual)
     best.evaluate_checks()
     return best

@@ -11,9 +11,16 @@ import numpy as np
 import xarray as xr
 
 from contactlab.receding.core.bilateral import gap_bilateral
-from contactlab.receding.core.solution import CHECK_TOL, regime_attrs
+from contactlab.receding.core.solution import (
+    CHECK_TOL,
+    flag_attrs,
+    flag_bits,
+    refine_in_n,
+    regime_attrs,
+)
 from contactlab.receding.gap.solver import (
     REGIMES,
+    STICK_ZONE_LIMIT,
     GapSolution,
     check_gap_inputs,
     frictionless_centre_normal,
@@ -39,24 +46,58 @@ ZONE_NAMES = {
 }
 
 
-def sweep_friction(w: float, f_values: np.ndarray, n: int) -> list[GapSolution]:
+def sweep_friction(w: float, f_values: np.ndarray, n: int,
+                   stick_zone_limit: float = STICK_ZONE_LIMIT) -> list[GapSolution]:
     """Solutions at one w_hat for every f (any order in, same order out), by continuation."""
     f_values = np.asarray(f_values, dtype=float)
     order = np.argsort(f_values)[::-1]
     out: list[GapSolution | None] = [None] * f_values.size
     prev: GapSolution | None = None
     for j in order:
-        try:
-            sol = solve_gap(w, float(f_values[j]), n, guess=prev)
-        except (ValueError, np.linalg.LinAlgError) as exc:
-            sol = GapSolution(w=w, f=float(f_values[j]), n=n, regime="failed",
-                              converged=False, message=str(exc))
+        sol = _solve(w, float(f_values[j]), n, prev, stick_zone_limit)
         if sol.regime != "stick" and not sol.converged and prev is not None:
-            sol = solve_gap(w, float(f_values[j]), n)  # retry without the seed
+            sol = _solve(w, float(f_values[j]), n, None, stick_zone_limit)  # without the seed
         out[j] = sol
         if sol.converged and sol.regime != "stick":
             prev = sol
     return [s for s in out if s is not None]
+
+
+def _solve(w: float, f: float, n: int, guess: GapSolution | None,
+           stick_zone_limit: float) -> GapSolution:
+    """``solve_gap`` with a failure (bad geometry, singular system) kept as a failed point."""
+    try:
+        return solve_gap(w, f, n, guess=guess, stick_zone_limit=stick_zone_limit)
+    except (ValueError, np.linalg.LinAlgError) as exc:
+        return GapSolution(w=w, f=f, n=n, regime="failed", converged=False, message=str(exc))
+
+
+def continue_from_neighbours(grid: list[list[GapSolution]], n: int,
+                             stick_zone_limit: float, passes: int = 3) -> None:
+    """Retry every unconverged point of ``grid`` [f][w] seeded by each solved neighbour in f
+    and w (nearest first), repeating while points are won (issue 19, item 1); a point won
+    so carries the flag ``continuation``."""
+    rows, cols = len(grid), len(grid[0]) if grid else 0
+    for _ in range(passes):
+        won = False
+        for i in range(rows):
+            for j in range(cols):
+                if grid[i][j].converged:
+                    continue
+                for ii, jj in ((i - 1, j), (i + 1, j), (i, j - 1), (i, j + 1)):
+                    if not (0 <= ii < rows and 0 <= jj < cols):
+                        continue
+                    seed = grid[ii][jj]
+                    if not seed.converged or seed.regime == "stick":
+                        continue
+                    trial = _solve(grid[i][j].w, grid[i][j].f, n, seed, stick_zone_limit)
+                    if trial.converged:
+                        trial.flags = (*trial.flags, "continuation")
+                        grid[i][j] = trial
+                        won = True
+                        break
+        if not won:
+            return
 
 
 def _regime_code(sol: GapSolution) -> int:
@@ -64,30 +105,58 @@ def _regime_code(sol: GapSolution) -> int:
 
 
 def sweep_dataset(w_values: np.ndarray, f_values: np.ndarray, n: int,
-                  thresholds: bool = True) -> xr.Dataset:
-    """Solutions on the grid (f, w_hat) at N points and, per w_hat, f_stick and f_sep."""
+                  thresholds: bool = True, *, stick_zone_limit: float = STICK_ZONE_LIMIT,
+                  refine_max_n: int | None = None, continuation: bool = True) -> xr.Dataset:
+    """Solutions on the grid (f, w_hat) at N points and, per w_hat, f_stick and f_sep.
+
+    Each w_hat is swept down in f from solved neighbours; with ``continuation`` the points
+    left unconverged are retried from their solved neighbours in f and w; converged points
+    that fail the contact checks are re-solved at larger N up to ``refine_max_n``
+    (``refine_in_n``; default N, i.e. none). Every point records its flags, the N used and
+    the largest check value at the sweep's N (its convergence record).
+    """
     w_values = np.asarray(w_values, dtype=float)
     f_values = np.asarray(f_values, dtype=float)
     for w in w_values:  # refuse impossible inputs before any work
         for f in f_values:
             check_gap_inputs(float(w), float(f), n)
+    refine_max_n = n if refine_max_n is None else int(refine_max_n)
+    if refine_max_n < n:
+        raise ValueError(f"refine_max_n = {refine_max_n} is below N = {n}")
+    columns = [sweep_friction(float(w), f_values, n, stick_zone_limit) for w in w_values]
+    grid = [[columns[j][i] for j in range(w_values.size)] for i in range(f_values.size)]
+    if continuation:
+        continue_from_neighbours(grid, n, stick_zone_limit)
+    start = np.full((f_values.size, w_values.size), np.nan)
+    for i, row in enumerate(grid):
+        for j, sol in enumerate(row):
+            w, f = float(w_values[j]), float(f_values[i])
+            row[j], start[i, j] = refine_in_n(
+                lambda m, seed, w=w, f=f: _solve(w, f, m, seed, stick_zone_limit),
+                sol, refine_max_n)
     shape = (f_values.size, w_values.size)
-    data = {k: np.full(shape, np.nan) for k in [*ZONE_NAMES, "residual", *CHECK_NAMES]}
+    data = {k: np.full(shape, np.nan) for k in [*ZONE_NAMES, "residual", *CHECK_NAMES,
+                                                 "log10_a1"]}
     regime = np.full(shape, -1, dtype=np.int8)
     converged = np.zeros(shape, dtype=np.int8)
     admissible = np.zeros(shape, dtype=np.int8)
     nfev = np.zeros(shape, dtype=np.int32)
-    for j, w in enumerate(w_values):
-        for i, sol in enumerate(sweep_friction(w, f_values, n)):
+    flags = np.zeros(shape, dtype=np.int8)
+    n_used = np.full(shape, n, dtype=np.int32)
+    for i, row in enumerate(grid):
+        for j, sol in enumerate(row):
             for key in ZONE_NAMES:
                 data[key][i, j] = getattr(sol, key)
             data["residual"][i, j] = sol.residual
+            data["log10_a1"][i, j] = sol.log10_a1
             for key in CHECK_NAMES:
                 data[key][i, j] = sol.checks.get(key, np.nan)
             regime[i, j] = _regime_code(sol)
             converged[i, j] = sol.converged
             admissible[i, j] = sol.admissible
             nfev[i, j] = sol.nfev
+            flags[i, j] = flag_bits(sol.flags)
+            n_used[i, j] = sol.n
     dims = ("f", "w_hat")
     ds = xr.Dataset(
         {
@@ -104,11 +173,24 @@ def sweep_dataset(w_values: np.ndarray, f_values: np.ndarray, n: int,
                 "units": ONE}),
             "nfev": (dims, nfev, {"long_name": "linear solves used by the root finder",
                                   "units": ONE}),
+            "flags": (dims, flags, flag_attrs()),
+            "n_used": (dims, n_used, {
+                "long_name": "Gauss-Chebyshev points N of the reported solution (the sweep's "
+                             "N unless refined)", "units": ONE}),
+            "max_check_at_n": (dims, start, {
+                "long_name": "largest contact check value at the sweep's N, /p (with the "
+                             "checks at n_used: the convergence record of a refined point)",
+                "units": ONE}),
+            "log10_a1": (dims, data["log10_a1"], {
+                "long_name": "log10(a1/c) by matching where the slip regime is solved in its "
+                             "limit a1 -> 0 (flag stick_zone_limit; a1 is reported as 0)",
+                "units": ONE}),
             **{k: (dims, data[k], {"long_name": v, "units": ONE})
                for k, v in CHECK_NAMES.items()},
         },
         coords=_coords(w_values, f_values),
-        attrs={"N": int(n), "check_tol": CHECK_TOL},
+        attrs={"N": int(n), "check_tol": CHECK_TOL, "stick_zone_limit": stick_zone_limit,
+               "refine_max_n": refine_max_n, "continuation": int(continuation)},
     )
     if thresholds:
         ds = ds.merge(threshold_dataset(w_values, n))
@@ -158,9 +240,14 @@ def threshold_dataset(w_values: np.ndarray, n: int, f_min: float = 0.02) -> xr.D
     )
 
 
-def profile_dataset(w: float, f: float, n: int, x_max: float, points: int) -> xr.Dataset:
-    """Tractions, densities and relative displacements along the interface (Figs 5.6-5.8)."""
-    sol = solve_gap(w, f, n)
+def profile_dataset(w: float, f: float, n: int, x_max: float, points: int, *,
+                    stick_zone_limit: float = STICK_ZONE_LIMIT,
+                    refine_max_n: int | None = None) -> xr.Dataset:
+    """Tractions, densities and relative displacements along the interface (Figs 5.6-5.8),
+    of the solution refined in N up to ``refine_max_n`` if it fails the contact checks."""
+    sol = solve_gap(w, f, n, stick_zone_limit=stick_zone_limit)
+    sol = refine_in_n(lambda m, seed: _solve(w, f, m, seed, stick_zone_limit), sol,
+                      n if refine_max_n is None else max(n, int(refine_max_n)))[0]
     x = np.linspace(-x_max, x_max, points)
     s, nn = sol.tractions(x)
     sb, nb = gap_bilateral(x, w)
@@ -191,7 +278,7 @@ def _solution_attrs(sol: GapSolution) -> dict:
         "w_hat": sol.w, "f": sol.f, "N": sol.n, "regime": sol.regime,
         "converged": int(sol.converged), "admissible": int(sol.admissible),
         "residual": sol.residual, "nfev": sol.nfev, "solver_log": sol.message,
-        "lambda": sol.lam,
+        "lambda": sol.lam, "flags": " ".join(sol.flags), "log10_a1": sol.log10_a1,
     }
     for key in ZONE_NAMES:
         attrs[key] = getattr(sol, key)

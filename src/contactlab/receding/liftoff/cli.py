@@ -5,12 +5,14 @@
     contactlab receding solve --problem line --f 0.5 --n 500 --lam 3.5 --e 5 --json
     contactlab receding solve --problem hertz --f 0.3 --w-hat 1 --n 100 --lam-b 2 \\
         --e-minus-w 5 --json
-    contactlab receding line-sweep --f 0.5 0.3 --n 500 --lam 3.5 --e 5 --chaise --out c.nc
+    contactlab receding line-sweep --f 0.5 0.3 --n 500 --lam 3.5 --e 5 --chaise \\
+        --stick-zone-limit 1e-4 --refine-max-n 1000 --continuation --out c.nc
     contactlab receding patch-sweep --problem uniform --f 0.3 --w-hat 1 2 --n 100 \\
-        --lam-b 2 --e-minus-w 5 --out chunk.nc
+        --lam-b 2 --e-minus-w 5 --stick-zone-limit 1e-4 --refine-max-n 400 \\
+        --continuation --out chunk.nc
     contactlab receding liftoff-gather chunk*.nc --out results/receding/line.nc
     contactlab receding liftoff-profile --problem line --f 0.5 --n 500 --lam 3.5 --e 5 \\
-        --chaise --x-max 12 --out profile.nc
+        --chaise --x-max 12 --stick-zone-limit 1e-4 --refine-max-n 1000 --out profile.nc
     contactlab receding report-liftoff --line line.nc --patches uniform.nc ... --out s.html
 
 The science parameters (N, lambda, e, lambda_b, (e - w)/c) have no defaults here: the
@@ -42,33 +44,52 @@ def liftoff_memory(n: int) -> float:
 def solve_problem(problem: str, f: float, w_hat: float | None, n: int, *,
                   lam: float | None = None, e: float | None = None,
                   lam_b: float | None = None, e_minus_w: float | None = None,
-                  chaise: bool = False) -> Any:
+                  chaise: bool = False, stick_zone_limit: float | None = None,
+                  refine_max_n: int | None = None) -> Any:
     """One solution of a named problem; the line needs ``lam`` and ``e``, a patch
-    ``w_hat``, ``lam_b`` and ``e_minus_w`` (lambda_a follows sec. 7.4 from w)."""
+    ``w_hat``, ``lam_b`` and ``e_minus_w`` (lambda_a follows sec. 7.4 from w).
+    ``stick_zone_limit`` None: the solver's own; ``refine_max_n``: raise N up to it while
+    the solution fails the contact checks."""
     if problem not in PROBLEMS:
         raise ValueError(f"unknown problem {problem!r}; use one of {', '.join(PROBLEMS)}")
     check_memory("--n", n, liftoff_memory(n))
+    if refine_max_n is not None and refine_max_n > n:
+        check_memory("--refine-max-n", refine_max_n, liftoff_memory(refine_max_n))
+    limit = {} if stick_zone_limit is None else {"stick_zone_limit": stick_zone_limit}
     if problem == "line":
         if lam is None or e is None:
             raise ValueError("problem line needs --lam and --e (config receding.line)")
         from contactlab.receding.liftoff.line import solve_line
 
-        return solve_line(f, n, lam, e, preformed=not chaise)
-    if w_hat is None:
-        raise ValueError(f"problem {problem} needs --w-hat (patch half-width w/c)")
-    if lam_b is None or e_minus_w is None:
-        raise ValueError(f"problem {problem} needs --lam-b and --e-minus-w "
-                         "(config receding.patches)")
-    from contactlab.receding.liftoff.patch import solve_patch
+        def solve(m: int, guess: Any = None) -> Any:
+            seed = None if guess is None else (guess.a, guess.b)
+            return solve_line(f, m, lam, e, guess=seed, preformed=not chaise, **limit)
+    else:
+        if w_hat is None:
+            raise ValueError(f"problem {problem} needs --w-hat (patch half-width w/c)")
+        if lam_b is None or e_minus_w is None:
+            raise ValueError(f"problem {problem} needs --lam-b and --e-minus-w "
+                             "(config receding.patches)")
+        from contactlab.receding.liftoff.patch import solve_patch
 
-    return solve_patch(problem, f, w_hat, n, lam_b=lam_b, e=w_hat + e_minus_w,
-                       preformed=not chaise)
+        def solve(m: int, guess: Any = None) -> Any:
+            seed = None if guess is None else (guess.a, guess.b)
+            return solve_patch(problem, f, w_hat, m, lam_b=lam_b, e=w_hat + e_minus_w,
+                               guess=seed, preformed=not chaise, **limit)
+    sol = solve(n)
+    if refine_max_n is None:
+        return sol
+    from contactlab.receding.core.solution import refine_in_n
+
+    return refine_in_n(solve, sol, refine_max_n)[0]
 
 
 def _solve_args(args: argparse.Namespace, chaise: bool = False) -> Any:
     """:func:`solve_problem` with the command's options."""
     return solve_problem(args.problem, args.f, args.w_hat, args.n, lam=args.lam, e=args.e,
-                         lam_b=args.lam_b, e_minus_w=args.e_minus_w, chaise=chaise)
+                         lam_b=args.lam_b, e_minus_w=args.e_minus_w, chaise=chaise,
+                         stick_zone_limit=args.stick_zone_limit,
+                         refine_max_n=getattr(args, "refine_max_n", None))
 
 
 def summary(sol: Any, seconds: float) -> dict:
@@ -81,6 +102,7 @@ def summary(sol: Any, seconds: float) -> dict:
         "converged": bool(sol.converged), "admissible": bool(sol.admissible),
         "residual": sol.residual, **sol.remote_slip_record(),
         "lambda_a": sol.lam_a, "lambda_b": sol.lam_b, "e": sol.e, "iterations": sol.nfev,
+        "flags": " ".join(sol.flags), "log10_a": sol.log10_a,
         "seconds": round(seconds, 4), **sol.checks,
     })
 
@@ -113,11 +135,14 @@ def _line_sweep(args: argparse.Namespace) -> None:
     from contactlab.receding.liftoff.sweep import sweep_line
 
     start = time.perf_counter()
-    ds = sweep_line(np.asarray(args.f), args.n, args.lam, args.e, chaise=args.chaise)
+    ds = sweep_line(np.asarray(args.f), args.n, args.lam, args.e, chaise=args.chaise,
+                    stick_zone_limit=args.stick_zone_limit, refine_max_n=args.refine_max_n,
+                    continuation=args.continuation)
     _log_time(ds, start)
     stamp(ds, title=f"Line load on a layer (thesis ch. 6): a, b, K_T over f, N = {args.n}",
           source=SOURCE, history=f"contactlab receding line-sweep --f "
-                                 f"{' '.join(map(str, args.f))} --n {args.n}")
+                                 f"{' '.join(map(str, args.f))} --n {args.n}"
+                                 f"{_robustness_history(args)}")
     write_netcdf(ds, args.out)
 
 
@@ -135,7 +160,8 @@ def _patch_sweep(args: argparse.Namespace) -> None:
         shape = {"x": args.table_x, "p": args.table_p}
     start = time.perf_counter()
     ds = sweep_patch(args.problem, np.asarray(args.f), np.asarray(args.w_hat), args.n,
-                     args.lam_b, args.e_minus_w, shape)
+                     args.lam_b, args.e_minus_w, shape, stick_zone_limit=args.stick_zone_limit,
+                     refine_max_n=args.refine_max_n, continuation=args.continuation)
     _log_time(ds, start)
     if shape is not None:
         ds.attrs.update(table_x_over_w=np.asarray(shape["x"], dtype=float),
@@ -143,16 +169,29 @@ def _patch_sweep(args: argparse.Namespace) -> None:
     stamp(ds, title=f"Pressure patch '{args.problem}' on a layer (thesis ch. 7): a, b, K_T "
                     f"over (f, w/c), N = {args.n}", source=SOURCE,
           history=f"contactlab receding patch-sweep --problem {args.problem} --f "
-                  f"{' '.join(map(str, args.f))} --w-hat {' '.join(map(str, args.w_hat))}")
+                  f"{' '.join(map(str, args.f))} --w-hat {' '.join(map(str, args.w_hat))}"
+                  f"{_robustness_history(args)}")
     write_netcdf(ds, args.out)
+
+
+def _robustness_history(args: argparse.Namespace) -> str:
+    """The options of issue 19 as they appear in a result's history line."""
+    text = f" --stick-zone-limit {args.stick_zone_limit} --refine-max-n {args.refine_max_n}"
+    if hasattr(args, "continuation"):
+        text += f" --{'' if args.continuation else 'no-'}continuation"
+    return text
 
 
 def _gather(args: argparse.Namespace) -> None:
     from contactlab.io import concat_chunks, stamp, write_netcdf
+    from contactlab.receding.core.summary import summary_attrs
 
     ds, parts = concat_chunks(args.chunks, "f")
     if len({part.attrs.get("problem") for part in parts}) != 1:
         raise ValueError(f"sweep chunks {', '.join(map(str, args.chunks))} mix problems")
+    ds.attrs.update(summary_attrs(ds))
+    if "converged_chaise" in ds:
+        ds.attrs.update(summary_attrs(ds, "_chaise"))
     title = parts[0].attrs.get("title", "")
     stamp(ds, title=title, source=SOURCE,
           history=f"contactlab receding liftoff-gather of {len(parts)} chunks")
@@ -170,7 +209,7 @@ def _profile(args: argparse.Namespace) -> None:
     stamp(ds, title=f"{args.problem} (thesis chs 6-7): interface profiles at f = {args.f}"
                     + (f", w/c = {args.w_hat}" if args.w_hat else ""), source=SOURCE,
           history=f"contactlab receding liftoff-profile --problem {args.problem} "
-                  f"--f {args.f} --n {sol.n}")
+                  f"--f {args.f} --n {args.n}{_robustness_history(args)}")
     write_netcdf(ds, args.out)
 
 
@@ -178,6 +217,23 @@ def _report(args: argparse.Namespace) -> None:
     from contactlab.receding.liftoff.report import build_section
 
     build_section(args.line, args.patches, args.profiles, args.report_dir, args.out)
+
+
+def add_robustness(parser: argparse.ArgumentParser, section: str,
+                   continuation: bool = False) -> None:
+    """``--stick-zone-limit``, ``--refine-max-n`` (and ``--continuation``), required: the
+    config is their home."""
+    parser.add_argument("--stick-zone-limit", type=float, required=True,
+                        help="stick zone a/c below which a point below the critical friction "
+                             f"is solved in its limit a -> 0; 0: never (config "
+                             f"{section}.stick_zone_limit)")
+    parser.add_argument("--refine-max-n", type=int, required=True,
+                        help="largest N to which a point failing the contact checks is "
+                             f"re-solved; --n: none (config {section}.refine_max_n)")
+    if continuation:
+        parser.add_argument("--continuation", action=argparse.BooleanOptionalAction,
+                            required=True, help="retry unconverged or inadmissible points "
+                            f"from solved neighbours (config {section}.continuation)")
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -198,6 +254,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     sweep.add_argument("--e", type=float, required=True, help=e_help)
     sweep.add_argument("--chaise", action=argparse.BooleanOptionalAction, required=True,
                        help=chaise_help)
+    add_robustness(sweep, "receding.line", continuation=True)
     sweep.add_argument("--out", type=Path, required=True, help="netCDF output (one chunk)")
     sweep.set_defaults(func=_line_sweep)
 
@@ -220,6 +277,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                        help="map scale lambda_b (sec. 7.4)")
     patch.add_argument("--e-minus-w", type=float, required=True,
                        help="(e - w)/c: end of the cubic part of A_y beyond the patch edge")
+    add_robustness(patch, "receding.patches", continuation=True)
     patch.add_argument("--out", type=Path, required=True, help="netCDF output (one chunk)")
     patch.set_defaults(func=_patch_sweep)
 
@@ -253,6 +311,7 @@ def register(commands: argparse._SubParsersAction) -> None:
     profile.add_argument("--points", type=int, default=481, help="points of the profile")
     profile.add_argument("--chaise", action=argparse.BooleanOptionalAction, required=True,
                          help=chaise_help)
+    add_robustness(profile, "receding.line / receding.patches")
     profile.add_argument("--out", type=Path, required=True, help="netCDF output")
     profile.set_defaults(func=_profile)
 

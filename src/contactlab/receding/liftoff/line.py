@@ -11,9 +11,10 @@ distribution A_y, the slope K and eq. (6.22), glide and climb densities on [a, i
 [b, inf) both bounded at both ends. The climb density then integrates to a finite total,
 so the separation tends to a constant far away instead of growing linearly (Fig. 6.6),
 while the tractions near the load are close to those of the full model (Fig. 6.5). With
-lambda = 3.5 its discrete equations have no root for f >= 0.7 (N = 100 and 500): the
-leftover residuals jump where a collocation point of the glide set crosses b; those points
-are reported as not converged.
+lambda = 3.5 its H(b - x)-switched shear rows have no root for f >= 0.7 at N = 500 (the
+leftover residuals jump where a collocation point of the glide set crosses b); those
+points are solved with the continuous slip rule (``solver``, flag ``continuous_slip_rule``),
+so the missing roots were a property of the switched discretisation, not of the model.
 
 Stick-zone limit: the central stick zone shrinks very fast as f falls (a = 0.25 c at
 f = 0.5, 0.018 c at 0.2, 2.5e-4 c at 0.1, 6e-6 c at 0.08 with N = 100). Solving the same
@@ -22,16 +23,20 @@ friction below which the discrete equations have no root with a > 0:
 f_c = 0.086, 0.079, 0.070, 0.063 for N = 64, 100, 200, 400 -- it keeps falling with N, so
 it is a resolution limit of the bounded glide representation (the first node sits
 ~8.6 lam / N^2 beyond a) rather than a property of the continuum problem, in which
-log a falls roughly linearly in 1/f. Below f_c(N) the solution is reported with regime
-``no_stick`` and not converged (a root with a < 0 is not a solution); f = 0 is solved as
-its own limit by ``solve_frictionless`` when available.
+log a falls roughly linearly in 1/f. Below f_c(N) the stick zone is solved in its limit
+a -> 0 (``limit``): regime ``no_stick``, a = 0, flag ``stick_zone_limit``, log10 a from
+matching (f = 0.05: a ~ 5e-8 c). With the limit switched off (stick_zone_limit = 0) such a
+point stays ``no_stick`` and not converged. f = 0 is its own limit, ``solve_frictionless``.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from contactlab.receding.core.solution import check_friction
+from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT, solve_no_stick, try_limit
 from contactlab.receding.liftoff.loading import make_load
 from contactlab.receding.liftoff.solver import LiftoffSolution, critical_friction, solve_liftoff
 
@@ -53,9 +58,14 @@ def line_guess(f: float) -> tuple[float, float]:
 
 def solve_line(f: float, n: int, lam: float, e: float,
                guess: tuple[float, float] | None = None, preformed: bool = True,
-               ) -> LiftoffSolution:
+               stick_zone_limit: float = STICK_ZONE_LIMIT) -> LiftoffSolution:
     """Line load at friction f (see module docstring); ``preformed=False`` is the
-    bounded-bounded-only model of Chaise et al."""
+    bounded-bounded-only model of Chaise et al.
+
+    Below the critical friction (no resolved root) the stick zone is solved in its limit
+    a -> 0 (``limit``: regime ``no_stick``, converged, a = 0) where matching puts a below
+    ``stick_zone_limit`` (c; 0: never, the point stays ``no_stick`` unconverged). A
+    ``guess`` with a = 0 (a neighbour in that limit) goes to the limit first."""
     check_friction(f, zero=True)
     load = make_load("line")
     problem = "line" if preformed else "line_chaise"
@@ -63,17 +73,40 @@ def solve_line(f: float, n: int, lam: float, e: float,
         from contactlab.receding.liftoff.frictionless import solve_frictionless
 
         return solve_frictionless(load, n, lam, lam, e, problem=problem, preformed=preformed)
+    if guess is not None and guess[0] == 0 and stick_zone_limit > 0:
+        lim = solve_no_stick(load, f, n, lam, lam, e, problem, preformed, guess[1])
+        if lim.converged and lim.log10_a < np.log10(stick_zone_limit):
+            return lim
+        guess = None
     seeds = [guess] if guess is not None else []
     a0, b0 = line_guess(f)
     # the Chaise model separates a little further out (b about 6 % larger)
     seeds.append((a0, b0) if preformed else (a0, 1.06 * b0))
     sol = None
     for seed in seeds:
-        sol = solve_liftoff(load, f, n, lam, lam, e, preformed, seed, problem)
+        sol = solve_liftoff(load, f, n, lam, lam, e, preformed, seed, problem,
+                            continuous=False)
         if sol.converged:
             return sol
     assert sol is not None
-    return flag_no_stick(sol, lam, lam)
+    return fallbacks(sol, lambda: solve_liftoff(load, f, n, lam, lam, e, preformed, seeds[-1],
+                                                problem, continuous=True),
+                     lam, lam, stick_zone_limit, b0)
+
+
+def fallbacks(sol: LiftoffSolution, continuous: Callable[[], LiftoffSolution], lam_a: float,
+              lam_b: float, stick_zone_limit: float, b_guess: float) -> LiftoffSolution:
+    """After the H-switched rows found no root: the stick-zone limit (low f,
+    ``limit.try_limit``), then the continuous slip rule (``solver``), else the point stays
+    unconverged (``no_stick`` below the critical friction, ``flag_no_stick``)."""
+    lim = try_limit(sol, lam_a, lam_b, stick_zone_limit, b_guess)
+    if lim is not None:
+        return lim
+    alt = continuous()
+    if alt.converged:
+        return alt
+    sol.message += f"; continuous slip rule: {alt.message}"
+    return flag_no_stick(sol, lam_a, lam_b)
 
 
 def flag_no_stick(sol: LiftoffSolution, lam_a: float, lam_b: float) -> LiftoffSolution:

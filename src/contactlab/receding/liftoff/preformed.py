@@ -50,7 +50,7 @@ adaptive principal-value quadrature (scipy ``quad`` with the Cauchy weight) at m
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
 
 import numpy as np
 
@@ -103,11 +103,6 @@ def _tail(start: np.ndarray, scale: float = 2.0) -> tuple[np.ndarray, np.ndarray
     return x, w
 
 
-def _row_dot(w: np.ndarray, a: np.ndarray) -> np.ndarray:
-    """sum_k w[m, k] a[m, k] per row m; ``a`` may be one row shared by all."""
-    return np.einsum("mk,k->m", w, a[0]) if a.shape[0] == 1 else np.einsum("mk,mk->m", w, a)
-
-
 @dataclass(frozen=True)
 class Preformed:
     """A_y for a load, separation start b and blending end e (units of c), b < e."""
@@ -122,7 +117,7 @@ class Preformed:
         if self.e <= self.load.w:
             raise ValueError(f"e = {self.e} must lie beyond the load (w = {self.load.w})")
 
-    @property
+    @cached_property
     def coefficients(self) -> np.ndarray:
         """[[R1, R2] of the load part, [R1, R2] of the K part] (2, 2)."""
         g = float(self.load.remote_g(np.array([self.e]))[0])
@@ -188,18 +183,20 @@ class Preformed:
             if not rows.any():
                 continue
             xr = ax[rows]
-            # panels with fixed ends are shared by all rows (one row of nodes)
+            # panels with fixed ends are shared by all rows (one row of nodes); True marks
+            # the panels on [b, e], where A_y is the cubic
             lo, hi = np.full(1, b), np.full(1, e)
             if xr[0] < b:
-                inner, outer = [_graded(lo, hi, False)], [_tail(hi)]
+                panels = [(*_graded(lo, hi, False), True), (*_tail(hi), False)]
             elif xr[0] <= e:
-                inner = [_graded(np.full_like(xr, b), xr, True),
-                         _graded(xr, np.full_like(xr, e), False)]
-                outer = [_tail(hi)]
+                panels = [(*_graded(np.full_like(xr, b), xr, True), True),
+                          (*_graded(xr, np.full_like(xr, e), False), True),
+                          (*_tail(hi), False)]
             else:
-                inner, outer = [_graded(lo, hi, True)], [_graded(np.full_like(xr, e), xr, True),
-                                                         _tail(xr)]
-            normal[rows], shear_rows = self._sums(xr, inner, outer, shear)
+                panels = [(*_graded(lo, hi, True), True),
+                          (*_graded(np.full_like(xr, e), xr, True), False),
+                          (*_tail(xr), False)]
+            normal[rows], shear_rows = self._sums(xr, panels, shear)
             if shear_rows is not None:
                 out[rows] = shear_rows
         if not shear:
@@ -207,46 +204,57 @@ class Preformed:
         sign = np.where(x < 0, -1.0, 1.0)[:, None]
         return sign * out / np.pi, normal / np.pi
 
-    def _sums(self, ax: np.ndarray, inner: list, outer: list, shear: bool,
+    def _sums(self, ax: np.ndarray, panels: list, shear: bool,
               ) -> tuple[np.ndarray, np.ndarray | None]:
         """pi sigma_yy^A and pi sigma_xy^A (or None) at the points ax >= 0, from the nodes
-        and weights (one row, or one per point) of the panels on [b, e] (``inner``) and
-        beyond e (``outer``)."""
+        and weights (one row, or one per point) of ``panels`` (nodes, weights, on [b, e]),
+        joined into one array so that every kernel is evaluated in one pass."""
         r = self.coefficients
         a_x = self.basis(ax)  # (m, 2)
-        normal = np.zeros((ax.size, 2))
-        out = np.zeros((ax.size, 2)) if shear else None
-        cauchy_total = np.zeros(ax.size)
-        for (xi, om), cubic in [(p, True) for p in inner] + [(p, False) for p in outer]:
-            # the basis densities at the nodes: the cubics on [b, e], g and -1 beyond e
+        m = ax.size
+        width = sum(nodes.shape[1] for nodes, _, _ in panels)
+        xi = np.empty((m, width))
+        om = np.empty((m, width))
+        a0 = np.empty((m, width))  # the basis densities at the nodes: the cubics on [b, e],
+        a1 = np.empty((m, width))  # g and -1 beyond e
+        col = 0
+        for nodes, weights, cubic in panels:
+            block = slice(col, col + nodes.shape[1])
+            col = block.stop
+            xi[:, block] = nodes
+            om[:, block] = weights
             if cubic:
-                h = xi - self.b
-                h2, h3 = h * h, h * h * h
-                a_xi = [r[0, 0] * h2 + r[0, 1] * h3, r[1, 0] * h2 + r[1, 1] * h3]
+                h = nodes - self.b
+                h2 = h * h
+                h3 = h2 * h
+                a0[:, block] = r[0, 0] * h2 + r[0, 1] * h3
+                a1[:, block] = r[1, 0] * h2 + r[1, 1] * h3
             else:
-                a_xi = [self.load.remote_g(xi.ravel()).reshape(xi.shape), -np.ones_like(xi)]
-            # kernels with the powers of 1/(4 + d^2) shared (kernels.py, App. B.1)
-            d = ax[:, None] - xi
-            dp = ax[:, None] + xi
-            iq = 1.0 / (4.0 + d * d)
-            ip = 1.0 / (4.0 + dp * dp)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                cp = 4.0 * iq / d  # C(d) = 4 / (d (d^2 + 4))
-            cp = np.where(np.abs(d) < 1e-13, 0.0, cp)
-            # (H_yyy - C)(d) - H_yyy(d + 2 xi)
-            smooth_n = d * iq * iq * (-4.0 - 64.0 * iq) - (1.0 / dp - dp * ip * (
-                1.0 + ip * (4.0 + 64.0 * ip)))
-            # the Cauchy part against A(xi) - A(x): sum C A(xi) - A(x) sum C
-            w_c = om * cp
-            cauchy_total += w_c.sum(axis=1)
-            w_t = w_c + om * smooth_n
-            for j in (0, 1):
-                normal[:, j] += _row_dot(w_t, a_xi[j])
-            if out is not None:
-                # H_yxy(d) - H_yxy(d + 2 xi), H_yxy = 8 (3/q^2 - 16/q^3)
-                w_s = om * 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
-                for j in (0, 1):
-                    out[:, j] += _row_dot(w_s, a_xi[j])
+                a0[:, block] = self.load.remote_g(nodes.ravel()).reshape(nodes.shape)
+                a1[:, block] = -1.0
+        # kernels with the powers of 1/(4 + d^2) shared (kernels.py, App. B.1)
+        d = ax[:, None] - xi
+        dp = ax[:, None] + xi
+        iq = 1.0 / (4.0 + d * d)
+        ip = 1.0 / (4.0 + dp * dp)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cp = 4.0 * iq / d  # C(d) = 4 / (d (d^2 + 4))
+        cp[np.abs(d) < 1e-13] = 0.0
+        # (H_yyy - C)(d) - H_yyy(d + 2 xi)
+        smooth_n = d * iq * iq * (-4.0 - 64.0 * iq) - (1.0 / dp - dp * ip * (
+            1.0 + ip * (4.0 + 64.0 * ip)))
+        # the Cauchy part against A(xi) - A(x): sum C A(xi) - A(x) sum C
+        w_c = om * cp
+        cauchy_total = w_c.sum(axis=1)
+        w_t = w_c + om * smooth_n
+        normal = np.stack([np.einsum("mk,mk->m", w_t, a0),
+                           np.einsum("mk,mk->m", w_t, a1)], axis=1)
+        out = None
+        if shear:
+            # H_yxy(d) - H_yxy(d + 2 xi), H_yxy = 8 (3/q^2 - 16/q^3)
+            w_s = om * 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
+            out = np.stack([np.einsum("mk,mk->m", w_s, a0),
+                            np.einsum("mk,mk->m", w_s, a1)], axis=1)
         normal -= a_x * cauchy_total[:, None]
         gap = ax - self.b
         with np.errstate(divide="ignore"):

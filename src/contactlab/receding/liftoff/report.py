@@ -12,6 +12,8 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from contactlab.receding.core.solution import FLAGS
+from contactlab.receding.core.summary import sweep_counts, unsolved_points
 from contactlab.receding.liftoff.sweep import WIDE_FIT_BASIS, wide_fits
 from contactlab.report.section import Section
 
@@ -206,21 +208,49 @@ def user_shapes_table(patches: dict[str, xr.Dataset]) -> pd.DataFrame:
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame()
 
 
+def _flag_names(values: np.ndarray) -> list[str]:
+    """Space-separated names of each bit field of :data:`FLAGS`."""
+    return [" ".join(name for bit, name in enumerate(FLAGS) if int(v) >> bit & 1)
+            for v in values]
+
+
 def line_table(line: xr.Dataset) -> pd.DataFrame:
     cols = ["a", "b", "K_T", "converged", "admissible", "residual", "remote_slip_error",
             "regime"]
+    cols += [k for k in ("flags", "log10_a", "n_used") if k in line]
     if "a_chaise" in line:
         cols += ["a_chaise", "b_chaise"]
+        cols += [k for k in ("regime_chaise", "flags_chaise") if k in line]
     df = line[cols].to_dataframe().reset_index()
     codes = dict(enumerate(line["regime"].attrs["flag_meanings"].split(), start=-1))
-    df["regime"] = df["regime"].map(codes)
+    for key in ("regime", "regime_chaise"):
+        if key in df:
+            df[key] = df[key].map(codes)
+    for key in ("flags", "flags_chaise"):
+        if key in df:
+            df[key] = _flag_names(df[key].values)
     return df
+
+
+def summary_table(line: xr.Dataset, patches: dict[str, xr.Dataset]) -> pd.DataFrame:
+    """How the points of each sweep were solved (``core.summary``), one row per sweep."""
+    sweeps = [("line load", line, "")]
+    if "converged_chaise" in line:
+        sweeps.append(("line load, Chaise et al. model", line, "_chaise"))
+    sweeps += [(law_name(name), ds, "") for name, ds in patches.items()]
+    rows = []
+    for name, ds, suffix in sweeps:
+        rows.append({"sweep": name, "N": int(ds.attrs.get("N", -1)),
+                     **sweep_counts(ds, suffix),
+                     "N refined up to": int(ds.attrs.get("refine_max_n", ds.attrs.get("N", -1)))})
+    return pd.DataFrame(rows)
 
 
 def points_table(profiles: list[xr.Dataset]) -> pd.DataFrame:
     keys = ["problem", "w_hat", "f", "N", "a", "b", "K_T", "converged", "admissible",
             "residual", "remote_slip_lhs", "remote_slip_rhs", "remote_slip_error",
-            "max_tension", "max_stick_excess", "max_slip_mismatch", "max_separated_traction"]
+            "max_tension", "max_stick_excess", "max_slip_mismatch", "max_separated_traction",
+            "regime", "flags", "log10_a"]
     return pd.DataFrame([{k: p.attrs.get(k, np.nan) for k in keys} for p in profiles])
 
 
@@ -235,8 +265,41 @@ def _diagnostics(line: xr.Dataset, patches: dict[str, xr.Dataset]) -> str:
         if "regime" in ds:
             nostick = int((ds["regime"].values == 1).sum())
             if nostick:
-                parts[-1] += f", {nostick} below the critical friction (no stick zone)"
-    return "Diagnostics: " + "; ".join(parts) + "."
+                limit = int(((ds["regime"].values == 1) & (conv == 1)).sum())
+                parts[-1] += (f", {nostick} below the critical friction ({limit} of them "
+                              "solved in the limit of a vanishing stick zone)")
+    left = []
+    for name, ds, suffix in [("line", line, ""), ("line, Chaise model", line, "_chaise"),
+                             *[(k, v, "") for k, v in patches.items()]]:
+        if "converged" + suffix in ds:
+            left += [f"{name}: {text}" for text in unsolved_points(ds, suffix)]
+    text = "Diagnostics: " + "; ".join(parts) + "."
+    text += (" Every point failed or outside the check tolerance: " + "; ".join(left) + "."
+             if left else " No point is left failed or outside the check tolerance.")
+    flagged = {name: 0 for name in FLAGS}
+    for ds, suffix in [(line, ""), (line, "_chaise"), *[(v, "") for v in patches.values()]]:
+        if "flags" + suffix in ds:
+            for name, count in sweep_counts(ds, suffix).items():
+                if name in flagged:
+                    flagged[name] += count
+    notes = {
+        "stick_zone_limit": "below the critical friction (the first glide node lies ~8.6 "
+                            "lambda/N^2 beyond a) the stick zone is solved in its limit "
+                            "a -> 0 (regime no_stick, a = 0, log10_a by matching)",
+        "continuous_slip_rule": "where the H(b - x)-switched slip rule has no root the "
+                                "friction term sits on every shear row, the same condition "
+                                "since N = 0 beyond b (the Chaise et al. model needs it for "
+                                "f >= 0.7 at N = 500: its missing roots were a property of "
+                                "the switched discretisation, not of the model)",
+        "refined": "points outside the check tolerance are solved again at larger N "
+                   "(n_used; max_check_at_n keeps the check at the sweep's N)",
+        "continuation": "points that failed from their seeds are solved from a solved "
+                        "neighbour",
+    }
+    used = [f"{notes[name]} ({count} points)" for name, count in flagged.items() if count]
+    if used:
+        text += " How points were solved: " + "; ".join(used) + "."
+    return text + " See the summary table for the counts per sweep."
 
 
 def build_section(line_path: Path, patch_paths: list[Path], profile_paths: list[Path],
@@ -322,6 +385,10 @@ def build_section(line_path: Path, patch_paths: list[Path], profile_paths: list[
                    "by B1, B2, B3 with the fits of sec. 7.6 (top, cf. Fig. 7.9); transition "
                    "points relative to the patch edge (bottom, cf. Fig. 7.10)",
                    figures / "receding_patch_wide.png")
+    section.table(summary_table(line, patches), "How the sweep points were solved: solved "
+                  "(plain, in the stick-zone limit, from a neighbour, after raising N, with "
+                  "the continuous slip rule), failed, inadmissible (issue 19)",
+                  tables / "receding_liftoff_summary.csv", digits=0)
     section.table(line_table(line), "Line load: transition points, slope and diagnostics",
                   tables / "receding_line_sweep.csv", digits=4)
     section.table(points_table(profiles), "Profile points: solutions and diagnostics",

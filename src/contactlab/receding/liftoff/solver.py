@@ -52,10 +52,20 @@ error of K_T and of the glide tail of this discretisation, not a defect of the r
 (every entry of Table 6.1 checks out: ``remote``).
 
 The Chaise et al. model (``preformed=False``) is the same system without A_y, K and
-eq. (6.22): bounded-bounded densities only, so the separation tends to a constant. For the
-line load with lambda = 3.5 it has no root for f >= 0.7 (the leftover of the climb set
-bottoms out near 1e-3 whatever row is left out; the square system passes a singular point
-nearby), reported as not converged with its residual.
+eq. (6.22): bounded-bounded densities only, so the separation tends to a constant.
+
+Continuous slip rule (issue 19): the factor H(b - x_k) switches a shear row's friction
+term off when b passes its collocation point, so the leftover equations jump in b, by
+f N(x_k) with N the discrete normal traction next to b (~1e-3 T), and a root can fall in
+such a jump. The Chaise et al. model is where this shows: with lambda = 3.5 its rows had
+no root for f >= 0.7 at N = 500 (N = 100: none for f = 0.78-0.9, a spurious one with
+b ~ 12 c beyond), which is a property of the H-switched discretisation, not of the model.
+Since N = 0 in the separation zone, S + f N = 0 there is the same condition as S = 0, so
+the friction term may sit on every shear row (``continuous=True``): the rows are then
+smooth in b, and the Chaise model has an admissible root at every f up to 1 (N = 100 and
+500). Solutions of the two forms differ by the discretisation error of N beyond b (b by
+2e-4 relative at f = 0.5, N = 100), so the continuous form is the fallback where the
+H-switched one has no root, flagged ``continuous_slip_rule``.
 """
 
 from __future__ import annotations
@@ -83,6 +93,8 @@ from contactlab.receding.liftoff.loading import Load
 from contactlab.receding.liftoff.preformed import Preformed
 
 REGIMES = ("slip_separation", "no_stick", "frictionless")
+#: flag of a solution of the continuous slip rule (module docstring)
+CONTINUOUS_FLAG = "continuous_slip_rule"
 #: N of the first, coarse solve of the N-continuation
 COARSE_N = 64
 
@@ -114,6 +126,12 @@ class LiftoffSolution:
     message: str = ""
     checks: dict[str, float] = field(default_factory=dict)
     seconds: float = np.nan
+    #: how the point was solved beyond the plain root finder (``core.solution.FLAGS``):
+    #: ``stick_zone_limit`` (regime ``no_stick``, a = 0: ``liftoff.limit``),
+    #: ``continuation`` (seeded by a solved neighbour of a sweep), ``refined`` (N raised)
+    flags: tuple[str, ...] = ()
+    #: log10(a/c) by matching for a solution in the stick-zone limit; NaN otherwise
+    log10_a: float = np.nan
 
     # ---- convenience for the FE branch and the CLI
     @property
@@ -180,9 +198,9 @@ class LiftoffSolution:
         x = np.atleast_1d(np.asarray(x, dtype=float))
         if self.glide is None or not self.phi_x.size:
             return np.zeros_like(x)
-        if self.glide.mapping == "infinite":  # whole-line density (f = 0)
-            return -(self.glide._cumulative(self.phi_x, x)
-                     - self.glide._cumulative(self.phi_x, np.zeros(1)))
+        if self.glide.mapping == "infinite":  # whole-line density (f = 0, no stick zone)
+            return (self.glide.displacement(self.phi_x, x)
+                    - self.glide.displacement(self.phi_x, np.zeros(1)))
         return -np.sign(x) * self.glide._cumulative(self.phi_x, np.abs(x))
 
     def separation(self, x: np.ndarray) -> np.ndarray:
@@ -246,10 +264,11 @@ class LiftoffSolution:
         """Store the densities of the converged (or last) root, its residuals and (unless
         ``checks`` is False, e.g. for an internal coarse solve) the contact checks."""
         n = self.n
+        gs = getattr(glide, "size", n)  # N, or N + 1 with a log-singular part
         self.glide, self.climb = glide, climb
         if root.phi.size == system.matrix.shape[1]:
-            self.phi_x, self.phi_y = root.phi[:n], root.phi[n:2 * n]
-            self.K_T = float(root.phi[2 * n]) if self.preformed_used else np.nan
+            self.phi_x, self.phi_y = root.phi[:gs], root.phi[gs:gs + n]
+            self.K_T = float(root.phi[gs + n]) if self.preformed_used else np.nan
             self.residual = float(np.max(np.abs(system.matrix @ root.phi - system.rhs)))
         self.leftover = root.residual
         self.converged = root.converged
@@ -287,8 +306,12 @@ def _intervals(a: float, b: float, n: int, lam_a: float, lam_b: float):
 
 
 def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam_b: float,
-             e: float, preformed: bool = True, drop: int | None = None):
+             e: float, preformed: bool = True, drop: int | None = None,
+             continuous: bool = False):
     """The full discretised system for fixed (a, b): (LinearSystem, glide, climb).
+
+    ``continuous``: the friction term f N on every shear row instead of those with x < b
+    (the continuous slip rule of the module docstring).
 
     Columns: phi_x (N), phi_y (N) and, with the preformed density, K. Rows: N + 1 normal
     rows on [b, inf), N + 1 shear rows on [a, inf) and, with the preformed density, the
@@ -298,35 +321,41 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
     xb = climb.collocation
     xa = glide.collocation
     m = n + 1
+    extra = 1 if preformed else 0
+    # one matrix, filled block by block (no stacking copies at N = 500: 8 MB each)
+    matrix = np.empty((2 * m + extra, 2 * n + extra))
+    rhs = np.empty(2 * m + extra)
+    rows_n, rows_s = matrix[:m], matrix[m:2 * m]
     # separate calls per point set: at its own collocation points an interval uses the
     # classical Gauss-Chebyshev sum (exact there), elsewhere the exact transform; only
     # the normal traction is needed on the rows of [b, inf)
-    gn_b = glide.normal_influence(xb)
+    rows_n[:, :n] = glide.normal_influence(xb)
+    rows_n[:, n:2 * n] = climb.collocation_influence()[1]
     gs_a, gn_a = glide.collocation_influence()
-    cn_b = climb.collocation_influence()[1]
     cs_a, cn_a = climb.influence(xa)
-    nb = load.bilateral(xb)[1]
+    rhs[:m] = -load.bilateral(xb)[1]
     sb, nb_a = load.bilateral(xa)
-    h = np.where(xa < b, f, 0.0)  # H(b - x) f on the shear rows
-    cols_n = [gn_b, cn_b]
-    cols_s = [gs_a + h[:, None] * gn_a, cs_a + h[:, None] * cn_a]
-    rhs_n = -nb
-    rhs_s = -(sb + h * nb_a)
+    # H(b - x) f on the shear rows; ``continuous``: f on every row (N = 0 beyond b)
+    h = np.full_like(xa, f) if continuous else np.where(xa < b, f, 0.0)
+    hc = h[:, None]
+    np.multiply(hc, gn_a, out=rows_s[:, :n])
+    rows_s[:, :n] += gs_a
+    np.multiply(hc, cn_a, out=rows_s[:, n:2 * n])
+    rows_s[:, n:2 * n] += cs_a
+    rhs[m:2 * m] = -(sb + h * nb_a)
     if preformed:
         pre = Preformed(load, b, e)
         pn_b = pre.normal_stress(xb)
         ps, pn = pre.stresses(xa)
-        cols_n.append(pn_b[:, 1:2])
-        cols_s.append(ps[:, 1:2] + h[:, None] * pn[:, 1:2])
-        rhs_n = rhs_n - pn_b[:, 0]
-        rhs_s = rhs_s - (ps[:, 0] + h * pn[:, 0])
-    matrix = np.vstack([np.hstack(cols_n), np.hstack(cols_s)])
-    rhs = np.concatenate([rhs_n, rhs_s])
-    if preformed:
+        rows_n[:, 2 * n] = pn_b[:, 1]
+        rows_s[:, 2 * n] = ps[:, 1] + h * pn[:, 1]
+        rhs[:m] -= pn_b[:, 0]
+        rhs[m:2 * m] -= ps[:, 0] + h * pn[:, 0]
         t_e = climb.preimage(np.array([e]))
-        row = np.concatenate([np.zeros(n), interpolation_matrix(t_e, n)[0], [0.0]])
-        matrix = np.vstack([matrix, row])
-        rhs = np.concatenate([rhs, [0.0]])
+        matrix[2 * m, :n] = 0.0
+        matrix[2 * m, n:2 * n] = interpolation_matrix(t_e, n)[0]
+        matrix[2 * m, 2 * n] = 0.0
+        rhs[2 * m] = 0.0
     centre = n // 2 if drop is None else drop
     return LinearSystem(matrix, rhs, leftover=[centre, m + centre]), glide, climb
 
@@ -350,18 +379,33 @@ def check_liftoff_inputs(f: float, n: int, lam_a: float, lam_b: float, e: float,
 
 def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
                   preformed: bool = True, guess: tuple[float, float] | None = None,
-                  problem: str = "", checks: bool = True) -> LiftoffSolution:
+                  problem: str = "", checks: bool = True,
+                  continuous: bool | None = None, seed_only: bool = False) -> LiftoffSolution:
     """Solve for (a, b, K_T) and the densities at friction f > 0 (see module docstring);
-    ``checks=False`` skips the contact checks (for solutions that only seed others)."""
-    return _solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, problem, checks)[0]
+    ``checks=False`` skips the contact checks (for solutions that only seed others);
+    ``seed_only`` searches from ``guess`` alone (no stock guesses).
+
+    ``continuous``: None tries the H-switched slip rule and, where it has no root, the
+    continuous one (flag ``continuous_slip_rule``); True or False uses that form only."""
+    forms = [False, True] if continuous is None else [bool(continuous)]
+    for form in forms:
+        sol = _solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, problem, checks,
+                             form, seed_only)[0]
+        if form:
+            sol.flags = (*sol.flags, CONTINUOUS_FLAG)
+        if sol.converged:
+            break
+    return sol
 
 
 def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
                    preformed: bool, guess: tuple[float, float] | None, problem: str,
-                   checks: bool = True) -> tuple[LiftoffSolution, np.ndarray | None]:
+                   checks: bool = True, continuous: bool = False, seed_only: bool = False,
+                   ) -> tuple[LiftoffSolution, np.ndarray | None]:
     """``solve_liftoff`` and the secant Jacobian of its root in (log a, log(b - a)) (None
     if there is none), which seeds the root finder of the next N of the continuation.
-    ``checks=False`` skips the contact checks (the coarse solve only seeds the fine one)."""
+    ``checks=False`` skips the contact checks (the coarse solve only seeds the fine one);
+    ``seed_only`` searches from ``guess`` alone (a sweep's neighbour), no stock guesses."""
     import time
 
     check_liftoff_inputs(f, n, lam_a, lam_b, e, load)
@@ -373,7 +417,8 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
         a, b = _params(p)
         if preformed and b >= e - 0.25:
             raise ValueError("b too close to e")
-        return assemble(load, f, n, a, b, lam_a, lam_b, e, preformed)[0]
+        return assemble(load, f, n, a, b, lam_a, lam_b, e, preformed,
+                        continuous=continuous)[0]
 
     w = load.w
     fine_only = False
@@ -387,7 +432,7 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
         # one entry is 4x off at N = 64, so the fine Newton starts from the coarse secant
         # Jacobian times N/COARSE_N, or (large N) from differences at N/2 times 2.
         coarse, jacobian = _solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed,
-                                          guess, problem, checks=False)
+                                          guess, problem, False, continuous, seed_only)
         if jacobian is not None:
             jacobian = jacobian * (n / COARSE_N)
         if coarse.converged:
@@ -397,12 +442,14 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
             if half > 2 * COARSE_N:
                 mid = difference_jacobian(
                     lambda p: assemble(load, f, half, *_params(p), lam_a, lam_b, e,
-                                       preformed)[0],
+                                       preformed, continuous=continuous)[0],
                     np.array([np.log(coarse.a), np.log(coarse.b - coarse.a)]))
                 jacobian = jacobian if mid is None else mid * (n / half)
     guesses = []
     if guess is not None and np.all(np.isfinite(guess)) and guess[1] > guess[0] > 0:
         guesses.append(np.array([np.log(guess[0]), np.log(guess[1] - guess[0])]))
+    if seed_only and guesses:
+        fine_only = True  # one search from the seed, with the fine iteration budget
     if not fine_only:
         for a0, b0 in ((0.25 + 0.15 * w, 1.8 + 0.5 * w), (0.08 + 0.15 * w, 1.57 + 0.5 * w),
                        (0.6 + 0.15 * w, 2.2 + 0.5 * w), (0.02 + 0.5 * w, 1.5 + w)):
@@ -432,7 +479,8 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
         return sol, root.jacobian
     try:
         with single_thread():
-            sysm, glide, climb = assemble(load, f, n, a, b, lam_a, lam_b, e, preformed)
+            sysm, glide, climb = assemble(load, f, n, a, b, lam_a, lam_b, e, preformed,
+                                          continuous=continuous)
     except (ValueError, np.linalg.LinAlgError):
         sol.message += "; no valid transition points"
         sol.regime = "failed"
