@@ -6,6 +6,7 @@
 import re
 
 from contactlab.prediction.pairs import pair_lookup
+from contactlab.rulehelpers import pdf_files, table_files
 
 _PRED = config["prediction"]
 PREDICTION_TESTS = list(TEST_IDS)
@@ -82,7 +83,14 @@ rule report_prediction:
         predictions=expand(result("prediction/{test}.nc"), test=PREDICTION_TESTS),
     output:
         section=result("report/sections/25_prediction.html"),
-        table=result("report/tables/prediction.csv"),
+        tables=table_files(
+            result("report/tables/prediction.csv"),
+            result("report/tables/prediction_validation.csv"),
+        ),
+        pdfs=pdf_files(
+            result("report/figures/prediction_stiffness.png"),
+            result("report/figures/prediction_coupling.png"),
+        ),
         figure=report(
             result("report/figures/prediction_stiffness.png"),
             caption="../report/prediction.rst",
