@@ -65,8 +65,26 @@ def _convolve(derivatives: list[np.ndarray], component: str) -> np.ndarray:
     return (2j * total).real  # 2 pi i (...) / pi
 
 
+class _OneAmplitude:
+    """What a one-unknown singular term shares: its influences and its density."""
+
+    def influence(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(S, N) as (len(x), 1) matrices: tractions per unit k (units of the load)."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        derivatives = self._derivatives(x)
+        shear = self.transform(x) + _convolve(derivatives, "shear")
+        normal = _convolve(derivatives, "normal")
+        return shear[:, None], normal[:, None]
+
+    def normal_influence(self, x: np.ndarray) -> np.ndarray:
+        return self.influence(x)[1]
+
+    def density(self, phi: np.ndarray, x: np.ndarray) -> np.ndarray:
+        return float(np.asarray(phi)[0]) * self.shape(np.atleast_1d(x))
+
+
 @dataclass(frozen=True)
-class StepDensity:
+class StepDensity(_OneAmplitude):
     """k (2/pi) arccosh(a/|x|) on |x| < a: one unknown, the amplitude k = S(0+)."""
 
     a: float
@@ -101,20 +119,6 @@ class StepDensity:
         second = (2.0 * a / np.pi) * (a * a - 2.0 * z * z) / (z * z * s**3)
         return [value, first, second]
 
-    def influence(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(S, N) as (len(x), 1) matrices: tractions per unit k (units of the load)."""
-        x = np.atleast_1d(np.asarray(x, dtype=float))
-        derivatives = self._derivatives(x)
-        shear = self.transform(x) + _convolve(derivatives, "shear")
-        normal = _convolve(derivatives, "normal")
-        return shear[:, None], normal[:, None]
-
-    def normal_influence(self, x: np.ndarray) -> np.ndarray:
-        return self.influence(x)[1]
-
-    def density(self, phi: np.ndarray, x: np.ndarray) -> np.ndarray:
-        return float(np.asarray(phi)[0]) * self.shape(np.atleast_1d(x))
-
     def _half_integral(self, x: np.ndarray) -> np.ndarray:
         """int_0^|x| l (a at |x| >= a)."""
         ax = np.minimum(np.abs(np.asarray(x, dtype=float)), self.a)
@@ -137,7 +141,7 @@ class StepDensity:
 
 
 @dataclass(frozen=True)
-class LogDensity:
+class LogDensity(_OneAmplitude):
     """k (1/pi) ln(1 + lam^2/x^2) on the whole line: one unknown, k = S(0+)."""
 
     lam: float
@@ -164,19 +168,6 @@ class LogDensity:
         c = 2.0 / np.pi
         return [c * (np.log(zl) - np.log(z)), c * (1.0 / zl - 1.0 / z),
                 c * (1.0 / (z * z) - 1.0 / (zl * zl))]
-
-    def influence(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        x = np.atleast_1d(np.asarray(x, dtype=float))
-        derivatives = self._derivatives(x)
-        shear = self.transform(x) + _convolve(derivatives, "shear")
-        normal = _convolve(derivatives, "normal")
-        return shear[:, None], normal[:, None]
-
-    def normal_influence(self, x: np.ndarray) -> np.ndarray:
-        return self.influence(x)[1]
-
-    def density(self, phi: np.ndarray, x: np.ndarray) -> np.ndarray:
-        return float(np.asarray(phi)[0]) * self.shape(np.atleast_1d(x))
 
     def _half_integral(self, x: np.ndarray) -> np.ndarray:
         """int_0^|x| l."""
