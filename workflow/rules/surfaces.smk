@@ -33,51 +33,42 @@ if DEMO_SCANS:
             published=PUBLISHED,
         log:
             "logs/surfaces/demo_scans.log",
+        benchmark:
+            "logs/benchmarks/surfaces_demo_scans.tsv",
         shell:
             "contactlab surfaces demo-scans --sheet {input.sheet:q} --out-dir {params.out_dir:q}"
             " --seed {params.seed:q} --published-dir {params.published:q} > {log:q} 2>&1"
 
 
 rule surfaces_texture:
-    """Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz of one surface from its scans.
+    """Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz of every surface from its scans.
 
-    One job per surface. A scan the analysis refuses (unreadable, too many undefined
-    points...) leaves the surface's parameters NaN with the reason in its result, so the
-    summary lists every surface; surfaces_texture_check then fails the run naming it. The
-    sheet row is a param, not the sheet an input, so editing one row reruns one surface.
+    One job for the whole sheet (a surface takes a fraction of a second once the libraries
+    are loaded), surfaces side by side in `threads` worker processes; its own
+    <surface>.nc each and the summary texture.nc. A scan the analysis refuses (unreadable,
+    too many undefined points...) leaves the surface's parameters NaN with the reason in its
+    result, so the summary lists every surface; surfaces_texture_check then fails the run
+    naming it.
     """
     input:
-        scans=lambda wildcards: SURFACE_ROWS[wildcards.surface].scans,
-    output:
-        result("surfaces/{surface}.nc"),
-    wildcard_constraints:
-        surface="|".join(SURFACE_IDS),
-    params:
+        scans=SCANS,
         sheet=SURFACE_SHEET,
-        row=lambda wildcards: repr(SURFACE_ROWS[wildcards.surface]),
+    output:
+        surfaces=expand(result("surfaces/{surface}.nc"), surface=SURFACE_IDS),
+        summary=result("surfaces/texture.nc"),
+    params:
         bins=SURFACES_CONFIG["histogram_bins"],
         max_undefined=SURFACES_CONFIG["max_undefined_fraction"],
-        out_dir=lambda wildcards, output: Path(output[0]).parent,
+        out_dir=lambda wildcards, output: Path(output.summary).parent,
+    threads: 2
     log:
-        logs("surfaces/texture/{surface}.log"),
+        logs("surfaces/texture.log"),
     benchmark:
-        logs("benchmarks/surfaces_texture_{surface}.tsv"),
+        logs("benchmarks/surfaces_texture.tsv"),
     shell:
-        "contactlab surfaces texture --sheet {params.sheet:q} --surface {wildcards.surface:q}"
-        " --out-dir {params.out_dir:q} --bins {params.bins:q}"
-        " --max-undefined-fraction {params.max_undefined:q} > {log:q} 2>&1"
-
-
-rule surfaces_texture_summary:
-    """Parameters, filled fractions and reasons for undefined parameters of every surface."""
-    input:
-        expand(result("surfaces/{surface}.nc"), surface=SURFACE_IDS),
-    output:
-        result("surfaces/texture.nc"),
-    log:
-        logs("surfaces/texture_summary.log"),
-    shell:
-        "contactlab surfaces texture-summary {input:q} --out {output:q} > {log:q} 2>&1"
+        "contactlab surfaces texture --sheet {input.sheet:q} --out-dir {params.out_dir:q}"
+        " --bins {params.bins:q} --max-undefined-fraction {params.max_undefined:q}"
+        " --summary {output.summary:q} --workers {threads:q} 2> {log:q}"
 
 
 rule surfaces_texture_check:
@@ -90,6 +81,8 @@ rule surfaces_texture_check:
         allow=["--allow-refused"] if SURFACES_CONFIG["allow_refused_scans"] else [],
     log:
         logs("surfaces/texture_check.log"),
+    benchmark:
+        logs("benchmarks/surfaces_texture_check.tsv"),
     shell:
         "contactlab surfaces texture-check {input:q} {params.allow:q} --out {output:q}"
         " > {log:q} 2>&1"
@@ -108,6 +101,8 @@ rule surfaces_seq:
         published=PUBLISHED,
     log:
         logs("surfaces/seq.log"),
+    benchmark:
+        logs("benchmarks/surfaces_seq.tsv"),
     shell:
         "contactlab surfaces seq --tests {input.tests:q} --texture {input.texture:q}"
         " --published-dir {params.published:q} --out {output:q} 2> {log:q}"
@@ -163,6 +158,8 @@ rule report_surfaces:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
         logs("report/surfaces.log"),
+    benchmark:
+        logs("benchmarks/report_surfaces.tsv"),
     shell:
         "contactlab surfaces report --seq {input.seq:q} --texture {input.texture:q}"
         " --surface-dir {params.surface_dir:q} --published-dir {params.published:q}"

@@ -19,14 +19,40 @@ def _demo_scans(args: argparse.Namespace) -> None:
     print(f"wrote {len(written)} SYNTHETIC demo scans to {args.out_dir}")
 
 
-def _texture(args: argparse.Namespace) -> None:
+def _texture_of(spec, bins: int, max_undefined: float, out_dir: Path, history: str
+                ) -> list[str]:
+    """Texture of one surface written to ``out_dir/<surface>.nc``; returns its log lines."""
     from contactlab.io import stamp, write_netcdf
-    from contactlab.surfaces.sheet import read_surface_sheet
     from contactlab.surfaces.texture import surface_dataset, surface_texture
+
+    texture = surface_texture(spec, bins, max_undefined, record_refused=True)
+    ds = surface_dataset(texture)
+    stamp(ds, title=f"Surface texture of {spec.surface}",
+          source="scans named in the surface sheet; undefined points filled by harmonic "
+                 "interpolation; form removal, Gaussian filter (ISO 16610-21/61), "
+                 "ISO 25178-2 and ISO 4287/4288 parameters (sec. 2.3.4)",
+          history=f"{history} --surface {spec.surface}")
+    write_netcdf(ds, out_dir / f"{spec.surface}.nc")
+    lines = [f"{spec.surface}: filled {100 * fraction:.3g} % of the {kind} scan"
+             for kind, fraction in texture.filled.items() if fraction > 0]
+    lines += [f"{spec.surface}: {name} undefined: {reason}"
+              for name, reason in texture.undefined.items()]
+    lines += [f"{spec.surface}: {kind} scan refused, its parameters are NaN: {reason}"
+              for kind, reason in texture.refused.items()]
+    return lines
+
+
+def _texture(args: argparse.Namespace) -> None:
+    from concurrent.futures import ProcessPoolExecutor
+    from functools import partial
+
+    from contactlab.surfaces.sheet import read_surface_sheet
 
     if not 0.0 <= args.max_undefined_fraction < 1.0:
         raise ValueError(f"--max-undefined-fraction: {args.max_undefined_fraction} is not in "
                          "[0, 1)")
+    if args.workers < 1:
+        raise ValueError(f"--workers: {args.workers} is not a positive integer")
     specs = read_surface_sheet(args.sheet)
     if args.surface:
         known = {s.surface for s in specs}
@@ -37,38 +63,34 @@ def _texture(args: argparse.Namespace) -> None:
     started = time.perf_counter()
     history = (f"contactlab surfaces texture --sheet {args.sheet} "
                f"--max-undefined-fraction {args.max_undefined_fraction}")
-    for spec in specs:
-        texture = surface_texture(spec, args.bins, args.max_undefined_fraction,
-                                  record_refused=True)
-        ds = surface_dataset(texture)
-        stamp(ds, title=f"Surface texture of {spec.surface}",
-              source="scans named in the surface sheet; undefined points filled by harmonic "
-                     "interpolation; form removal, Gaussian filter (ISO 16610-21/61), "
-                     "ISO 25178-2 and ISO 4287/4288 parameters (sec. 2.3.4)",
-              history=f"{history} --surface {spec.surface}")
-        write_netcdf(ds, Path(args.out_dir) / f"{spec.surface}.nc")
-        for kind, fraction in texture.filled.items():
-            if fraction > 0:
-                print(f"{spec.surface}: filled {100 * fraction:.3g} % of the {kind} scan")
-        for name, reason in texture.undefined.items():
-            print(f"{spec.surface}: {name} undefined: {reason}")
-        for kind, reason in texture.refused.items():
-            print(f"{spec.surface}: {kind} scan refused, its parameters are NaN: {reason}",
-                  file=sys.stderr)
-    print(f"processed {len(specs)} surface(s) in {time.perf_counter() - started:.2f} s")
+    one = partial(_texture_of, bins=args.bins, max_undefined=args.max_undefined_fraction,
+                  out_dir=Path(args.out_dir), history=history)
+    if args.workers == 1 or len(specs) == 1:
+        logs = map(one, specs)
+    else:
+        pool = ProcessPoolExecutor(max_workers=min(args.workers, len(specs)))
+        logs = pool.map(one, specs)
+    for done, (spec, lines) in enumerate(zip(specs, logs, strict=True), start=1):
+        for line in lines:
+            print(line, file=sys.stderr)
+        print(f"{done}/{len(specs)} surfaces ({spec.surface}), "
+              f"{time.perf_counter() - started:.1f} s", file=sys.stderr)
+    if args.summary is not None:
+        _write_summary([Path(args.out_dir) / f"{s.surface}.nc" for s in specs], args.summary)
 
 
-def _texture_summary(args: argparse.Namespace) -> None:
+def _write_summary(paths: list[Path], out: Path) -> None:
+    """One table of every surface's parameters (Tables A.1, A.26, A.27, 2.6)."""
     from contactlab.io import load_datasets, stamp, write_netcdf
     from contactlab.surfaces.texture import summary_dataset
 
-    datasets = load_datasets(args.surfaces, "surface result")
+    datasets = load_datasets(paths, "surface result")
     summary = summary_dataset(datasets)
     stamp(summary, title="Texture parameters of every surface (Tables A.1, A.26, A.27, 2.6)",
           source="results/surfaces/<surface>.nc of the surfaces in the surface sheet, sec. 2.3.4",
-          history=f"contactlab surfaces texture-summary ({len(datasets)} surfaces)",
+          history=f"contactlab surfaces texture --summary ({len(datasets)} surfaces)",
           inputs=datasets)
-    write_netcdf(summary, args.out)
+    write_netcdf(summary, out)
 
 
 def _texture_check(args: argparse.Namespace) -> None:
@@ -148,9 +170,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         examples="  contactlab surfaces demo-scans --sheet config/surfaces.csv "
                  "--out-dir results/surfaces/demo_scans --seed 20150901\n"
                  "  contactlab surfaces texture --sheet config/surfaces.csv "
-                 "--out-dir results/surfaces --bins 80 --max-undefined-fraction 0.01\n"
-                 "  contactlab surfaces texture-summary results/surfaces/pad.nc "
-                 "results/surfaces/rough_specimen.nc --out results/surfaces/texture.nc\n"
+                 "--out-dir results/surfaces --bins 80 --max-undefined-fraction 0.01 "
+                 "--summary results/surfaces/texture.nc\n"
                  "  contactlab surfaces texture-check results/surfaces/texture.nc "
                  "--out results/surfaces/refused.csv\n"
                  "  contactlab surfaces seq --tests config/tests.csv "
@@ -192,15 +213,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     texture.add_argument("--max-undefined-fraction", type=float, required=True,
                          help="largest fraction of undefined points of a scan that is filled "
                               "(harmonic interpolation), in [0, 1); more is refused")
+    texture.add_argument("--summary", type=Path, default=None,
+                         help="also gather every surface's parameters into this netCDF "
+                              "table (texture.nc; default: none)")
+    texture.add_argument("--workers", type=int, default=1,
+                         help="surfaces analysed side by side in worker processes "
+                              "(default: 1; the workflow passes the job's threads)")
     texture.set_defaults(func=_texture)
-
-    summary = add_command(
-        commands, "texture-summary", help="gather <surface>.nc files into one table (texture.nc)",
-        description="Gather the parameters of the <surface>.nc files of `surfaces texture` "
-                    "into one table (Tables A.1, A.26, A.27, 2.6).")
-    summary.add_argument("surfaces", type=input_file, nargs="+", help="<surface>.nc files")
-    summary.add_argument("--out", type=Path, required=True, help="netCDF output")
-    summary.set_defaults(func=_texture_summary)
 
     check = add_command(
         commands, "texture-check", help="fail when a scan was refused (list: refused.csv)",
