@@ -33,24 +33,24 @@ RAW_FIGURES = ["normal", "tangential", "steps", "mean_row"]
 
 
 rule stiffness_demo:
-    """RECONSTRUCTED demo raw data of one thesis test from its published fits."""
+    """RECONSTRUCTED demo raw data of the thesis tests from their published fits (one job)."""
     input:
-        published=lambda wc: [PUBLISHED / "table_2.1.csv", PUBLISHED / "table_2.7.csv"]
-        + [PUBLISHED / f"table_{t}.csv" for t, v in TANGENTIAL_TABLES.items() if v[0] == wc.test],
+        published=[PUBLISHED / f"table_{t}.csv" for t in ("2.1", "2.7", *TANGENTIAL_TABLES)],
     output:
-        load_log="results/demo/{test}/load_log.csv",
-        fields="results/demo/{test}/fields.nc",
-        design="results/demo/{test}/design.csv",
-    wildcard_constraints:
-        test="|".join(PUBLISHED_TESTS),
+        load_logs=expand("results/demo/{test}/load_log.csv", test=PUBLISHED_TESTS),
+        fields=expand("results/demo/{test}/fields.nc", test=PUBLISHED_TESTS),
+        designs=expand("results/demo/{test}/design.csv", test=PUBLISHED_TESTS),
     params:
+        tests=PUBLISHED_TESTS,
         seed=_RAW["demo_seed"],
         published=PUBLISHED,
-        out_dir=lambda wildcards, output: Path(output.load_log).parent,
+        out_dir=lambda wildcards, output: Path(output.load_logs[0]).parent.parent,
     log:
-        "logs/stiffness/demo_{test}.log",
+        "logs/stiffness/demo.log",
+    benchmark:
+        "logs/benchmarks/stiffness_demo.tsv",
     shell:
-        "contactlab stiffness demo --test {wildcards.test:q} --seed {params.seed:q}"
+        "contactlab stiffness demo --test {params.tests:q} --seed {params.seed:q}"
         " --published-dir {params.published:q} --out-dir {params.out_dir:q} 2> {log:q}"
 
 
@@ -80,35 +80,6 @@ rule stiffness_process:
         " --confidence {params.confidence:q} --out {output:q} 2> {log:q}"
 
 
-rule stiffness_figures:
-    """Figures like Figs 2.8-2.17 for one test, published values overlaid."""
-    input:
-        result=result("stiffness/{test}.nc"),
-    output:
-        figures=[
-            report(
-                result(f"report/figures/stiffness_raw_{{test}}_{name}.png"),
-                caption="../report/stiffness_raw.rst",
-                category="Contact stiffness",
-                subcategory="{test}",
-            )
-            for name in RAW_FIGURES
-        ],
-        pdfs=pdf_files(
-            *[result(f"report/figures/stiffness_raw_{{test}}_{name}.png") for name in RAW_FIGURES]
-        ),
-    wildcard_constraints:
-        test=_RAW_TEST_PATTERN,
-    params:
-        published=PUBLISHED,
-        out_dir=lambda wildcards, output: Path(output.figures[0]).parent,
-    log:
-        logs("stiffness/figures_{test}.log"),
-    shell:
-        "contactlab stiffness figures {input.result:q} --published-dir {params.published:q}"
-        " --out-dir {params.out_dir:q} 2> {log:q}"
-
-
 rule stiffness_summary:
     """summary.nc and the thesis tables recomputed from the raw results of every test."""
     input:
@@ -125,6 +96,8 @@ rule stiffness_summary:
         tables_dir=lambda wildcards, output: Path(output.tables[0]).parent,
     log:
         logs("stiffness/summary.log"),
+    benchmark:
+        logs("benchmarks/stiffness_summary.tsv"),
     shell:
         "contactlab stiffness summarize {input.results:q} --tests {input.tests:q}"
         " --seq {input.seq:q} --kt0-threshold {params.threshold:q} {params.errors:q}"
@@ -133,13 +106,12 @@ rule stiffness_summary:
 
 
 rule report_stiffness_raw:
-    """Report section: every number of Tables 2.1-2.4, 2.7-2.10 from raw vs published."""
+    """Report section: every number of Tables 2.1-2.4, 2.7-2.10 from raw vs published, and
+    the figures of each test (like Figs 2.8-2.17, published values overlaid)."""
     input:
         results=expand(result("stiffness/{test}.nc"), test=RAW_TESTS),
         summary=result("stiffness/summary.nc"),
         tables=RAW_TABLES,
-        figures=expand(result("report/figures/stiffness_raw_{test}_{name}.png"),
-                       test=RAW_TESTS, name=RAW_FIGURES),
         from_published_steps=[
             result(f"report/tables/table_{n}_from_published_steps.csv")
             for n in ["2.1", "2.2", "2.3", "2.4", "2.7", "2.8", "2.9", "2.10"]
@@ -166,6 +138,20 @@ rule report_stiffness_raw:
             ]
         ),
         flags_md=result("report/tables/stiffness_raw_flagged_fits.md"),
+        test_figures=[
+            report(
+                result(f"report/figures/stiffness_raw_{test}_{name}.png"),
+                caption="../report/stiffness_raw.rst",
+                category="Contact stiffness",
+                subcategory=test,
+            )
+            for test in RAW_TESTS
+            for name in RAW_FIGURES
+        ],
+        test_pdfs=pdf_files(
+            *[result(f"report/figures/stiffness_raw_{test}_{name}.png")
+              for test in RAW_TESTS for name in RAW_FIGURES]
+        ),
         figure=report(
             result("report/figures/stiffness_raw_summary.png"),
             caption="../report/stiffness_raw.rst",
@@ -177,6 +163,8 @@ rule report_stiffness_raw:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
         logs("report/stiffness_raw.log"),
+    benchmark:
+        logs("benchmarks/report_stiffness_raw.tsv"),
     shell:
         "contactlab stiffness report-raw {input.results:q} --summary {input.summary:q}"
         " --published-dir {params.published:q}"
@@ -193,6 +181,5 @@ REPORT_SECTIONS.append(result("report/sections/21_stiffness_raw.html"))
 # Seconds-long gathers, light solves and reports: on a cluster they run in the
 # Snakemake process itself instead of queueing as jobs of their own.
 localrules:
-    stiffness_figures,
     stiffness_summary,
     report_stiffness_raw,

@@ -20,7 +20,7 @@ if TYPE_CHECKING:
 
 PUBLISHED = "directory of the transcribed thesis tables (default: the packaged copy)"
 EXAMPLES = """\
-  contactlab stiffness demo --test RU1 --seed 20180501 --out-dir results/demo/RU1
+  contactlab stiffness demo --test RU1 RU2 --seed 20180501 --out-dir results/demo
   contactlab stiffness process --test RU1 --load-log results/demo/RU1/load_log.csv \\
       --fields results/demo/RU1/fields.nc --max-normal-load-kN 4 --nominal-area-mm2 20 \\
       --grid-points 41 --piston-area-cm2 6.5 --pressure-uncertainty-MPa 0.135 \\
@@ -38,7 +38,9 @@ EXAMPLES = """\
 def _demo(args: argparse.Namespace) -> None:
     from contactlab.stiffness.demo import write_demo
 
-    write_demo(args.test, args.out_dir, seed=args.seed, published_dir=args.published_dir)
+    for test in args.test:
+        write_demo(test, Path(args.out_dir) / test, seed=args.seed,
+                   published_dir=args.published_dir)
 
 
 def _process(args: argparse.Namespace) -> None:
@@ -109,12 +111,13 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 def register_raw(commands: argparse._SubParsersAction) -> None:
     """The raw-data sub-commands: demo, process, summarize, report-raw."""
     demo = add_command(
-        commands, "demo", help="write the RECONSTRUCTED demo raw data of a test",
-        description="Write a RECONSTRUCTED load log and DIC displacement fields of one thesis "
-                    "test from its published fits (Tables 2.1, 2.7, A.2-A.39), seeded.")
-    demo.add_argument("--test", required=True, help="one of RU1-RU3, SU1-SU3, S1-S3")
+        commands, "demo", help="write the RECONSTRUCTED demo raw data of thesis tests",
+        description="Write a RECONSTRUCTED load log and DIC displacement fields of each given "
+                    "thesis test from its published fits (Tables 2.1, 2.7, A.2-A.39), seeded.")
+    demo.add_argument("--test", required=True, nargs="+",
+                      help="one or more of RU1-RU3, SU1-SU3, S1-S3")
     demo.add_argument("--out-dir", type=Path, required=True,
-                      help="directory for load_log.csv, fields.nc and design.csv")
+                      help="directory receiving <test>/load_log.csv, fields.nc and design.csv")
     demo.add_argument("--seed", type=int, required=True,
                       help="random seed (config stiffness.raw.demo_seed)")
     demo.add_argument("--published-dir", type=input_dir, default=None, help=PUBLISHED)

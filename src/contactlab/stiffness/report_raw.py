@@ -248,7 +248,7 @@ def summary_figure(summary: xr.Dataset, published_dir: Path | None, png: Path) -
 
 def build_section(results: list[Path], summary_path: Path, report_dir: Path, out: Path,
                   published_dir: Path | None = None, flags_out: Path | None = None) -> None:
-    """Write section 21 with its comparison, recovery and flag tables and summary figure.
+    """Write section 21: comparison, recovery and flag tables, summary and per-test figures.
 
     Every table is written, empty when there is nothing to show (e.g. no thesis test to
     recover), so the workflow's declared outputs always exist.
@@ -340,6 +340,7 @@ def build_section(results: list[Path], summary_path: Path, report_dir: Path, out
         "<figcaption>Kn, Kt0, f and Cc from raw data vs published (PDF beside)</figcaption>"
         "</figure>")
     for path in results:
+        test_figures(path, report_dir / "figures", published_dir)
         with xr.open_dataset(path) as ds:
             test = str(ds.attrs["test"])
         for name, caption in (("normal", "normal steps (like Figs 2.8-2.13)"),
