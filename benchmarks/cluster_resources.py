@@ -1,6 +1,6 @@
-"""Slurm resources of the heavy rules from Snakemake benchmark files.
+"""Slurm resources of the rules that run as cluster jobs, from Snakemake benchmark files.
 
-The heavy rules write ``benchmark:`` files (``logs/benchmarks/<rule>_<wildcards>.tsv``,
+Every rule writes ``benchmark:`` files (``logs/benchmarks/<rule>_<wildcards>.tsv``,
 columns ``s``, ``max_rss`` in MB, ``cpu_time`` in s, ...). The measured files of the default
 study are kept in ``docs/cluster/benchmarks/``; this script turns them into the
 ``set-resources`` block of ``workflow/profiles/slurm/config.yaml``:
@@ -30,8 +30,9 @@ MEASURED = ROOT / "docs" / "cluster" / "benchmarks"
 #: rule names, longest first, so that a file name maps to the rule that wrote it
 RULES = sorted(["receding_gap_chunk", "receding_line_chunk", "receding_patch_chunk",
                 "receding_table_chunk", "fe_receding", "fe_asperity", "asperity_bem",
-                "asperity_grid_bem", "asperity_transverse", "stiffness_process",
-                "surfaces_texture"], key=len, reverse=True)
+                "asperity_grid_bem", "asperity_transverse", "prediction_pair", "stiffness_demo",
+                "stiffness_process", "surfaces_demo_scans", "surfaces_texture"],
+               key=len, reverse=True)
 #: jobs slower than the measured one of their rule, by the README's timings: the plastic
 #: asperity models take up to 330 s against 127 s for the elastic one measured here
 UNMEASURED_FACTOR = {"fe_asperity": 330 / 127}

@@ -38,13 +38,20 @@ def test_slurm_resources_are_those_derived_from_the_benchmark_files(repo: Path) 
     assert profile["set-resources"] == measured
 
 
-def test_every_benchmarked_rule_is_measured_and_has_resources(repo: Path) -> None:
+def test_every_cluster_rule_is_measured_and_has_resources(repo: Path) -> None:
+    """Every rule that runs as a cluster job (not a localrule) writes a benchmark file, is
+    measured in docs/cluster/benchmarks and has its resources in the profile."""
     derive = _load(repo / "benchmarks" / "cluster_resources.py")
-    benchmarked = set()
+    cluster, local, benchmarked = set(), set(), set()
     for path in [repo / "Snakefile", *sorted((repo / "workflow" / "rules").glob("*.smk"))]:
         text = path.read_text()
-        for rule, body in re.findall(r"^rule (\w+):\n((?:[ \t]+.*\n|\n)+)", text, re.M):
+        for rule, body in re.findall(r"^\s*rule (\w+):\n((?:[ \t]+.*\n|\n)+)", text, re.M):
+            cluster.add(rule)
             if re.search(r"^\s+benchmark:", body, re.M):
                 benchmarked.add(rule)
-    assert benchmarked == set(derive.RULES)
-    assert set(_profile(repo, "slurm")["set-resources"]) == benchmarked
+        for block in re.findall(r"^localrules:\n((?:[ \t]+.*\n)+)", text, re.M):
+            local.update(re.findall(r"(\w+),", block))
+    cluster -= local
+    assert cluster <= benchmarked, sorted(cluster - benchmarked)
+    assert cluster == set(derive.RULES)
+    assert set(_profile(repo, "slurm")["set-resources"]) == cluster

@@ -78,6 +78,8 @@ rule asperity_single:
         limits=ASPERITY["fe_models"]["shear_limit_stress"],
     log:
         logs("asperity/single.log"),
+    benchmark:
+        logs("benchmarks/asperity_single.tsv"),
     shell:
         "contactlab asperity single --bem {input:q} --nu {params.nu:q}"
         " --q-points {params.q_points:q} --youngs-modulus {params.e:q}"
@@ -99,6 +101,8 @@ rule asperity_multi:
         points=ASPERITY["multi"]["points"],
     log:
         logs("asperity/multi.log"),
+    benchmark:
+        logs("benchmarks/asperity_multi.tsv"),
     shell:
         "contactlab asperity multi --laws {params.laws:q} --m {params.m:q}"
         " --pt-over-pm {params.ptpm:q} --tables {params.tables:q} --s-max {params.s_max:q}"
@@ -119,6 +123,8 @@ rule asperity_grid:
         apts=ASPERITY["grid"]["area_ratio_points"],
     log:
         logs("asperity/grid.log"),
+    benchmark:
+        logs("benchmarks/asperity_grid.tsv"),
     shell:
         "contactlab asperity grid --N {params.n:q} --pt-over-pd {params.pt:q}"
         " --load-min {params.lmin:q} --load-max {params.lmax:q} --load-points {params.lpts:q}"
@@ -157,6 +163,8 @@ rule asperity_grid_bem_gather:
         result("asperity/grid_bem.nc"),
     log:
         logs("asperity/grid_bem_merge.log"),
+    benchmark:
+        logs("benchmarks/asperity_grid_bem_gather.tsv"),
     shell:
         "contactlab asperity grid-bem-gather {input:q} --out {output:q} 2> {log:q}"
 
@@ -192,6 +200,8 @@ rule report_asperity_single:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
         logs("report/asperity_single.log"),
+    benchmark:
+        logs("benchmarks/report_asperity_single.tsv"),
     shell:
         "contactlab asperity report single {input.single:q} {input.transverse:q}"
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
@@ -214,6 +224,8 @@ rule report_asperity_multi:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
         logs("report/asperity_multi.log"),
+    benchmark:
+        logs("benchmarks/report_asperity_multi.tsv"),
     shell:
         "contactlab asperity report multi {input:q}"
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
@@ -262,6 +274,8 @@ rule report_asperity_grid:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
         logs("report/asperity_grid.log"),
+    benchmark:
+        logs("benchmarks/report_asperity_grid.tsv"),
     shell:
         "contactlab asperity report grid {input.grid:q} {input.bem:q}"
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"

@@ -43,6 +43,8 @@ rule prediction_pair:
         tol=_PRED["solver_tol"],
     log:
         logs("prediction/{test}.log"),
+    benchmark:
+        logs("benchmarks/prediction_pair_{test}.tsv"),
     shell:
         "contactlab prediction pair --test {wildcards.test:q}"
         " --specimen-scan {input.specimen:q} --pad-scan {input.pad:q}"

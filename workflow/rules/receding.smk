@@ -61,6 +61,8 @@ rule receding_gap_gather:
         result("receding/gap.nc"),
     log:
         logs("receding/gap_gather.log"),
+    benchmark:
+        logs("benchmarks/receding_gap_gather.tsv"),
     shell:
         "contactlab receding gap-gather {input:q} --out {output:q} 2> {log:q}"
 
@@ -76,6 +78,8 @@ rule receding_gap_gather_compare:
         n=r"\d+",
     log:
         logs("receding/gap_gather_N{n}.log"),
+    benchmark:
+        logs("benchmarks/receding_gap_gather_compare_{n}.tsv"),
     shell:
         "contactlab receding gap-gather {input:q} --out {output:q} 2> {log:q}"
 
@@ -88,6 +92,8 @@ rule receding_gap_regimes:
         result("receding/gap_regimes.nc"),
     log:
         logs("receding/gap_regimes.log"),
+    benchmark:
+        logs("benchmarks/receding_gap_regimes.tsv"),
     shell:
         "contactlab receding gap-regimes --sweep {input:q} --out {output:q} 2> {log:q}"
 
@@ -105,6 +111,8 @@ rule receding_gap_profile:
         refine_max_n=max(RECEDING["profile_n"], RECEDING["refine_max_n"]),
     log:
         logs("receding/gap_profile_{point}.log"),
+    benchmark:
+        logs("benchmarks/receding_gap_profile_{point}.tsv"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding gap-profile --w-hat {params.w:q} --f {params.f:q}"
@@ -162,6 +170,8 @@ rule report_receding_gap:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
         logs("report/receding_gap.log"),
+    benchmark:
+        logs("benchmarks/report_receding_gap.tsv"),
     shell:
         "contactlab receding report-gap --sweep {input.sweep:q} --compare {input.compare:q}"
         " --regimes {input.regimes:q}"
@@ -229,6 +239,8 @@ rule receding_line_gather:
         result("receding/line.nc"),
     log:
         logs("receding/line_gather.log"),
+    benchmark:
+        logs("benchmarks/receding_line_gather.tsv"),
     shell:
         "contactlab receding liftoff-gather {input:q} --out {output:q} 2> {log:q}"
 
@@ -273,6 +285,8 @@ rule receding_patch_gather:
         law="uniform|hertz|punch",
     log:
         logs("receding/patch_gather_{law}.log"),
+    benchmark:
+        logs("benchmarks/receding_patch_gather_{law}.tsv"),
     shell:
         "contactlab receding liftoff-gather {input:q} --out {output:q} 2> {log:q}"
 
@@ -323,6 +337,8 @@ rule receding_table_gather:
         name="|".join(PATCH_TABLES) or "(?!)",
     log:
         logs("receding/table_gather_{name}.log"),
+    benchmark:
+        logs("benchmarks/receding_table_gather_{name}.tsv"),
     shell:
         "contactlab receding liftoff-gather {input:q} --out {output:q} 2> {log:q}"
 
@@ -341,6 +357,8 @@ rule receding_line_profile:
         refine_max_n=LINE["refine_max_n"],
     log:
         logs("receding/line_profile_f{f}.log"),
+    benchmark:
+        logs("benchmarks/receding_line_profile_{f}.tsv"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding liftoff-profile --problem line --f {wildcards.f:q}"
@@ -368,6 +386,8 @@ rule receding_patch_profile:
         refine_max_n=PATCHES["refine_max_n"],
     log:
         logs("receding/{point}.log"),
+    benchmark:
+        logs("benchmarks/receding_patch_profile_{point}.tsv"),
     shell:
         "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
         " contactlab receding liftoff-profile --problem {params.law:q}"
@@ -469,6 +489,8 @@ rule report_receding_line_patch:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
         logs("report/receding_line_patch.log"),
+    benchmark:
+        logs("benchmarks/report_receding_line_patch.tsv"),
     shell:
         "contactlab receding report-liftoff --line {input.line:q} --patches {input.patches:q}"
         " --profiles {input.profiles:q} --report-dir {params.report_dir:q} --out {output.section:q}"

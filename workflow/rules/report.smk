@@ -15,6 +15,8 @@ rule report_index:
         changes=json.dumps(STUDY_CHANGES, sort_keys=True),
     log:
         logs("report/index.log"),
+    benchmark:
+        logs("benchmarks/report_index.tsv"),
     shell:
         "contactlab report index {input:q} --title {params.title:q}"
         " --changes {params.changes:q} --out {output:q} 2> {log:q}"

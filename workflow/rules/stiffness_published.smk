@@ -41,6 +41,8 @@ rule stiffness_summary_from_published_steps:
         u_qs=_SP_ERRORS["qs_rel_extra"],
     log:
         logs("stiffness/summary_from_published_steps.log"),
+    benchmark:
+        logs("benchmarks/stiffness_summary_from_published_steps.tsv"),
     shell:
         "contactlab stiffness summarize-published --tests {input.tests:q} --seq {input.seq:q}"
         " --published-dir {params.published:q} --tables-dir {params.tables_dir:q}"
@@ -85,6 +87,8 @@ rule report_stiffness_published:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
         logs("report/stiffness_published.log"),
+    benchmark:
+        logs("benchmarks/report_stiffness_published.tsv"),
     shell:
         "contactlab stiffness report-published --summary {input.summary:q}"
         " --tables-dir {params.tables_dir:q} --published-dir {params.published:q}"
