@@ -1,13 +1,16 @@
-"""Time the default study from scratch and split its CPU time by rule (issue 14).
+"""Time the default study from scratch and split its CPU time by command (issue 14).
 
 Copies what a run needs (Snakefile, workflow/, config/, resources/) into a scratch
 directory, runs ``snakemake --workflow-profile workflow/profiles/default -j<jobs> all``
 there with this environment's ``contactlab`` first on PATH, and prints
 
 * the wall time and the CPU time of all child processes (user + system),
-* per rule: jobs, summed CPU seconds and the slowest job, from the ``benchmark:`` files
-  the heavy rules write (``logs/benchmarks/*.tsv``); the rest (reports, gathers, light
-  solves, which have no benchmark file) is the difference to the total.
+* per ``contactlab`` sub-command: jobs, summed CPU seconds and the slowest job, measured
+  exactly (``getrusage`` of each command and its children, e.g. ccx) by a wrapper put
+  first on PATH. Snakemake's ``benchmark:`` files (``logs/benchmarks/*.tsv``, written by
+  every rule) sample the job's processes and miss most of a job of a few seconds, so they
+  serve for memory and wall time (``benchmarks/cluster_resources.py``), not for this split;
+* the rest: Snakemake's own scheduling and the job shells.
 
     python benchmarks/default_study.py [--jobs 2] [--keep DIR]
 
@@ -17,7 +20,7 @@ Run it on an idle machine: wall time on a shared one says more about the neighbo
 from __future__ import annotations
 
 import argparse
-import csv
+import json
 import os
 import re
 import resource
@@ -32,6 +35,18 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 PARTS = ("Snakefile", "workflow", "config", "resources")
 
+#: Runs the real ``contactlab`` and appends its command and CPU seconds to $CONTACTLAB_CPU_LOG.
+WRAPPER = """\
+import json, os, resource, subprocess, sys, time
+start = time.perf_counter()
+code = subprocess.call([{real!r}, *sys.argv[1:]])
+use = resource.getrusage(resource.RUSAGE_CHILDREN)
+with open(os.environ["CONTACTLAB_CPU_LOG"], "a") as log:
+    log.write(json.dumps({{"command": " ".join(sys.argv[1:3]), "cpu": use.ru_utime + use.ru_stime,
+                          "wall": time.perf_counter() - start}}) + "\\n")
+sys.exit(code)
+"""
+
 
 def copy_workflow(dest: Path) -> None:
     """What a run of the default study needs, without results or logs."""
@@ -43,27 +58,23 @@ def copy_workflow(dest: Path) -> None:
             shutil.copy2(src, dest / name)
 
 
-def rule_of(benchmark: Path, rules: list[str]) -> str:
-    """The rule that wrote ``<rule>_<wildcards>.tsv`` (longest matching rule name)."""
-    stem = benchmark.stem
-    return next((r for r in rules if stem == r or stem.startswith(r + "_")), stem)
+def wrapped_contactlab(bin_dir: Path) -> None:
+    """A ``contactlab`` in ``bin_dir`` that records each command's CPU time."""
+    real = shutil.which("contactlab", path=str(Path(sys.executable).parent))
+    if real is None:
+        sys.exit("no contactlab beside this Python: run with the project's .venv/bin/python")
+    bin_dir.mkdir(parents=True, exist_ok=True)
+    script = bin_dir / "contactlab"
+    script.write_text(f"#!{sys.executable}\n" + WRAPPER.format(real=real))
+    script.chmod(0o755)
 
 
-def rule_names() -> list[str]:
-    names = set()
-    for smk in (ROOT / "workflow" / "rules").glob("*.smk"):
-        names.update(re.findall(r"^(?:local)?rule (\w+):", smk.read_text(), re.M))
-    return sorted(names, key=len, reverse=True)
-
-
-def cpu_by_rule(logs: Path) -> dict[str, list[float]]:
-    """CPU seconds of each benchmarked job, grouped by rule."""
-    rules = rule_names()
+def cpu_by_command(log: Path) -> dict[str, list[float]]:
+    """CPU seconds of each ``contactlab`` job, grouped by sub-command."""
     out: dict[str, list[float]] = defaultdict(list)
-    for path in sorted((logs / "benchmarks").glob("*.tsv")):
-        with path.open() as handle:
-            row = next(csv.DictReader(handle, delimiter="\t"))
-        out[rule_of(path, rules)].append(float(row["cpu_time"]))
+    for line in log.read_text().splitlines():
+        record = json.loads(line)
+        out[record["command"]].append(record["cpu"])
     return out
 
 
@@ -75,7 +86,10 @@ def main() -> None:
     work = args.keep or Path(tempfile.mkdtemp(prefix="contactlab-default-"))
     work.mkdir(parents=True, exist_ok=True)
     copy_workflow(work)
-    env = dict(os.environ, PATH=f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}")
+    wrapped_contactlab(work / ".bench-bin")
+    log = work / ".bench-bin" / "cpu.jsonl"
+    env = dict(os.environ, CONTACTLAB_CPU_LOG=str(log), PATH=os.pathsep.join(
+        [str(work / ".bench-bin"), str(Path(sys.executable).parent), os.environ["PATH"]]))
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     start = time.perf_counter()
     run = subprocess.run([sys.executable, "-m", "snakemake", "--workflow-profile",
@@ -90,12 +104,12 @@ def main() -> None:
     print(f"default study, -j{args.jobs}, {os.cpu_count()} cores: wall {wall:.0f} s, "
           f"CPU {cpu:.0f} s, {jobs.group(2) if jobs else '?'} jobs, load now "
           f"{os.getloadavg()[0]:.1f}")
-    split = cpu_by_rule(work / "logs")
-    print(f"{'rule':32s} {'jobs':>5s} {'CPU s':>8s} {'max s':>7s}")
-    for rule, times in sorted(split.items(), key=lambda kv: -sum(kv[1])):
-        print(f"{rule:32s} {len(times):5d} {sum(times):8.1f} {max(times):7.1f}")
+    split = cpu_by_command(log)
+    print(f"{'contactlab command':32s} {'jobs':>5s} {'CPU s':>8s} {'max s':>7s}")
+    for command, times in sorted(split.items(), key=lambda kv: -sum(kv[1])):
+        print(f"{command:32s} {len(times):5d} {sum(times):8.1f} {max(times):7.1f}")
     measured = sum(sum(t) for t in split.values())
-    print(f"{'(rules without benchmark file)':32s} {'':5s} {cpu - measured:8.1f}")
+    print(f"{'(Snakemake itself, shells)':32s} {'':5s} {cpu - measured:8.1f}")
     if args.keep is None:
         shutil.rmtree(work)
 
