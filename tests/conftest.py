@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import fcntl
+import json
 import os
 import shutil
 import subprocess
@@ -56,3 +58,31 @@ def run_snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]
 def snakemake() -> Callable[..., subprocess.CompletedProcess[str]]:
     """:func:`run_snakemake`, for tests that drive the workflow."""
     return run_snakemake
+
+
+@pytest.fixture(scope="session")
+def e2e_run(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The end-to-end study (tests/e2e_config.yaml) built once per test session.
+
+    ``snakemake -j2 all`` in a copy of the workflow, shared by every test that reads its
+    results (end-to-end checks, byte-identical rebuilds, the Slurm run) and by every xdist
+    worker: the first to ask builds it under a file lock, the others wait and reuse it.
+    Tests run side by side on it: they may add files (a named study under results/studies,
+    a report archive) but must not rewrite results or edit inputs (copy it for that).
+    """
+    root = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        root = root.parent  # shared by the workers of this session
+    work, status = root / "e2e_run", root / "e2e_run.json"
+    with open(root / "e2e_run.lock", "w", encoding="utf-8") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not status.exists():
+            shutil.rmtree(work, ignore_errors=True)
+            work.mkdir()
+            run = run_snakemake(copy_workflow(work), "-j2", "all")
+            status.write_text(json.dumps({"returncode": run.returncode,
+                                          "stderr": run.stderr[-3000:]}))
+    built = json.loads(status.read_text())
+    if built["returncode"] != 0:
+        pytest.fail(f"the end-to-end run failed:\n{built['stderr']}")
+    return work
