@@ -5,7 +5,7 @@
 
 import json
 
-from contactlab.rulehelpers import pdf_files, table_files
+from contactlab.rulehelpers import pdf_files
 
 ASPERITY = config["asperity"]
 ASPERITY_BEM_LAWS = ASPERITY["bem"]["laws"]
@@ -176,7 +176,8 @@ rule report_asperity_single:
         transverse=result("asperity/bem/transverse.nc"),
     output:
         section=result("report/sections/30_asperity_1_single.html"),
-        tables=table_files(
+        tables=report_tables(
+            "Asperity models",
             *[
                 result(f"report/tables/asperity_{name}.csv")
                 for name in ("bem_checks", "yield_ratios", "shear_limits", "transverse")
@@ -213,7 +214,7 @@ rule report_asperity_multi:
         result("asperity/multi.nc"),
     output:
         section=result("report/sections/30_asperity_2_multi.html"),
-        tables=table_files(result("report/tables/asperity_multi.csv")),
+        tables=report_tables("Asperity models", result("report/tables/asperity_multi.csv")),
         pdfs=pdf_files(result("report/figures/asperity_fig_3_10.png")),
         fig=report(
             result("report/figures/asperity_fig_3_10.png"),
@@ -238,7 +239,7 @@ rule report_asperity_grid:
         bem=result("asperity/grid_bem.nc"),
     output:
         section=result("report/sections/30_asperity_3_grid.html"),
-        tables=table_files(result("report/tables/asperity_grid_bem.csv")),
+        tables=report_tables("Asperity models", result("report/tables/asperity_grid_bem.csv")),
         pdfs=pdf_files(
             *[
                 result(f"report/figures/asperity_{name}.png")

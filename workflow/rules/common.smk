@@ -85,6 +85,17 @@ ALL_TARGETS = []
 REPORT_SECTIONS = []
 
 
+def report_tables(category, *csv):
+    """Report tables for Snakemake's report (CSV, shown as tables under ``category``), each
+    with the Markdown copy :func:`contactlab.io.write_table` writes beside it."""
+    tables = []
+    for name in csv:
+        table = report(name, category=category, subcategory="Tables",
+                       labels={"table": Path(name).stem})
+        tables += [table, str(Path(name).with_suffix(".md"))]
+    return tables
+
+
 wildcard_constraints:
     # no wildcard spans folders: results/{x}.nc must not swallow results/studies/<name>/...
     test=r"[^/]+",

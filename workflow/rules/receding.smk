@@ -11,7 +11,6 @@ from contactlab.rulehelpers import (
     liftoff_profile_point,
     pdf_files,
     sweep_values,
-    table_files,
 )
 
 RECEDING = config["receding"]["gap"]
@@ -130,7 +129,8 @@ rule report_receding_gap:
         profiles=expand(result("receding/profiles/gap_{point}.nc"), point=RECEDING_PROFILES),
     output:
         section=result("report/sections/50_receding_gap.html"),
-        tables=table_files(
+        tables=report_tables(
+            "Receding contacts",
             result("report/tables/receding_gap_points.csv"),
             result("report/tables/receding_gap_thresholds.csv"),
             result("report/tables/receding_gap_summary.csv"),
@@ -411,7 +411,8 @@ rule report_receding_line_patch:
         ],
     output:
         section=result("report/sections/51_receding_line_patch.html"),
-        tables=table_files(
+        tables=report_tables(
+            "Receding contacts",
             result("report/tables/receding_liftoff_summary.csv"),
             result("report/tables/receding_line_sweep.csv"),
             result("report/tables/receding_patch_points.csv"),

@@ -5,7 +5,7 @@
 import re
 
 from contactlab.published import GROUP_TABLES, PUBLISHED_TESTS, TANGENTIAL_TABLES
-from contactlab.rulehelpers import pdf_files, raw_data_option, raw_inputs, raw_tests, table_files
+from contactlab.rulehelpers import pdf_files, raw_data_option, raw_inputs, raw_tests
 
 _RAW = config["stiffness"]["raw"]
 _ERR = config["stiffness"]["errors"]
@@ -88,7 +88,7 @@ rule stiffness_summary:
         seq=result("surfaces/seq.nc"),
     output:
         summary=result("stiffness/summary.nc"),
-        tables=table_files(*RAW_TABLES),
+        tables=report_tables("Contact stiffness", *RAW_TABLES),
     params:
         threshold=_RAW["kt0_margin_threshold"],
         errors=_ERROR_OPTIONS,
@@ -124,7 +124,8 @@ rule report_stiffness_raw:
     output:
         section=result("report/sections/21_stiffness_raw.html"),
         flags=result("report/tables/stiffness_raw_flagged_fits.csv"),
-        tables=table_files(
+        tables=report_tables(
+            "Contact stiffness",
             *[
                 result(f"report/tables/stiffness_raw_{name}.csv")
                 for name in (

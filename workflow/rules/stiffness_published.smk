@@ -3,7 +3,7 @@
 # printed ones. Outputs carry the suffix _from_published_steps.
 
 from contactlab.published import MEAN_ROW_TABLES, PER_STEP_FIT_TABLES
-from contactlab.rulehelpers import pdf_files, table_files
+from contactlab.rulehelpers import pdf_files
 
 STIFFNESS_PUBLISHED_NUMBERS = ["2.1", "2.2", "2.3", "2.4", "2.7", "2.8", "2.9", "2.10"]
 STIFFNESS_PUBLISHED_TABLES = expand(
@@ -28,7 +28,7 @@ rule stiffness_summary_from_published_steps:
         published=STIFFNESS_PUBLISHED_INPUTS,
     output:
         summary=result("stiffness/summary_from_published_steps.nc"),
-        tables=table_files(*STIFFNESS_PUBLISHED_TABLES),
+        tables=report_tables("Contact stiffness", *STIFFNESS_PUBLISHED_TABLES),
     params:
         published=PUBLISHED,
         tables_dir=lambda wildcards, output: Path(output.tables[0]).parent,
@@ -61,7 +61,8 @@ rule report_stiffness_published:
         published=[PUBLISHED / f"table_{n}.csv" for n in STIFFNESS_PUBLISHED_NUMBERS],
     output:
         section=result("report/sections/20_stiffness_published.html"),
-        tables=table_files(
+        tables=report_tables(
+            "Contact stiffness",
             *expand(
                 result("report/tables/compare_{n}_from_published_steps.csv"),
                 n=[*STIFFNESS_PUBLISHED_NUMBERS, "counts"],

@@ -1,7 +1,7 @@
 # Surfaces branch (thesis sec. 2.3.4): texture parameters of every surface from its scans,
 # and Seq of each test's interface from the computed and from the published Sq.
 
-from contactlab.rulehelpers import pdf_files, table_files
+from contactlab.rulehelpers import pdf_files
 from contactlab.surfaces.sheet import check_scan_files, read_surface_sheet, scan_paths
 
 SURFACES_CONFIG = config["surfaces"]
@@ -119,7 +119,8 @@ rule report_surfaces:
         ],
     output:
         section=result("report/sections/10_surfaces.html"),
-        tables=table_files(
+        tables=report_tables(
+            "Surfaces",
             result("report/tables/seq.csv"),
             *[
                 result(f"report/tables/surfaces_{name}.csv")
