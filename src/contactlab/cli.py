@@ -16,6 +16,7 @@ from collections.abc import Sequence
 
 from contactlab import __version__
 from contactlab.cliutil import Parser
+from contactlab.progress import configure_logging
 
 COMMAND_MODULES: tuple[str, ...] = (
     "contactlab.surfaces.cli",
@@ -51,7 +52,9 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point; returns the process exit status."""
+    """Entry point; returns the process exit status. Log records go to stderr in the
+    package's one format (:func:`contactlab.progress.configure_logging`)."""
+    configure_logging()
     args = build_parser().parse_args(argv)
     try:
         args.func(args)

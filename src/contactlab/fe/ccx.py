@@ -9,13 +9,12 @@ from __future__ import annotations
 import os
 import shutil
 import subprocess
-import sys
 import tempfile
-import time
 from dataclasses import dataclass
 from pathlib import Path
 
 from contactlab.fe.frd import FrdResult, read_frd, read_sta
+from contactlab.progress import Progress
 
 
 @dataclass
@@ -67,11 +66,10 @@ def run_ccx(deck: str, job: str = "job", threads: int = 1, keep: str | None = No
     with tempfile.TemporaryDirectory(prefix="ccx_") as tmp:
         work = Path(tmp)
         (work / f"{job}.inp").write_text(deck)
-        start = time.perf_counter()
-        proc = subprocess.run([exe, "-i", job], cwd=work, env=env, capture_output=True,
-                              text=True, check=False, timeout=timeout)
-        wall = time.perf_counter() - start
-        print(f"ccx job {job}: {wall:.1f} s", file=sys.stderr)  # the log, not the results
+        with Progress(f"ccx job {job} ({max(1, threads)} thread(s))", 1, "runs") as progress:
+            proc = subprocess.run([exe, "-i", job], cwd=work, env=env, capture_output=True,
+                                  text=True, check=False, timeout=timeout)
+            progress.advance()  # the wall time goes to the log, not the results
         log = proc.stdout + proc.stderr
         if keep:
             dest = Path(keep)

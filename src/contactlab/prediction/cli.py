@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import argparse
+import logging
 import time
 from pathlib import Path
 
 from contactlab.cliutil import add_command, add_group, check_memory, input_file
 
+LOG = logging.getLogger(__name__)
 SOURCE = ("contactlab.prediction; rough-contact BEM (ContactMechanics, Polonsky-Keer; "
           "Cerruti cell coefficients) on the scans of each pair, thesis ch. 2")
 EXAMPLES = """\
@@ -76,11 +78,12 @@ def _pair(args: argparse.Namespace) -> None:
     write_netcdf(ds, args.out, encoding={name: {"zlib": True, "complevel": 4}
                                          for name in ("height", "pressure")})
     flags = [k for k in ds.data_vars if k.endswith("converged") and not ds[k].values.all()]
-    print(f"{args.test}: {ds.sizes['Pn_An']} load levels, {ds.sizes['variant']} variant(s), "
-          f"{composite.heights.shape[0]} x {composite.heights.shape[1]} cells of "
-          f"{composite.dx:.4g} um; {time.process_time() - started:.1f} s of CPU")
+    LOG.info("%s: %d load levels, %d variant(s), %d x %d cells of %.4g um; %.1f s of CPU",
+             args.test, ds.sizes["Pn_An"], ds.sizes["variant"], *composite.heights.shape,
+             composite.dx, time.process_time() - started)
     if flags:
-        print(f"{args.test}: NOT CONVERGED somewhere in {', '.join(flags)} (flagged in the file)")
+        LOG.warning("%s: NOT CONVERGED somewhere in %s (flagged in the file)", args.test,
+                    ", ".join(flags))
 
 
 def _summarize(args: argparse.Namespace) -> None:

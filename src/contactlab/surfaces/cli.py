@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import argparse
-import sys
-import time
+import logging
 from pathlib import Path
 
 from contactlab.cliutil import add_command, add_group, input_dir, input_file
+from contactlab.progress import Progress
+
+LOG = logging.getLogger(__name__)
 
 
 def _demo_scans(args: argparse.Namespace) -> None:
@@ -16,7 +18,7 @@ def _demo_scans(args: argparse.Namespace) -> None:
 
     specs = read_surface_sheet(args.sheet)
     written = demo_scans(specs, args.out_dir, args.seed, args.published_dir)
-    print(f"wrote {len(written)} SYNTHETIC demo scans to {args.out_dir}")
+    LOG.info("wrote %d SYNTHETIC demo scans to %s", len(written), args.out_dir)
 
 
 def _texture(args: argparse.Namespace) -> None:
@@ -34,7 +36,7 @@ def _texture(args: argparse.Namespace) -> None:
         if unknown:
             raise KeyError(f"{args.sheet}: no surface(s) {unknown} in the sheet")
         specs = [s for s in specs if s.surface in args.surface]
-    started = time.perf_counter()
+    progress = Progress("surface texture", len(specs), "surfaces")
     history = (f"contactlab surfaces texture --sheet {args.sheet} "
                f"--max-undefined-fraction {args.max_undefined_fraction}")
     for spec in specs:
@@ -49,13 +51,14 @@ def _texture(args: argparse.Namespace) -> None:
         write_netcdf(ds, Path(args.out_dir) / f"{spec.surface}.nc")
         for kind, fraction in texture.filled.items():
             if fraction > 0:
-                print(f"{spec.surface}: filled {100 * fraction:.3g} % of the {kind} scan")
+                LOG.info("%s: filled %.3g %% of the %s scan", spec.surface, 100 * fraction, kind)
         for name, reason in texture.undefined.items():
-            print(f"{spec.surface}: {name} undefined: {reason}")
+            LOG.info("%s: %s undefined: %s", spec.surface, name, reason)
         for kind, reason in texture.refused.items():
-            print(f"{spec.surface}: {kind} scan refused, its parameters are NaN: {reason}",
-                  file=sys.stderr)
-    print(f"processed {len(specs)} surface(s) in {time.perf_counter() - started:.2f} s")
+            LOG.warning("%s: %s scan refused, its parameters are NaN: %s", spec.surface, kind,
+                        reason)
+        progress.advance()
+    progress.finish()
 
 
 def _texture_summary(args: argparse.Namespace) -> None:
@@ -90,10 +93,10 @@ def _texture_check(args: argparse.Namespace) -> None:
             "surfaces: allow_refused_scans: true (run with --keep-going to build the summary "
             "and report meanwhile)")
     for line in lines:
-        print(f"accepted refusal:{line}")
+        LOG.warning("accepted refusal:%s", line)
     table = pd.DataFrame(refused, columns=["surface", "scan", "reason"])
     write_text(table.to_csv(index=False), args.out)
-    print(f"{len(refused)} refused scan(s) of {n_surfaces} surfaces")
+    LOG.info("%d refused scan(s) of %d surfaces", len(refused), n_surfaces)
 
 
 def _seq(args: argparse.Namespace) -> None:

@@ -65,12 +65,15 @@ def _sweep(args: argparse.Namespace) -> None:
     import numpy as np
 
     from contactlab.io import stamp, write_netcdf
+    from contactlab.receding.core.summary import log_summary
     from contactlab.receding.gap.sweep import sweep_dataset
 
+    start = time.perf_counter()
     ds = sweep_dataset(np.asarray(args.w_hat), np.asarray(args.f), args.n,
                        thresholds=not args.no_thresholds,
                        stick_zone_limit=args.stick_zone_limit, refine_max_n=args.refine_max_n,
                        continuation=args.continuation)
+    log_summary(ds, f"gap sweep N = {args.n}", time.perf_counter() - start)
     stamp(ds, title=f"Gap problem (thesis ch. 5): transition points over (f, w/c), N = {args.n}",
           source=SOURCE,
           history=f"contactlab receding gap-sweep --w-hat {' '.join(map(str, args.w_hat))} "

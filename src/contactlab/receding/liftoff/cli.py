@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 import time
 from pathlib import Path
 from typing import Any
@@ -122,9 +121,13 @@ def run_solve(args: argparse.Namespace) -> None:
 
 
 def _log_time(ds, start: float) -> None:
-    """Wall time of a sweep to stderr (the job's log); results carry no timings."""
-    print(f"{int(ds['converged'].sum())}/{ds['converged'].size} points converged in "
-          f"{time.perf_counter() - start:.2f} s", file=sys.stderr)
+    """The sweep's counts and wall time to the job's log; results carry no timings."""
+    from contactlab.receding.core.summary import log_summary
+
+    problem = ds.attrs["problem"]
+    log_summary(ds, f"{'line' if problem == 'line' else problem + ' patch'} sweep "
+                    f"N = {ds.attrs['N']}",
+                time.perf_counter() - start)
 
 
 def _line_sweep(args: argparse.Namespace) -> None:
