@@ -137,3 +137,12 @@ def test_a_sweep_through_the_cli_logs_progress_and_a_summary(tmp_path: Path) -> 
     assert re.search(r"gap sweep N = 40: 6/6 points solved \(.+\), 0 failed, "
                      r"0 inadmissible, in \d+\.\d s$", summary[0])
     assert lines[-1].split(" ", 3)[2] == "contactlab.io:"  # and last, the file it writes
+
+
+def test_a_loop_left_by_an_exception_says_where(logged: pytest.LogCaptureFixture) -> None:
+    with pytest.raises(ValueError, match="bad curve"):
+        for i in track(range(3), "curves", unit="curves"):
+            if i == 1:
+                raise ValueError("bad curve")
+    assert logged.records[-1].levelname == "WARNING"
+    assert logged.messages[-1].startswith("curves: stopped after 1/3 curves, ")

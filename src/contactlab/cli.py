@@ -31,10 +31,14 @@ COMMAND_MODULES: tuple[str, ...] = (
 DESCRIPTION = ("Contact mechanics of rough interfaces and receding contacts: one command "
                "GROUP per branch of the workflow; the Snakemake rules call these commands.")
 EPILOG = """\
+examples:
+  contactlab receding solve --problem gap --f 0.5 --w-hat 2.5 --n 100
+  contactlab receding --help
 Every GROUP and COMMAND has its own --help with a description, the options with their
-units and defaults, and examples, e.g. `contactlab receding --help`.
-Units are the thesis's: kN, um, mm, mm^2, kN/mm^3, 1/um; Part III lengths in units of
-the layer thickness c.
+units and defaults, and examples. Units are the thesis's: kN, um, mm, mm^2, kN/mm^3,
+1/um; Part III lengths in units of the layer thickness c. Progress and diagnostics go to
+stderr, one line each: UTC time, level, module, message (a progress line at most every
+5 s; environment variable CONTACTLAB_PROGRESS_SECONDS sets the interval).
 """
 
 #: Errors that mean bad input, reported as one line without a traceback.

@@ -124,10 +124,11 @@ class Progress:
     def __exit__(self, kind: type[BaseException] | None, *_: object) -> None:
         if kind is None:
             self.finish()
-        elif not self.finished:
+        elif not self.finished:  # a GeneratorExit: the loop around track() stopped
             self.finished = True
-            self.logger.warning("%s: stopped by %s after %d/%d %s, %s", self.what,
-                                kind.__name__, self.done, self.total, self.unit,
+            cause = "" if kind is GeneratorExit else f" by {kind.__name__}"
+            self.logger.warning("%s: stopped%s after %d/%d %s, %s", self.what, cause,
+                                self.done, self.total, self.unit,
                                 duration(self.clock() - self.started))
 
     @property

@@ -6,7 +6,14 @@ import argparse
 import logging
 from pathlib import Path
 
-from contactlab.cliutil import add_command, add_group, input_dir, input_file
+from contactlab.cliutil import (
+    add_command,
+    add_group,
+    add_output,
+    add_section_outputs,
+    input_dir,
+    input_file,
+)
 from contactlab.progress import Progress
 
 LOG = logging.getLogger(__name__)
@@ -202,7 +209,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description="Gather the parameters of the <surface>.nc files of `surfaces texture` "
                     "into one table (Tables A.1, A.26, A.27, 2.6).")
     summary.add_argument("surfaces", type=input_file, nargs="+", help="<surface>.nc files")
-    summary.add_argument("--out", type=Path, required=True, help="netCDF output")
+    add_output(summary)
     summary.set_defaults(func=_texture_summary)
 
     check = add_command(
@@ -229,7 +236,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     seq.add_argument("--published-dir", type=input_dir, default=None, help=published)
     seq.add_argument("--texture", type=input_file, default=None,
                      help="texture summary (results/surfaces/texture.nc) for Seq from scans")
-    seq.add_argument("--out", type=Path, required=True, help="netCDF output")
+    add_output(seq)
     seq.set_defaults(func=_seq)
 
     report = add_command(
@@ -243,7 +250,5 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     report.add_argument("--surface-dir", type=input_dir, default=None,
                         help="directory of the <surface>.nc files (pictures)")
     report.add_argument("--published-dir", type=input_dir, default=None, help=published)
-    report.add_argument("--report-dir", type=Path, default=Path("results/report"),
-                        help="report directory receiving tables/ and figures/")
-    report.add_argument("--out", type=Path, required=True, help="section HTML fragment")
+    add_section_outputs(report)
     report.set_defaults(func=_report)
