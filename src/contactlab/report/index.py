@@ -154,10 +154,10 @@ def introduction(fragments: list[Fragment], intro: str = "") -> str:
         "or figure, shows the computed values beside the published ones. Notes on a yellow "
         "ground flag reconstructed demo data and cases that did not converge.</p>\n"
         "<p>Every figure links its PDF and every table its CSV (Markdown copy beside it), "
-        "in <code>figures/</code> and <code>tables/</code> next to this page. The same "
-        "figures and tables, with captions, are in Snakemake's report "
-        "(<code>snakemake --report report.zip</code>). The contents list each part, its "
-        "sections and, unfolded, their figures and tables.</p>\n")
+        "in <code>figures/</code> and <code>tables/</code> next to this page; Snakemake's "
+        "report (<code>make report</code>) packs the figures with their captions and "
+        "provenance. The contents list each part, its sections and, unfolded, their "
+        "figures and tables.</p>\n")
     return text
 
 
