@@ -7,6 +7,7 @@ import os
 import re
 import subprocess
 import sys
+import warnings
 from pathlib import Path
 
 import pytest
@@ -20,9 +21,9 @@ from contactlab.progress import (
     track,
 )
 
-#: time, level, logger name, message
+#: time, level, logger name, message; or a further line of a record, indented
 LINE = re.compile(r"^\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ (DEBUG|INFO|WARNING|ERROR|CRITICAL) "
-                  r"contactlab(\.\w+)*: .+$")
+                  r"[\w.]+: .+$|^    ")
 
 
 class FakeClock:
@@ -112,6 +113,13 @@ def test_configure_logging_writes_the_one_format_to_stderr(
     lines = capsys.readouterr().err.splitlines()
     assert len(lines) == 1 and LINE.match(lines[0]), lines
     assert lines[0].endswith(" INFO contactlab.receding.gap.sweep: gap sweep: 3/4 points")
+    warnings.warn_explicit("overflow in exp", RuntimeWarning, "solver.py", 12)
+    logging.getLogger("contactlab.io").warning("two\nlines")
+    lines = capsys.readouterr().err.splitlines()
+    assert len(lines) == 3 and all(LINE.match(line) for line in lines), lines
+    assert lines[0].endswith(" WARNING py.warnings: solver.py:12: RuntimeWarning: overflow "
+                             "in exp")  # Python warnings in the same format
+    assert lines[1].endswith(" WARNING contactlab.io: two") and lines[2] == "    lines"
 
 
 def test_a_sweep_through_the_cli_logs_progress_and_a_summary(tmp_path: Path) -> None:

@@ -31,8 +31,14 @@ INTERVAL_VARIABLE = "CONTACTLAB_PROGRESS_SECONDS"
 T = TypeVar("T")
 
 
-class _UTCFormatter(logging.Formatter):
+class _Formatter(logging.Formatter):
+    """:data:`LOG_FORMAT` in UTC; the further lines of a record (a Python warning's source
+    line, a traceback) indented, so every line that starts a record starts with its time."""
+
     converter = time.gmtime
+
+    def format(self, record: logging.LogRecord) -> str:
+        return "\n    ".join(super().format(record).rstrip("\n").splitlines())
 
 
 class _StderrHandler(logging.StreamHandler):
@@ -59,7 +65,7 @@ def configure_logging(level: int = logging.INFO) -> logging.Handler:
         if isinstance(handler, _StderrHandler):
             root.removeHandler(handler)
     handler = _StderrHandler()
-    handler.setFormatter(_UTCFormatter(LOG_FORMAT, DATE_FORMAT))
+    handler.setFormatter(_Formatter(LOG_FORMAT, DATE_FORMAT))
     root.addHandler(handler)
     logging.getLogger("contactlab").setLevel(level)
     logging.captureWarnings(True)
