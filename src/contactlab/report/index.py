@@ -32,6 +32,7 @@ nav#contents ul { padding-left: 1.1em; margin: 0.2em 0; }
 nav#contents li { margin: 0.15em 0; }
 nav#contents details summary { cursor: pointer; color: #555; }
 nav#contents .part { font-weight: bold; margin-top: 0.6em; }
+nav#contents .part > ul { font-weight: normal; }
 main { min-width: 0; }
 table { border-collapse: collapse; font-size: 0.9em; }
 th, td { padding: 0.2em 0.6em; border-bottom: 1px solid #ccc; text-align: right; }
