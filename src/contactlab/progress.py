@@ -18,6 +18,7 @@ import logging
 import os
 import sys
 import time
+import warnings
 from collections.abc import Callable, Iterable, Iterator
 from typing import TypeVar
 
@@ -68,8 +69,16 @@ def configure_logging(level: int = logging.INFO) -> logging.Handler:
     handler.setFormatter(_Formatter(LOG_FORMAT, DATE_FORMAT))
     root.addHandler(handler)
     logging.getLogger("contactlab").setLevel(level)
-    logging.captureWarnings(True)
+    warnings.showwarning = _show_warning  # each call: a test may have restored the default
     return handler
+
+
+def _show_warning(message: Warning | str, category: type[Warning], filename: str,
+                  lineno: int, file: object = None, line: str | None = None) -> None:
+    """A Python warning as a record of the logger ``py.warnings`` (as
+    :func:`logging.captureWarnings` does)."""
+    text = warnings.formatwarning(message, category, filename, lineno, line).rstrip()
+    logging.getLogger("py.warnings").warning("%s", text)
 
 
 def interval_from_environment() -> float:
