@@ -51,8 +51,10 @@ ZONE_NAMES = {
 
 
 def sweep_friction(w: float, f_values: np.ndarray, n: int,
-                   stick_zone_limit: float = STICK_ZONE_LIMIT) -> list[GapSolution]:
-    """Solutions at one w_hat for every f (any order in, same order out), by continuation."""
+                   stick_zone_limit: float = STICK_ZONE_LIMIT,
+                   progress: Progress | None = None) -> list[GapSolution]:
+    """Solutions at one w_hat for every f (any order in, same order out), by continuation;
+    ``progress`` counts each point solved."""
     f_values = np.asarray(f_values, dtype=float)
     order = np.argsort(f_values)[::-1]
     out: list[GapSolution | None] = [None] * f_values.size
@@ -64,6 +66,8 @@ def sweep_friction(w: float, f_values: np.ndarray, n: int,
         out[j] = sol
         if sol.converged and sol.regime != "stick":
             prev = sol
+        if progress is not None:
+            progress.advance()
     return [s for s in out if s is not None]
 
 
@@ -131,8 +135,7 @@ def sweep_dataset(w_values: np.ndarray, f_values: np.ndarray, n: int,
     columns = []
     with Progress(f"{what}: solving", w_values.size * f_values.size, "points") as progress:
         for w in w_values:
-            columns.append(sweep_friction(float(w), f_values, n, stick_zone_limit))
-            progress.advance(f_values.size)
+            columns.append(sweep_friction(float(w), f_values, n, stick_zone_limit, progress))
     grid = [[columns[j][i] for j in range(w_values.size)] for i in range(f_values.size)]
     if continuation:
         left = sum(not sol.converged for row in grid for sol in row)
