@@ -142,7 +142,7 @@ class Progress:
         elif not self.finished:  # a GeneratorExit: the loop around track() stopped
             self.finished = True
             cause = "" if kind is GeneratorExit else f" by {kind.__name__}"
-            self.logger.warning("%s: stopped%s after %d/%d %s, %s", self.what, cause,
+            self.logger.warning("%s: stopped%s after %g/%d %s, %s", self.what, cause,
                                 self.done, self.total, self.unit,
                                 duration(self.clock() - self.started))
 
@@ -153,7 +153,7 @@ class Progress:
     def line(self) -> str:
         """The progress line as of now: done/total (percent), elapsed, estimated left."""
         elapsed = self.elapsed
-        text = f"{self.what}: {self.done}/{self.total} {self.unit}"
+        text = f"{self.what}: {self.done:g}/{self.total} {self.unit}"
         if self.total > 0:
             text += f" ({100 * self.done / self.total:.0f}%)"
         text += f", {duration(elapsed)} elapsed"
@@ -164,7 +164,12 @@ class Progress:
 
     def advance(self, count: int = 1) -> None:
         """Count ``count`` more items done; log a line if ``interval`` has passed."""
-        self.done += count
+        self.update(self.done + count)
+
+    def update(self, done: float) -> None:
+        """Set how much is done (a fraction of an item too, e.g. 1.4 load steps); log a
+        line if ``interval`` has passed."""
+        self.done = done
         now = self.clock()
         if self.done < self.total and now - self.last >= self.interval:
             self.last = now
@@ -175,7 +180,7 @@ class Progress:
         if self.finished:
             return
         self.finished = True
-        self.logger.info("%s: done, %d/%d %s in %s%s", self.what, self.done, self.total,
+        self.logger.info("%s: done, %g/%d %s in %s%s", self.what, self.done, self.total,
                          self.unit, duration(self.elapsed), f"; {note}" if note else "")
 
 
