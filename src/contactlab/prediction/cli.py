@@ -16,7 +16,6 @@ from contactlab.cliutil import (
     positive_float,
 )
 
-LOG = logging.getLogger(__name__)
 SOURCE = ("contactlab.prediction; rough-contact BEM (ContactMechanics, Polonsky-Keer; "
           "Cerruti cell coefficients) on the scans of each pair, thesis ch. 2")
 EXAMPLES = """\
@@ -41,6 +40,7 @@ kN/mm^3.
 
 #: Cells across the window of the sphere check run with every summary (19 per radius).
 SPHERE_CELLS = 64
+LOG = logging.getLogger(__name__)
 
 
 def _pair(args: argparse.Namespace) -> None:

@@ -32,8 +32,6 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from contactlab.progress import track
-
 Array = NDArray[np.float64]
 
 
@@ -139,9 +137,7 @@ def solve_normal(heights: Array, dx: float, dy: float, e_star: float, pressures:
     keep = keep % pressures.size
     fields: dict[str, Array] = {}
     force = np.zeros((nx, ny))
-    what = (f"normal BEM {nx} x {ny} cells, "
-            f"{'elastic' if hardness is None else 'capped at the hardness'}")
-    for k, p in enumerate(track(pressures, what, unit="load levels")):
+    for k, p in enumerate(pressures):
         # mean-free window: start from the previous level's forces scaled to this load
         # (capped at the hardness), the first level from the uniform nominal pressure,
         # which does not deform the window (a third fewer iterations than cold starts;
