@@ -365,3 +365,25 @@ def test_package_starts_subprocesses_with_argument_lists() -> None:
     root = Path(contactlab.__file__).parent
     text = "\n".join(p.read_text() for p in root.rglob("*.py"))
     assert "shell=True" not in text and "os.system(" not in text and "os.popen(" not in text
+
+
+@pytest.mark.parametrize("argv, words", [
+    (["asperity", "multi", "--m", "10", "--pt-over-pm", "2", "--tables", "{t: 1}",
+      "--s-max", "1", "--points", "5", "--out", "x.nc"], ["--tables", "not valid JSON"]),
+    (["report", "index", "README.md", "--changes", "[1,", "--out", "x.html"],
+     ["--changes", "not valid JSON"]),
+    (["prediction", "summarize", "README.md", "--tangential-ratio", "-0.1", "--out", "x.nc"],
+     ["--tangential-ratio", "-0.1 is not a positive number"]),
+    (["prediction", "summarize", "README.md", "--tangential-ratio", "one", "--out", "x.nc"],
+     ["--tangential-ratio", "one is not a positive number"]),
+])
+def test_shared_option_types_refuse_bad_values_while_parsing(
+        argv: list[str], words: list[str], repo: Path, monkeypatch: pytest.MonkeyPatch,
+        capsys: pytest.CaptureFixture[str]) -> None:
+    """The option types of contactlab.cliutil (JSON, positive numbers) refuse a bad value
+    before any work, naming the option."""
+    monkeypatch.chdir(repo)
+    with pytest.raises(SystemExit) as exc:
+        build_parser().parse_args(argv)
+    err = capsys.readouterr().err
+    assert exc.value.code == 2 and all(word in err for word in words), err

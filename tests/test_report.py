@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import matplotlib.pyplot as plt
 import pandas as pd
 import pytest
 
-from contactlab.report.index import build_index
+import contactlab
+from contactlab.report.index import build_date, build_index
 from contactlab.report.section import Section
 
 
@@ -48,6 +50,46 @@ def test_index_links_every_section(tmp_path: Path) -> None:
     page = build_index(sections, tmp_path / "index.html", "Report", "intro").read_text()
     assert "href='#alpha'" in page and "href='#beta'" in page
     assert page.index("Title alpha") < page.index("Title beta")
+
+
+def test_index_has_run_metadata_an_intro_and_contents_by_part(tmp_path: Path) -> None:
+    """Issue 16, item 5: date, study, config hash, version and commit at the top; an
+    introduction that counts what the page holds; contents by part, section, sub-section,
+    figure and table, every link pointing at an id on the page."""
+    a = _section(tmp_path, "alpha")
+    b = tmp_path / "sections" / "31_beta.html"
+    section = Section("Title beta", "beta", tmp_path)
+    section.heading("Grids with interaction")
+    fig, ax = plt.subplots()
+    ax.plot([0, 1], [1, 0])
+    section.figure(fig, "the <other> line", tmp_path / "figures" / "beta.png")
+    section.write(b)
+    first = a.rename(tmp_path / "sections" / "10_alpha.html")
+    page = build_index([first, b], tmp_path / "index.html", "Report", "my words",
+                       {"study": "s1", "config_sha256": "0123abcd", "git_commit": "feed"},
+                       {"receding.line.lambda": [3.5, 4.0]},
+                       date="2026-01-02T03:04:05Z").read_text()
+    header = page[:page.index("<nav")]
+    for value in ("2026-01-02T03:04:05Z", "s1", "0123abcd", "feed", contactlab.__version__,
+                  "receding.line.lambda", "my words"):
+        assert value in header, value
+    assert "It holds 2 section(s) in 2 part(s) (Surfaces (ch. 2), Asperity models (ch. 3)) " \
+           "with 2 figure(s) and 1 table(s)." in header
+    nav = page[page.index("<nav"):page.index("</nav>")]
+    assert nav.index("Surfaces (ch. 2)") < nav.index("#alpha") < nav.index("Asperity models")
+    assert "<a href='#beta-grids-with-interaction'>Grids with interaction</a>" in nav
+    assert "<a href='#fig-alpha'>a line</a>" in nav and "#tab-alpha'>caption</a>" in nav
+    assert "<a href='#fig-beta'>the &lt;other&gt; line</a>" in nav
+    ids = re.findall(r" id='([^']+)'", page)
+    assert len(ids) == len(set(ids))
+    assert set(re.findall(r"href='#([^']+)'", page)) <= set(ids)
+
+
+def test_the_build_date_follows_source_date_epoch(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setenv("SOURCE_DATE_EPOCH", "1700000000")
+    assert build_date() == "2023-11-14T22:13:20Z"
+    monkeypatch.delenv("SOURCE_DATE_EPOCH")
+    assert re.fullmatch(r"\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ", build_date())
 
 
 def test_index_refuses_a_file_that_is_not_a_section(tmp_path: Path) -> None:

@@ -6,6 +6,7 @@ import hashlib
 import re
 import shutil
 import subprocess
+import zipfile
 from pathlib import Path
 
 import pytest
@@ -44,7 +45,11 @@ def test_workflow_end_to_end(e2e_run: Path, snakemake) -> None:
 
     report = snakemake(workflow_copy, "--report", "results/report/snakemake-report.zip")
     assert report.returncode == 0, report.stderr[-3000:]
-    assert (results / "report" / "snakemake-report.zip").stat().st_size > 0
+    # Snakemake's report holds every figure and table the HTML report shows
+    with zipfile.ZipFile(results / "report" / "snakemake-report.zip") as archive:
+        packed = {Path(name).name for name in archive.namelist()}
+    shown = set(re.findall(r"(?:figures|tables)/([^'\"/]+\.(?:png|csv))", page))
+    assert len(shown) > 50 and not shown - packed, sorted(shown - packed)
 
     check_named_study_beside_default(workflow_copy, snakemake)
 
@@ -74,7 +79,8 @@ def test_every_parameter_reaches_its_jobs_and_only_them(e2e_run: Path, snakemake
 def test_an_edited_published_table_reruns_the_reports_that_compare_with_it(
         e2e_run: Path, snakemake, tmp_path: Path) -> None:
     work = tmp_path / "workflow"
-    shutil.copytree(e2e_run, work, ignore=shutil.ignore_patterns("studies", "*.zip", "locks", "incomplete"))
+    shutil.copytree(e2e_run, work,
+                    ignore=shutil.ignore_patterns("studies", "*.zip", "locks", "incomplete"))
     # Snakemake 9 compares checksums of small inputs, so the edit must change content.
     edited = work / "resources" / "published" / "table_2.3.csv"
     edited.write_text(edited.read_text() + "\n")

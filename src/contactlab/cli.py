@@ -16,6 +16,7 @@ from collections.abc import Sequence
 
 from contactlab import __version__
 from contactlab.cliutil import Parser
+from contactlab.progress import configure_logging
 
 COMMAND_MODULES: tuple[str, ...] = (
     "contactlab.surfaces.cli",
@@ -30,10 +31,14 @@ COMMAND_MODULES: tuple[str, ...] = (
 DESCRIPTION = ("Contact mechanics of rough interfaces and receding contacts: one command "
                "GROUP per branch of the workflow; the Snakemake rules call these commands.")
 EPILOG = """\
+examples:
+  contactlab receding solve --problem gap --f 0.5 --w-hat 2.5 --n 100
+  contactlab receding --help
 Every GROUP and COMMAND has its own --help with a description, the options with their
-units and defaults, and examples, e.g. `contactlab receding --help`.
-Units are the thesis's: kN, um, mm, mm^2, kN/mm^3, 1/um; Part III lengths in units of
-the layer thickness c.
+units and defaults, and examples. Units are the thesis's: kN, um, mm, mm^2, kN/mm^3,
+1/um; Part III lengths in units of the layer thickness c. Progress and diagnostics go to
+stderr, one line each: UTC time, level, module, message (a progress line at most every
+5 s; environment variable CONTACTLAB_PROGRESS_SECONDS sets the interval).
 """
 
 #: Errors that mean bad input, reported as one line without a traceback.
@@ -51,7 +56,9 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point; returns the process exit status."""
+    """Entry point; returns the process exit status. Log records go to stderr in the
+    package's one format (:func:`contactlab.progress.configure_logging`)."""
+    configure_logging()
     args = build_parser().parse_args(argv)
     try:
         args.func(args)

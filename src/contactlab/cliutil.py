@@ -107,3 +107,52 @@ def check_memory(option: str, value: object, nbytes: float) -> None:
         raise ValueError(
             f"{option} {value} needs about {nbytes / GIB:.1f} GiB of memory, more than the "
             f"{limit / GIB:.1f} GiB of this machine; use a smaller {option}")
+
+
+def add_output(parser: argparse.ArgumentParser, help: str = "netCDF output") -> None:
+    """The required ``--out`` of a command that writes one result file."""
+    parser.add_argument("--out", type=Path, required=True, help=help)
+
+
+def add_section_outputs(parser: argparse.ArgumentParser) -> None:
+    """``--report-dir`` and ``--out`` of a command that writes a report section."""
+    parser.add_argument("--report-dir", type=Path, default=Path("results/report"),
+                        help="report directory receiving tables/ and figures/")
+    parser.add_argument("--out", type=Path, required=True, help="section HTML fragment")
+
+
+def positive_float(text: str) -> float:
+    """``type=`` of an option that must be a positive number."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not value > 0:
+        raise argparse.ArgumentTypeError(f"{text} is not a positive number")
+    return value
+
+
+def json_value(text: str) -> Any:
+    """``type=`` of an option holding JSON (parsed with the standard library)."""
+    import json
+
+    try:
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise argparse.ArgumentTypeError(f"not valid JSON ({exc}): {text!r}") from None
+
+
+def add_robustness(parser: argparse.ArgumentParser, section: str, stick_zone: str,
+                   continuation: str | None = None) -> None:
+    """The receding sweeps' ``--stick-zone-limit`` and ``--refine-max-n`` (and, with
+    ``continuation`` as its help, ``--continuation``), required: the config section
+    ``section`` is their home. ``stick_zone`` says which stick zone the limit is of."""
+    parser.add_argument("--stick-zone-limit", type=float, required=True,
+                        help=f"{stick_zone}; 0: never (config {section}.stick_zone_limit)")
+    parser.add_argument("--refine-max-n", type=int, required=True,
+                        help="largest N to which a point failing the contact checks is "
+                             f"re-solved; --n: none (config {section}.refine_max_n)")
+    if continuation:
+        parser.add_argument("--continuation", action=argparse.BooleanOptionalAction,
+                            required=True,
+                            help=f"{continuation} (config {section}.continuation)")

@@ -23,7 +23,8 @@ Generated from `workflow/schemas/config.schema.yaml` by
 - `config/config.yaml` is the default study: it sets only what differs from the defaults
   below. A key without a default must be set there.
 - `config/studies/<name>.yaml` holds a named study's overrides (README: Parameter studies).
-- `config/tests.csv` and `config/surfaces.csv` are the test and surface sheets (README).
+- `config/tests.csv` and `config/surfaces.csv` are the test and surface sheets
+  (README: Your own data).
 
 """
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import contextlib
 import datetime as dt
+import logging
 import os
 import shlex
 import sys
@@ -20,6 +21,8 @@ import xarray as xr
 
 from contactlab import __version__
 from contactlab.study import provenance
+
+LOG = logging.getLogger(__name__)
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -95,7 +98,7 @@ def stamp(ds: xr.Dataset, *, title: str, source: str, history: str,
     ``history`` (CF sec. 2.6.2) keeps the lines ``ds`` and the ``inputs`` (e.g. the chunks
     of a gather) already carry and appends one for this step: the full command line (or
     ``history`` outside the command line), dated only by ``SOURCE_DATE_EPOCH``
-    (:func:`history_time`). The wall-clock time and the command go to stderr, the job's log.
+    (:func:`history_time`). The command goes to the log (stderr, dated by the log format).
     ``source`` names the method and the contactlab version; no ``institution``, which is
     the user's to say. Inside a workflow run the attributes include the study name, the
     hash of the effective config and the git commit (:func:`contactlab.study.provenance`).
@@ -103,8 +106,7 @@ def stamp(ds: xr.Dataset, *, title: str, source: str, history: str,
     command = command_line(history)
     when = history_time()
     line = f"{when}: {command}" if when else command
-    now = dt.datetime.now(dt.UTC).strftime("%Y-%m-%dT%H:%M:%SZ")
-    print(f"contactlab: {now}: {command}: writing {title!r}", file=sys.stderr)
+    LOG.info("%s: writing %r", command, title)
     ds.attrs.pop("institution", None)
     ds.attrs.update(
         Conventions=CONVENTIONS,

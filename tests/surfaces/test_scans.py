@@ -201,7 +201,8 @@ def test_cli_records_a_corrupt_scan_in_one_line_and_the_check_fails_naming_it(
                      "--summary", str(out / "texture.nc"))
     assert run.returncode == 0, run.stderr
     (line,) = [line for line in run.stderr.splitlines() if "refused" in line]
-    assert line.startswith("pad: areal scan refused") and "broken.x3p" in line
+    assert " WARNING contactlab.surfaces.cli: pad: areal scan refused" in line
+    assert "broken.x3p" in line
     with xr.open_dataset(out / "pad.nc") as ds:
         assert "broken.x3p: cannot read scan" in ds.attrs["refused_areal_scan"]
         assert np.isnan(float(ds["Sq"]))

@@ -12,6 +12,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from contactlab.asperity import tangential as tg
+from contactlab.progress import track
 
 Array = NDArray[np.float64]
 
@@ -94,7 +95,7 @@ def family(law: str, q_ratio: Array, taus: list[float], *, f: float, nu: float,
     setup = time.perf_counter() - t0
     cases = [np.nan] if law == "coulomb" else list(taus)
     curves = []
-    for tau in cases:
+    for tau in track(cases, f"BEM {law} family, {cells} cells", unit="curves"):
         c = bem_curve(law, q_ratio, f=f, tau_max=1.0 if law == "coulomb" else tau, nu=nu,
                       cells=cells, matrix=mat, grid=grid)
         c.seconds += setup / len(cases)

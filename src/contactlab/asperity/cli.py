@@ -3,10 +3,16 @@
 from __future__ import annotations
 
 import argparse
-import json
-from pathlib import Path
 
-from contactlab.cliutil import add_command, add_group, check_memory, input_file
+from contactlab.cliutil import (
+    add_command,
+    add_group,
+    add_output,
+    add_section_outputs,
+    check_memory,
+    input_file,
+    json_value,
+)
 
 SOURCE = "contactlab.asperity; thesis chapter 3"
 EXAMPLES = """\
@@ -63,10 +69,7 @@ def _single(args: argparse.Namespace) -> None:
 
 
 def _multi(args: argparse.Namespace) -> None:
-    try:
-        tables = json.loads(args.tables)
-    except json.JSONDecodeError as exc:
-        raise ValueError(f"--tables is not valid JSON: {exc}") from None
+    tables = args.tables
     if not isinstance(tables, dict):
         raise ValueError("--tables must map table names to {P_over_Pm: [...], n: [...]}")
     check_memory("--points", args.points, 64.0 * args.points * args.m)
@@ -144,7 +147,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         if nu:
             p.add_argument("--nu", type=float, required=True,
                            help="Poisson's ratio of both bodies (config asperity.nu)")
-        p.add_argument("--out", type=Path, required=True, help="netCDF output")
+        add_output(p)
 
     p = add_command(
         cmd, "bem", help="tangential BEM curve family (Fig. 3.6)",
@@ -211,7 +214,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("--m", type=int, required=True, help="number of load levels m")
     p.add_argument("--pt-over-pm", type=float, required=True,
                    help="total over largest asperity load Pt/Pm (>= 1)")
-    p.add_argument("--tables", required=True,
+    p.add_argument("--tables", type=json_value, required=True,
                    help="JSON of user load tables: name -> {P_over_Pm: [...], n: [...]}, "
                         "'{}' for none (config asperity.multi.tables)")
     p.add_argument("--s-max", type=float, required=True,
@@ -271,7 +274,5 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                     "grid_bem.nc).")
     p.add_argument("part", choices=("single", "multi", "grid"), help="which section")
     p.add_argument("inputs", type=input_file, nargs="+", help="the part's result files")
-    p.add_argument("--report-dir", type=Path, default=Path("results/report"),
-                   help="report directory receiving tables/ and figures/")
-    p.add_argument("--out", type=Path, required=True, help="section HTML fragment")
+    add_section_outputs(p)
     p.set_defaults(func=_report)

@@ -7,7 +7,7 @@ variable names are an interface read by other tools (issue 4): keep them.
 
 from __future__ import annotations
 
-import sys
+import logging
 
 import numpy as np
 import xarray as xr
@@ -17,12 +17,13 @@ from contactlab.asperity import bem_runs, multi, single
 from contactlab.asperity import grid as hgrid
 from contactlab.asperity import grid_bem as gbem
 
+LOG = logging.getLogger(__name__)
 ONE = "1"
 
 
 def _log_seconds(what: str, seconds: ArrayLike) -> None:
-    """Solver wall time to stderr (the job's log); results carry no timings."""
-    print(f"{what}: {float(np.sum(seconds)):.2f} s", file=sys.stderr)
+    """Solver wall time to the job's log; results carry no timings."""
+    LOG.info("%s: %.2f s of solver time", what, float(np.sum(seconds)))
 
 
 def _v(dims, data, long_name: str, units: str = ONE, **attrs) -> xr.Variable:
@@ -329,7 +330,6 @@ def grid_bem_dataset(n: int, area_ratio: ArrayLike, cells_per_spacing: int,
     pt, _ = hgrid.loads_for_area_ratio(ar, n)
     hz = hgrid.fixed_grid(n, pt)
     rig = gbem.solve_grid(n, pt, cells_per_spacing)
-    _log_seconds(f"BEM grid N = {n}, rigid approach, {ar.size} loads", rig["seconds"])
     data = {
         "Pt_over_Pd": _v(("area_ratio_hertz",), pt, "total load Pt/Pd"),
         "u_cen_hertz": _v(("area_ratio_hertz",), hz["u_cen"],
@@ -353,7 +353,6 @@ def grid_bem_dataset(n: int, area_ratio: ArrayLike, cells_per_spacing: int,
     }
     if equal_loads:
         eq = gbem.solve_grid_equal_loads(n, pt, cells_per_spacing)
-        _log_seconds(f"BEM grid N = {n}, equal loads, {ar.size} loads", eq["seconds"])
         data.update({
             "u_cen_bem_equal": _v(("area_ratio_hertz",), eq["u_cen"],
                                   "centre displacement, BEM, equal asperity loads"),

@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from contactlab.asperity import grid as hertz_grid
 from contactlab.asperity.normal import HalfSpaceOperator, contact_stiffness, solve_normal
+from contactlab.progress import track
 
 Array = NDArray[np.float64]
 
@@ -86,7 +87,8 @@ def solve_grid_equal_loads(n: int, pt_over_pd: ArrayLike, cells_per_spacing: int
         err = float(np.max(np.abs(share * n * n / total - 1.0)))
         return res, float(res.approach[centre]), err
 
-    for k, load in enumerate(loads):
+    what = f"BEM grid N = {n}, equal loads"
+    for k, load in enumerate(track(loads, what, unit="loads")):
         t0 = time.perf_counter()
         res, u0, err = solve(load, p)
         p = res.pressure
@@ -117,7 +119,7 @@ def solve_grid(n: int, pt_over_pd: ArrayLike, cells_per_spacing: int = 32,
     out = {k: np.zeros(loads.size) for k in keys}
     centre, corner = (n * n - 1) // 2, 0
     p = None
-    for k, load in enumerate(loads):
+    for k, load in enumerate(track(loads, f"BEM grid N = {n}, rigid approach", unit="loads")):
         t0 = time.perf_counter()
         res = solve_normal(op, gap, load, p_init=p, tol=tol)
         p = res.pressure

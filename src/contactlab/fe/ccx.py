@@ -7,15 +7,15 @@ executable is looked up on PATH or taken from the ``CCX`` environment variable.
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import subprocess
-import sys
 import tempfile
-import time
 from dataclasses import dataclass
 from pathlib import Path
 
 from contactlab.fe.frd import FrdResult, read_frd, read_sta
+from contactlab.progress import Progress
 
 
 @dataclass
@@ -50,6 +50,49 @@ def ccx_version() -> str:
     return "unknown"
 
 
+#: The start of a load step in an input deck.
+STEP = re.compile(r"^\*STEP\b", re.IGNORECASE | re.MULTILINE)
+
+
+def steps_done(sta: Path) -> float:
+    """Load steps done so far by a running job, from the last line of its ``.sta`` file:
+    the finished steps plus the step time of the current one (step periods are 1)."""
+    try:
+        lines = sta.read_text(errors="replace").splitlines()
+    except OSError:
+        return 0.0
+    for line in reversed(lines):
+        parts = line.split()
+        if len(parts) >= 7 and parts[0].isdigit():
+            try:
+                return int(parts[0]) - 1 + min(float(parts[5]), 1.0)
+            except ValueError:
+                continue
+    return 0.0
+
+
+def _run_watched(cmd: list[str], work: Path, env: dict[str, str], job: str, steps: int,
+                 timeout: float | None) -> subprocess.CompletedProcess[str]:
+    """Run ccx in ``work`` like ``subprocess.run`` (output captured, ``timeout``), logging
+    its progress in load steps from the ``job.sta`` file while it runs."""
+    with Progress(f"ccx job {job}", max(steps, 1), "load steps") as progress:
+        proc = subprocess.Popen(cmd, cwd=work, env=env, stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, text=True)
+        poll = min(max(progress.interval, 0.2), 5.0)
+        while True:
+            try:
+                out, err = proc.communicate(timeout=poll)  # keeps reading the pipes
+                break
+            except subprocess.TimeoutExpired:
+                if timeout is not None and progress.elapsed > timeout:
+                    proc.kill()
+                    proc.communicate()
+                    raise subprocess.TimeoutExpired(cmd, timeout) from None
+                progress.update(steps_done(work / f"{job}.sta"))
+        progress.update(steps_done(work / f"{job}.sta"))  # the wall time goes to the log
+    return subprocess.CompletedProcess(cmd, proc.returncode, out, err)
+
+
 def run_ccx(deck: str, job: str = "job", threads: int = 1, keep: str | None = None,
             timeout: float | None = None, allow_partial: bool = False) -> CcxRun:
     """Write ``deck`` as ``job.inp`` in a temporary directory, run ``ccx -i job``, read results.
@@ -67,11 +110,8 @@ def run_ccx(deck: str, job: str = "job", threads: int = 1, keep: str | None = No
     with tempfile.TemporaryDirectory(prefix="ccx_") as tmp:
         work = Path(tmp)
         (work / f"{job}.inp").write_text(deck)
-        start = time.perf_counter()
-        proc = subprocess.run([exe, "-i", job], cwd=work, env=env, capture_output=True,
-                              text=True, check=False, timeout=timeout)
-        wall = time.perf_counter() - start
-        print(f"ccx job {job}: {wall:.1f} s", file=sys.stderr)  # the log, not the results
+        proc = _run_watched([exe, "-i", job], work, env, job, len(STEP.findall(deck)),
+                            timeout)
         log = proc.stdout + proc.stderr
         if keep:
             dest = Path(keep)

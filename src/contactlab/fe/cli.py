@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from contactlab.cliutil import add_command, add_group, input_file
+from contactlab.cliutil import add_command, add_group, add_output, add_section_outputs, input_file
 
 EXAMPLES = """\
   contactlab fe receding --problem uniform --f 0.3 --w-hat 2.5 --h 0.1 --length 12.5 \\
@@ -171,7 +171,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     rec.add_argument("--level", default="", help="name of the mesh level (metadata)")
     rec.add_argument("--threads", type=int, default=1, help="ccx threads")
     rec.add_argument("--keep", default=None, help="keep the ccx work directory here")
-    rec.add_argument("--out", type=Path, required=True, help="netCDF output")
+    add_output(rec)
     rec.set_defaults(func=_receding)
 
     cmp_ = add_command(
@@ -194,7 +194,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                       help="patch: (e - w)/c (config receding.patches.e_minus_w)")
     cmp_.add_argument("--ddt-file", type=Path, default=None,
                       help="receding results file to use when the solve fails")
-    cmp_.add_argument("--out", type=Path, required=True, help="netCDF output")
+    add_output(cmp_)
     cmp_.set_defaults(func=_compare)
 
     conv = add_command(
@@ -202,7 +202,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         description="Transition points of runs of one problem on successively refined "
                     "meshes, stacked along h (mesh convergence, sec. 8.3).")
     conv.add_argument("runs", nargs="+", type=input_file, help="outputs of `fe receding`")
-    conv.add_argument("--out", type=Path, required=True, help="netCDF output")
+    add_output(conv)
     conv.set_defaults(func=_convergence)
 
     asp = add_command(
@@ -230,7 +230,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                      help="increments of the tangential load step")
     asp.add_argument("--threads", type=int, default=1, help="ccx threads")
     asp.add_argument("--keep", default=None, help="keep the ccx work directory here")
-    asp.add_argument("--out", type=Path, required=True, help="netCDF output")
+    add_output(asp)
     asp.set_defaults(func=_asperity)
 
     gat = add_command(
@@ -240,7 +240,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     gat.add_argument("runs", nargs="+", type=input_file, help="outputs of `fe asperity`")
     gat.add_argument("--bem", type=input_file, default=None,
                      help="results/asperity/single.nc (BEM curves)")
-    gat.add_argument("--out", type=Path, required=True, help="netCDF output")
+    add_output(gat)
     gat.set_defaults(func=_asperity_gather)
 
     rep = add_command(
@@ -253,7 +253,5 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                      help="results/fe/convergence_<problem>.nc")
     rep.add_argument("--asperity", type=input_file, default=None,
                      help="results/fe/asperity_plastic.nc")
-    rep.add_argument("--report-dir", type=Path, default=Path("results/report"),
-                     help="report directory receiving tables/ and figures/")
-    rep.add_argument("--out", type=Path, required=True, help="section HTML fragment")
+    add_section_outputs(rep)
     rep.set_defaults(func=_report)

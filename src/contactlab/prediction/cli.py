@@ -3,10 +3,18 @@
 from __future__ import annotations
 
 import argparse
+import logging
 import time
-from pathlib import Path
 
-from contactlab.cliutil import add_command, add_group, check_memory, input_file
+from contactlab.cliutil import (
+    add_command,
+    add_group,
+    add_output,
+    add_section_outputs,
+    check_memory,
+    input_file,
+    positive_float,
+)
 
 SOURCE = ("contactlab.prediction; rough-contact BEM (ContactMechanics, Polonsky-Keer; "
           "Cerruti cell coefficients) on the scans of each pair, thesis ch. 2")
@@ -32,13 +40,7 @@ kN/mm^3.
 
 #: Cells across the window of the sphere check run with every summary (19 per radius).
 SPHERE_CELLS = 64
-
-
-def _positive(text: str) -> float:
-    value = float(text)
-    if not value > 0:
-        raise argparse.ArgumentTypeError(f"{text} is not a positive number")
-    return value
+LOG = logging.getLogger(__name__)
 
 
 def _pair(args: argparse.Namespace) -> None:
@@ -76,11 +78,12 @@ def _pair(args: argparse.Namespace) -> None:
     write_netcdf(ds, args.out, encoding={name: {"zlib": True, "complevel": 4}
                                          for name in ("height", "pressure")})
     flags = [k for k in ds.data_vars if k.endswith("converged") and not ds[k].values.all()]
-    print(f"{args.test}: {ds.sizes['Pn_An']} load levels, {ds.sizes['variant']} variant(s), "
-          f"{composite.heights.shape[0]} x {composite.heights.shape[1]} cells of "
-          f"{composite.dx:.4g} um; {time.process_time() - started:.1f} s of CPU")
+    LOG.info("%s: %d load levels, %d variant(s), %d x %d cells of %.4g um; %.1f s of CPU",
+             args.test, ds.sizes["Pn_An"], ds.sizes["variant"], *composite.heights.shape,
+             composite.dx, time.process_time() - started)
     if flags:
-        print(f"{args.test}: NOT CONVERGED somewhere in {', '.join(flags)} (flagged in the file)")
+        LOG.warning("%s: NOT CONVERGED somewhere in %s (flagged in the file)", args.test,
+                    ", ".join(flags))
 
 
 def _summarize(args: argparse.Namespace) -> None:
@@ -135,35 +138,35 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="areal scan of the specimen surface (surface sheet 'areal_scan')")
     p.add_argument("--pad-scan", type=input_file, required=True,
                    help="areal scan of the pad surface (surface sheet 'areal_scan')")
-    p.add_argument("--specimen-lambda-c-um", type=_positive, required=True,
+    p.add_argument("--specimen-lambda-c-um", type=positive_float, required=True,
                    help="Gaussian cut-off of the specimen scan, um")
-    p.add_argument("--pad-lambda-c-um", type=_positive, required=True,
+    p.add_argument("--pad-lambda-c-um", type=positive_float, required=True,
                    help="Gaussian cut-off of the pad scan, um")
     p.add_argument("--max-undefined-fraction", type=float, required=True,
                    help="largest fraction of undefined scan points that is filled")
-    p.add_argument("--max-normal-load-kN", type=_positive, required=True,
+    p.add_argument("--max-normal-load-kN", type=positive_float, required=True,
                    help="the test's maximum normal load -Pn, kN")
-    p.add_argument("--nominal-area-mm2", type=_positive, required=True,
+    p.add_argument("--nominal-area-mm2", type=positive_float, required=True,
                    help="the test's nominal contact area An, mm^2")
     p.add_argument("--grid-points", type=int, required=True,
                    help="cells per side of the composite grid (block-averaged scans)")
-    p.add_argument("--load-min-fraction", type=_positive, required=True,
+    p.add_argument("--load-min-fraction", type=positive_float, required=True,
                    help="lowest load level over the test's maximum load, (0, 1)")
     p.add_argument("--load-points", type=int, required=True,
                    help="load levels, geometric, up to the test's maximum (>= 5)")
-    p.add_argument("--youngs-modulus-GPa", type=_positive, required=True,
+    p.add_argument("--youngs-modulus-GPa", type=positive_float, required=True,
                    help="Young's modulus of both bodies, GPa")
     p.add_argument("--poissons-ratio", type=float, required=True,
                    help="Poisson's ratio of both bodies")
-    p.add_argument("--hardness-GPa", type=_positive, required=True,
+    p.add_argument("--hardness-GPa", type=positive_float, required=True,
                    help="hardness capping the contact pressure of the plastic model, GPa")
     p.add_argument("--plastic-cap", choices=("on", "off"), required=True,
                    help="also solve with the pressure capped at the hardness")
     p.add_argument("--slip-points", type=int, required=True,
                    help="points of the Coulomb partial-slip curve (>= 3)")
-    p.add_argument("--tol", type=_positive, required=True,
+    p.add_argument("--tol", type=positive_float, required=True,
                    help="relative tolerance of the solvers")
-    p.add_argument("--out", type=Path, required=True, help="output netCDF")
+    add_output(p)
     p.set_defaults(func=_pair)
 
     p = add_command(
@@ -177,9 +180,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                    help="stiffness summary from raw data (results/stiffness/summary.nc)")
     p.add_argument("--published-summary", type=input_file,
                    help="stiffness summary from the published steps")
-    p.add_argument("--tangential-ratio", type=_positive, required=True,
+    p.add_argument("--tangential-ratio", type=positive_float, required=True,
                    help="largest tangential over normal load of the test cycles (sec. 2.3.1)")
-    p.add_argument("--out", type=Path, required=True, help="output netCDF")
+    add_output(p)
     p.set_defaults(func=_summarize)
 
     p = add_command(
@@ -189,7 +192,5 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     p.add_argument("predictions", type=input_file, nargs="+", help="per-test results")
     p.add_argument("--summary", type=input_file, required=True,
                    help="results of `contactlab prediction summarize`")
-    p.add_argument("--report-dir", type=Path, default=Path("results/report"),
-                   help="report directory receiving tables/ and figures/")
-    p.add_argument("--out", type=Path, required=True, help="section HTML fragment")
+    add_section_outputs(p)
     p.set_defaults(func=_report)

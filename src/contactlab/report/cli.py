@@ -7,17 +7,16 @@ report``); this command only stitches them together.
 from __future__ import annotations
 
 import argparse
-import json
 from pathlib import Path
 
-from contactlab.cliutil import add_command, add_group, input_file
+from contactlab.cliutil import add_command, add_group, input_file, json_value
 
 
 def _index(args: argparse.Namespace) -> None:
     from contactlab.report.index import build_index
     from contactlab.study import provenance
 
-    changes = json.loads(args.changes) if args.changes else {}
+    changes = args.changes or {}
     build_index(args.sections, args.out, args.title, args.intro, provenance(), changes)
 
 
@@ -36,7 +35,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     index.add_argument("--title", default="contactlab report",
                        help="page title (config report.title)")
     index.add_argument("--intro", default="", help="introductory paragraph")
-    index.add_argument("--changes", default="",
+    index.add_argument("--changes", type=json_value, default=None,
                        help="JSON {key: [default, study]} of what a named study changes")
     index.add_argument("--out", type=Path, required=True, help="HTML page to write")
     index.set_defaults(func=_index)

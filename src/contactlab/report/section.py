@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import html
 import os
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -67,19 +68,31 @@ class Section:
         )
         link = self._relative(csv_path)
         self.blocks.append(
-            f"<figure class='table'>{body}<figcaption>{html.escape(caption)} "
+            f"<figure class='table' id='tab-{Path(csv_path).stem}'>{body}"
+            f"<figcaption>{html.escape(caption)} "
             f"(<a href='{link}'>CSV</a>)</figcaption></figure>"
         )
 
     def figure(self, fig: plt.Figure, caption: str, png_path: str | os.PathLike[str]) -> None:
         """Save ``fig`` as PNG and PDF and show it with a caption."""
         save_figure(fig, png_path)
+        self.image(png_path, caption)
+
+    def image(self, png_path: str | os.PathLike[str], caption: str) -> None:
+        """Show a figure already saved by :func:`save_figure` (PNG, PDF beside) with a
+        caption; its id (``fig-<file name>``) lets the page's contents link it."""
         png = self._relative(png_path)
         pdf = self._relative(Path(png_path).with_suffix(".pdf"))
         self.blocks.append(
-            f"<figure><img src='{png}' alt='{html.escape(caption)}'>"
-            f"<figcaption>{html.escape(caption)} (<a href='{pdf}'>PDF</a>)</figcaption></figure>"
+            f"<figure id='fig-{Path(png_path).stem}'><img src='{png}' "
+            f"alt='{html.escape(caption)}'><figcaption>{html.escape(caption)} "
+            f"(<a href='{pdf}'>PDF</a>)</figcaption></figure>"
         )
+
+    def heading(self, text: str) -> None:
+        """Start a sub-section (``<h3>``, listed in the page's contents)."""
+        slug = re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-")
+        self.blocks.append(f"<h3 id='{self.anchor}-{slug}'>{html.escape(text)}</h3>")
 
     def render(self) -> str:
         """The fragment: a ``<section>`` with a heading and the blocks in order."""

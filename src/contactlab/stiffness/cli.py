@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 from contactlab.cliutil import (
     add_command,
     add_group,
+    add_section_outputs,
     check_memory,
     input_dir,
     input_file,
@@ -251,9 +252,7 @@ def register_published(commands: argparse._SubParsersAction) -> None:
     rep.add_argument("--tables-dir", type=input_dir, required=True,
                      help="directory with table_2.x_from_published_steps.csv")
     rep.add_argument("--published-dir", type=input_dir, default=None, help=PUBLISHED)
-    rep.add_argument("--report-dir", type=Path, default=Path("results/report"),
-                     help="report directory receiving tables/ and figures/")
-    rep.add_argument("--out", type=Path, required=True, help="section HTML fragment")
+    add_section_outputs(rep)
     rep.set_defaults(func=_report_published)
 
 

@@ -18,6 +18,7 @@ import pandas as pd
 import xarray as xr
 
 from contactlab.io import stamp
+from contactlab.progress import track
 from contactlab.stiffness.aggregate import mean_row_statistics
 from contactlab.stiffness.displacement import contact_displacement, contact_displacement_rows
 from contactlab.stiffness.errors import ErrorModel, add_margins, kn_margin
@@ -121,7 +122,7 @@ def process_test(test: str, frames: pd.DataFrame, rows: xr.Dataset | None, *,
     k0_rows = np.full((n_steps, max(n_rows, 1)), np.nan)
     row_stats = np.full((n_steps, 4), np.nan)
 
-    for i in range(n_steps):
+    for i in track(range(n_steps), f"test {test}: fitting the load steps", unit="steps"):
         kind, direction, number = kinds[i], directions[i], numbers[i]
         label = f"test {test}, {kind} {direction} step {number}"
         sel = step_of_frame == i

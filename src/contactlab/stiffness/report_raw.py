@@ -335,10 +335,8 @@ def build_section(results: list[Path], summary_path: Path, report_dir: Path, out
     with xr.open_dataset(summary_path) as summary:
         summary_figure(summary.load(), published_dir,
                        report_dir / "figures" / "stiffness_raw_summary.png")
-    section.blocks.append(
-        "<figure><img src='figures/stiffness_raw_summary.png' alt='summary'>"
-        "<figcaption>Kn, Kt0, f and Cc from raw data vs published (PDF beside)</figcaption>"
-        "</figure>")
+    section.image(report_dir / "figures" / "stiffness_raw_summary.png",
+                  "Kn, Kt0, f and Cc from raw data vs published")
     for path in results:
         test_figures(path, report_dir / "figures", published_dir)
         with xr.open_dataset(path) as ds:
@@ -347,9 +345,8 @@ def build_section(results: list[Path], summary_path: Path, report_dir: Path, out
                               ("tangential", "tangential steps (like Figs 2.14, 2.15)"),
                               ("steps", "per-step f, beta_t, Kt0 (like Figs 2.16, 2.17)"),
                               ("mean_row", "mean-row Kt0 (like Fig. 2.17 bottom)")):
-            png = f"figures/stiffness_raw_{test}_{name}.png"
-            section.blocks.append(f"<figure><img src='{png}' alt='{test} {name}'>"
-                                  f"<figcaption>Test {test}: {caption}</figcaption></figure>")
+            section.image(report_dir / "figures" / f"stiffness_raw_{test}_{name}.png",
+                          f"Test {test}: {caption}")
     section.write(out)
 
 

@@ -3,11 +3,20 @@
 from __future__ import annotations
 
 import argparse
-import sys
-import time
+import logging
 from pathlib import Path
 
-from contactlab.cliutil import add_command, add_group, input_dir, input_file
+from contactlab.cliutil import (
+    add_command,
+    add_group,
+    add_output,
+    add_section_outputs,
+    input_dir,
+    input_file,
+)
+from contactlab.progress import Progress
+
+LOG = logging.getLogger(__name__)
 
 
 def _demo_scans(args: argparse.Namespace) -> None:
@@ -16,12 +25,13 @@ def _demo_scans(args: argparse.Namespace) -> None:
 
     specs = read_surface_sheet(args.sheet)
     written = demo_scans(specs, args.out_dir, args.seed, args.published_dir)
-    print(f"wrote {len(written)} SYNTHETIC demo scans to {args.out_dir}")
+    LOG.info("wrote %d SYNTHETIC demo scans to %s", len(written), args.out_dir)
 
 
 def _texture_of(spec, bins: int, max_undefined: float, out_dir: Path, history: str
-                ) -> list[str]:
-    """Texture of one surface written to ``out_dir/<surface>.nc``; returns its log lines."""
+                ) -> tuple[list[str], list[str]]:
+    """Texture of one surface written to ``out_dir/<surface>.nc``; returns what to log:
+    notes (filled points, undefined parameters) and warnings (refused scans)."""
     from contactlab.io import stamp, write_netcdf
     from contactlab.surfaces.texture import surface_dataset, surface_texture
 
@@ -37,9 +47,9 @@ def _texture_of(spec, bins: int, max_undefined: float, out_dir: Path, history: s
              for kind, fraction in texture.filled.items() if fraction > 0]
     lines += [f"{spec.surface}: {name} undefined: {reason}"
               for name, reason in texture.undefined.items()]
-    lines += [f"{spec.surface}: {kind} scan refused, its parameters are NaN: {reason}"
-              for kind, reason in texture.refused.items()]
-    return lines
+    refused = [f"{spec.surface}: {kind} scan refused, its parameters are NaN: {reason}"
+               for kind, reason in texture.refused.items()]
+    return lines, refused
 
 
 def _texture(args: argparse.Namespace) -> None:
@@ -60,21 +70,23 @@ def _texture(args: argparse.Namespace) -> None:
         if unknown:
             raise KeyError(f"{args.sheet}: no surface(s) {unknown} in the sheet")
         specs = [s for s in specs if s.surface in args.surface]
-    started = time.perf_counter()
+    progress = Progress("surface texture", len(specs), "surfaces")
     history = (f"contactlab surfaces texture --sheet {args.sheet} "
                f"--max-undefined-fraction {args.max_undefined_fraction}")
     one = partial(_texture_of, bins=args.bins, max_undefined=args.max_undefined_fraction,
                   out_dir=Path(args.out_dir), history=history)
     if args.workers == 1 or len(specs) == 1:
-        logs = map(one, specs)
+        notes = map(one, specs)
     else:
         pool = ProcessPoolExecutor(max_workers=min(args.workers, len(specs)))
-        logs = pool.map(one, specs)
-    for done, (spec, lines) in enumerate(zip(specs, logs, strict=True), start=1):
-        for line in lines:
-            print(line, file=sys.stderr)
-        print(f"{done}/{len(specs)} surfaces ({spec.surface}), "
-              f"{time.perf_counter() - started:.1f} s", file=sys.stderr)
+        notes = pool.map(one, specs)
+    for infos, warnings in notes:
+        for line in infos:
+            LOG.info("%s", line)
+        for line in warnings:
+            LOG.warning("%s", line)
+        progress.advance()
+    progress.finish()
     if args.summary is not None:
         _write_summary([Path(args.out_dir) / f"{s.surface}.nc" for s in specs], args.summary)
 
@@ -112,10 +124,10 @@ def _texture_check(args: argparse.Namespace) -> None:
             "surfaces: allow_refused_scans: true (run with --keep-going to build the summary "
             "and report meanwhile)")
     for line in lines:
-        print(f"accepted refusal:{line}")
+        LOG.warning("accepted refusal:%s", line)
     table = pd.DataFrame(refused, columns=["surface", "scan", "reason"])
     write_text(table.to_csv(index=False), args.out)
-    print(f"{len(refused)} refused scan(s) of {n_surfaces} surfaces")
+    LOG.info("%d refused scan(s) of %d surfaces", len(refused), n_surfaces)
 
 
 def _seq(args: argparse.Namespace) -> None:
@@ -245,7 +257,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     seq.add_argument("--published-dir", type=input_dir, default=None, help=published)
     seq.add_argument("--texture", type=input_file, default=None,
                      help="texture summary (results/surfaces/texture.nc) for Seq from scans")
-    seq.add_argument("--out", type=Path, required=True, help="netCDF output")
+    add_output(seq)
     seq.set_defaults(func=_seq)
 
     report = add_command(
@@ -259,7 +271,5 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     report.add_argument("--surface-dir", type=input_dir, default=None,
                         help="directory of the <surface>.nc files (pictures)")
     report.add_argument("--published-dir", type=input_dir, default=None, help=published)
-    report.add_argument("--report-dir", type=Path, default=Path("results/report"),
-                        help="report directory receiving tables/ and figures/")
-    report.add_argument("--out", type=Path, required=True, help="section HTML fragment")
+    add_section_outputs(report)
     report.set_defaults(func=_report)

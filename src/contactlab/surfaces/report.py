@@ -20,7 +20,8 @@ from contactlab.surfaces.texture import AREAL, PROFILE, refused_scans
 
 #: Thesis tables that print Seq per test (ground and structured tests).
 SEQ_TABLES = ("2.3", "2.10")
-#: Stated tolerances of the comparison with the published values (README, Surface texture).
+#: Stated tolerances of the comparison with the published values (docs/FINDINGS.md,
+#: Surface texture).
 TOLERANCES = {
     "Sq": "1 %", "Sa": "3 %", "Sp": "2 %", "Str": "+-(0.1 Str + 0.02)",
     "Rq": "1 %", "Ra": "3 %", "Rz": "30 % (20x), 10 % (100x)",

@@ -12,10 +12,15 @@ at the sweep's N.
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
 import xarray as xr
 
+from contactlab.progress import duration
 from contactlab.receding.core.solution import CHECKS, FLAGS
+
+LOG = logging.getLogger(__name__)
 
 
 def sweep_counts(ds: xr.Dataset, suffix: str = "") -> dict[str, int]:
@@ -69,3 +74,18 @@ def summary_attrs(ds: xr.Dataset, suffix: str = "") -> dict[str, object]:
                                 for k, v in sweep_counts(ds, suffix).items()}
     attrs[f"unsolved{suffix}"] = "\n".join(unsolved_points(ds, suffix))
     return attrs
+
+
+def log_summary(ds: xr.Dataset, what: str, seconds: float) -> None:
+    """The sweep's counts as the final line of its log, each point left failed or
+    inadmissible as a warning (the Chaise et al. columns too, when there)."""
+    suffixes = [""] + (["_chaise"] if "converged_chaise" in ds else [])
+    for suffix in suffixes:
+        counts = sweep_counts(ds, suffix)
+        named = ", ".join(f"{counts[k]} {k}" for k in ("plain", *FLAGS) if counts[k])
+        LOG.info("%s%s: %d/%d points solved (%s), %d failed, %d inadmissible, in %s", what,
+                 " (Chaise et al. model)" if suffix else "", counts["solved"],
+                 counts["points"], named or "none plain", counts["failed"],
+                 counts["inadmissible"], duration(seconds))
+        for line in unsolved_points(ds, suffix):
+            LOG.warning("%s%s: %s", what, suffix, line)

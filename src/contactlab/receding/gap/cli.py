@@ -11,10 +11,16 @@ from __future__ import annotations
 import argparse
 import json
 import time
-from pathlib import Path
 from typing import Any
 
-from contactlab.cliutil import add_command, check_memory, input_file
+from contactlab.cliutil import (
+    add_command,
+    add_output,
+    add_robustness,
+    add_section_outputs,
+    check_memory,
+    input_file,
+)
 
 SOURCE = ("distributed dislocations, thesis ch. 5 (eqs 5.1-5.28, App. B.1); "
           "Gauss-Chebyshev quadrature, MINPACK root finding on the leftover equations")
@@ -65,12 +71,15 @@ def _sweep(args: argparse.Namespace) -> None:
     import numpy as np
 
     from contactlab.io import stamp, write_netcdf
+    from contactlab.receding.core.summary import log_summary
     from contactlab.receding.gap.sweep import sweep_dataset
 
+    start = time.perf_counter()
     ds = sweep_dataset(np.asarray(args.w_hat), np.asarray(args.f), args.n,
                        thresholds=not args.no_thresholds,
                        stick_zone_limit=args.stick_zone_limit, refine_max_n=args.refine_max_n,
                        continuation=args.continuation)
+    log_summary(ds, f"gap sweep N = {args.n}", time.perf_counter() - start)
     stamp(ds, title=f"Gap problem (thesis ch. 5): transition points over (f, w/c), N = {args.n}",
           source=SOURCE,
           history=f"contactlab receding gap-sweep --w-hat {' '.join(map(str, args.w_hat))} "
@@ -146,15 +155,9 @@ def _report(args: argparse.Namespace) -> None:
                   args.out)
 
 
-def add_robustness(parser: argparse.ArgumentParser, section: str) -> None:
-    """``--stick-zone-limit`` and ``--refine-max-n`` (required: the config is their home)."""
-    parser.add_argument("--stick-zone-limit", type=float, required=True,
-                        help="stick zone (units of c) below which an unresolved one is solved "
-                             f"in its limit of zero width; 0: never (config "
-                             f"{section}.stick_zone_limit)")
-    parser.add_argument("--refine-max-n", type=int, required=True,
-                        help="largest N to which a point failing the contact checks is "
-                             f"re-solved; --n: none (config {section}.refine_max_n)")
+#: what --stick-zone-limit limits in the gap problem
+STICK_ZONE = ("stick zone (units of c) below which an unresolved one is solved in its limit "
+              "of zero width")
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -172,18 +175,16 @@ def register(commands: argparse._SubParsersAction) -> None:
     sweep.add_argument("--n", type=int, required=True, help=n_help)
     sweep.add_argument("--no-thresholds", action="store_true",
                        help="skip f_stick/f_sep per w/c")
-    add_robustness(sweep, "receding.gap")
-    sweep.add_argument("--continuation", action=argparse.BooleanOptionalAction, required=True,
-                       help="retry unconverged points from solved neighbours in f and w/c "
-                            "(config receding.gap.continuation)")
-    sweep.add_argument("--out", type=Path, required=True, help="netCDF output (one chunk)")
+    add_robustness(sweep, "receding.gap", STICK_ZONE, continuation="retry unconverged "
+                   "points from solved neighbours in f and w/c")
+    add_output(sweep, "netCDF output (one chunk)")
     sweep.set_defaults(func=_sweep)
 
     gather = add_command(
         commands, "gap-gather", help="join sweep chunks along w",
         description="Join gap-sweep chunks (same N) along w/c into one sweep file.")
     gather.add_argument("chunks", type=input_file, nargs="+", help="gap-sweep chunk files")
-    gather.add_argument("--out", type=Path, required=True, help="netCDF output")
+    add_output(gather)
     gather.set_defaults(func=_gather)
 
     regimes = add_command(
@@ -192,7 +193,7 @@ def register(commands: argparse._SubParsersAction) -> None:
                     "w/c of separation onset, from a sweep with thresholds.")
     regimes.add_argument("--sweep", type=input_file, required=True,
                          help="gathered sweep (results/receding/gap.nc)")
-    regimes.add_argument("--out", type=Path, required=True, help="netCDF output")
+    add_output(regimes)
     regimes.set_defaults(func=_regimes)
 
     profile = add_command(
@@ -206,8 +207,8 @@ def register(commands: argparse._SubParsersAction) -> None:
                          help="profile on x/c in [-x_max, x_max] (config "
                               "receding.gap.profile_x_max)")
     profile.add_argument("--points", type=int, default=601, help="points of the profile")
-    add_robustness(profile, "receding.gap")
-    profile.add_argument("--out", type=Path, required=True, help="netCDF output")
+    add_robustness(profile, "receding.gap", STICK_ZONE)
+    add_output(profile)
     profile.set_defaults(func=_profile)
 
     report = add_command(
@@ -221,7 +222,5 @@ def register(commands: argparse._SubParsersAction) -> None:
                         help="regime map (gap_regimes.nc)")
     report.add_argument("--profiles", type=input_file, nargs="+", required=True,
                         help="gap-profile files")
-    report.add_argument("--report-dir", type=Path, default=Path("results/report"),
-                        help="report directory receiving tables/ and figures/")
-    report.add_argument("--out", type=Path, required=True, help="section HTML fragment")
+    add_section_outputs(report)
     report.set_defaults(func=_report)

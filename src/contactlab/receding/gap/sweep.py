@@ -7,9 +7,12 @@ next; a failed point is kept with ``converged = 0`` and its reason, never droppe
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
 import xarray as xr
 
+from contactlab.progress import Progress, track
 from contactlab.receding.core.bilateral import gap_bilateral
 from contactlab.receding.core.solution import (
     CHECK_TOL,
@@ -29,6 +32,7 @@ from contactlab.receding.gap.solver import (
     stick_friction,
 )
 
+LOG = logging.getLogger(__name__)
 ONE = "1"
 #: The shared contact checks (``core.solution.CHECKS``) described in units of p.
 CHECK_NAMES = {
@@ -47,8 +51,10 @@ ZONE_NAMES = {
 
 
 def sweep_friction(w: float, f_values: np.ndarray, n: int,
-                   stick_zone_limit: float = STICK_ZONE_LIMIT) -> list[GapSolution]:
-    """Solutions at one w_hat for every f (any order in, same order out), by continuation."""
+                   stick_zone_limit: float = STICK_ZONE_LIMIT,
+                   progress: Progress | None = None) -> list[GapSolution]:
+    """Solutions at one w_hat for every f (any order in, same order out), by continuation;
+    ``progress`` counts each point solved."""
     f_values = np.asarray(f_values, dtype=float)
     order = np.argsort(f_values)[::-1]
     out: list[GapSolution | None] = [None] * f_values.size
@@ -60,6 +66,8 @@ def sweep_friction(w: float, f_values: np.ndarray, n: int,
         out[j] = sol
         if sol.converged and sol.regime != "stick":
             prev = sol
+        if progress is not None:
+            progress.advance()
     return [s for s in out if s is not None]
 
 
@@ -123,17 +131,28 @@ def sweep_dataset(w_values: np.ndarray, f_values: np.ndarray, n: int,
     refine_max_n = n if refine_max_n is None else int(refine_max_n)
     if refine_max_n < n:
         raise ValueError(f"refine_max_n = {refine_max_n} is below N = {n}")
-    columns = [sweep_friction(float(w), f_values, n, stick_zone_limit) for w in w_values]
+    what = f"gap sweep N = {n}"
+    columns = []
+    with Progress(f"{what}: solving", w_values.size * f_values.size, "points") as progress:
+        for w in w_values:
+            columns.append(sweep_friction(float(w), f_values, n, stick_zone_limit, progress))
     grid = [[columns[j][i] for j in range(w_values.size)] for i in range(f_values.size)]
     if continuation:
+        left = sum(not sol.converged for row in grid for sol in row)
         continue_from_neighbours(grid, n, stick_zone_limit)
+        if left:
+            LOG.info("%s: continuation won %d of %d unconverged points", what,
+                     left - sum(not sol.converged for row in grid for sol in row), left)
     start = np.full((f_values.size, w_values.size), np.nan)
-    for i, row in enumerate(grid):
-        for j, sol in enumerate(row):
-            w, f = float(w_values[j]), float(f_values[i])
-            row[j], start[i, j] = refine_in_n(
-                lambda m, seed, w=w, f=f: _solve(w, f, m, seed, stick_zone_limit),
-                sol, refine_max_n)
+    with Progress(f"{what}: contact checks, refining in N up to {refine_max_n}",
+                  w_values.size * f_values.size, "points") as progress:
+        for i, row in enumerate(grid):
+            for j, sol in enumerate(row):
+                w, f = float(w_values[j]), float(f_values[i])
+                row[j], start[i, j] = refine_in_n(
+                    lambda m, seed, w=w, f=f: _solve(w, f, m, seed, stick_zone_limit),
+                    sol, refine_max_n)
+                progress.advance()
     shape = (f_values.size, w_values.size)
     data = {k: np.full(shape, np.nan) for k in [*ZONE_NAMES, "residual", *CHECK_NAMES,
                                                  "log10_a1"]}
@@ -207,7 +226,8 @@ def _coords(w_values, f_values) -> dict:
 
 def threshold_dataset(w_values: np.ndarray, n: int, f_min: float = 0.02) -> xr.Dataset:
     """f_stick(w) (eqs 5.1-5.2) and f_sep(w) (slip branch, N(0) = 0) for the regime map."""
-    rows = [separation_friction(float(w), n, f_min=f_min) for w in w_values]
+    rows = [separation_friction(float(w), n, f_min=f_min)
+            for w in track(w_values, f"gap thresholds N = {n}: f_sep(w)", unit="w/c values")]
     x_stick = [stick_friction(float(w))[1] for w in w_values]
     dims = ("w_hat",)
     return xr.Dataset(

@@ -23,12 +23,17 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
 import time
-from pathlib import Path
 from typing import Any
 
-from contactlab.cliutil import add_command, check_memory, input_file
+from contactlab.cliutil import (
+    add_command,
+    add_output,
+    add_robustness,
+    add_section_outputs,
+    check_memory,
+    input_file,
+)
 
 SOURCE = ("distributed dislocations with a preformed climb distribution, thesis chs 6-7 "
           "(eqs 6.3-6.32, 7.1-7.39, App. B); Gauss-Chebyshev on semi-infinite maps, "
@@ -122,9 +127,13 @@ def run_solve(args: argparse.Namespace) -> None:
 
 
 def _log_time(ds, start: float) -> None:
-    """Wall time of a sweep to stderr (the job's log); results carry no timings."""
-    print(f"{int(ds['converged'].sum())}/{ds['converged'].size} points converged in "
-          f"{time.perf_counter() - start:.2f} s", file=sys.stderr)
+    """The sweep's counts and wall time to the job's log; results carry no timings."""
+    from contactlab.receding.core.summary import log_summary
+
+    problem = ds.attrs["problem"]
+    log_summary(ds, f"{'line' if problem == 'line' else problem + ' patch'} sweep "
+                    f"N = {ds.attrs['N']}",
+                time.perf_counter() - start)
 
 
 def _line_sweep(args: argparse.Namespace) -> None:
@@ -219,21 +228,10 @@ def _report(args: argparse.Namespace) -> None:
     build_section(args.line, args.patches, args.profiles, args.report_dir, args.out)
 
 
-def add_robustness(parser: argparse.ArgumentParser, section: str,
-                   continuation: bool = False) -> None:
-    """``--stick-zone-limit``, ``--refine-max-n`` (and ``--continuation``), required: the
-    config is their home."""
-    parser.add_argument("--stick-zone-limit", type=float, required=True,
-                        help="stick zone a/c below which a point below the critical friction "
-                             f"is solved in its limit a -> 0; 0: never (config "
-                             f"{section}.stick_zone_limit)")
-    parser.add_argument("--refine-max-n", type=int, required=True,
-                        help="largest N to which a point failing the contact checks is "
-                             f"re-solved; --n: none (config {section}.refine_max_n)")
-    if continuation:
-        parser.add_argument("--continuation", action=argparse.BooleanOptionalAction,
-                            required=True, help="retry unconverged or inadmissible points "
-                            f"from solved neighbours (config {section}.continuation)")
+#: what --stick-zone-limit limits in the lifting-off problems, and --continuation
+STICK_ZONE = ("stick zone a/c below which a point below the critical friction is solved in "
+              "its limit a -> 0")
+CONTINUATION = "retry unconverged or inadmissible points from solved neighbours"
 
 
 def register(commands: argparse._SubParsersAction) -> None:
@@ -254,8 +252,8 @@ def register(commands: argparse._SubParsersAction) -> None:
     sweep.add_argument("--e", type=float, required=True, help=e_help)
     sweep.add_argument("--chaise", action=argparse.BooleanOptionalAction, required=True,
                        help=chaise_help)
-    add_robustness(sweep, "receding.line", continuation=True)
-    sweep.add_argument("--out", type=Path, required=True, help="netCDF output (one chunk)")
+    add_robustness(sweep, "receding.line", STICK_ZONE, CONTINUATION)
+    add_output(sweep, "netCDF output (one chunk)")
     sweep.set_defaults(func=_line_sweep)
 
     patch = add_command(
@@ -277,15 +275,15 @@ def register(commands: argparse._SubParsersAction) -> None:
                        help="map scale lambda_b (sec. 7.4)")
     patch.add_argument("--e-minus-w", type=float, required=True,
                        help="(e - w)/c: end of the cubic part of A_y beyond the patch edge")
-    add_robustness(patch, "receding.patches", continuation=True)
-    patch.add_argument("--out", type=Path, required=True, help="netCDF output (one chunk)")
+    add_robustness(patch, "receding.patches", STICK_ZONE, CONTINUATION)
+    add_output(patch, "netCDF output (one chunk)")
     patch.set_defaults(func=_patch_sweep)
 
     gather = add_command(
         commands, "liftoff-gather", help="join line/patch chunks along f",
         description="Join line-sweep or patch-sweep chunks of one problem along f.")
     gather.add_argument("chunks", type=input_file, nargs="+", help="sweep chunk files")
-    gather.add_argument("--out", type=Path, required=True, help="netCDF output")
+    add_output(gather)
     gather.set_defaults(func=_gather)
 
     profile = add_command(
@@ -311,8 +309,8 @@ def register(commands: argparse._SubParsersAction) -> None:
     profile.add_argument("--points", type=int, default=481, help="points of the profile")
     profile.add_argument("--chaise", action=argparse.BooleanOptionalAction, required=True,
                          help=chaise_help)
-    add_robustness(profile, "receding.line / receding.patches")
-    profile.add_argument("--out", type=Path, required=True, help="netCDF output")
+    add_robustness(profile, "receding.{line,patches}", STICK_ZONE)
+    add_output(profile)
     profile.set_defaults(func=_profile)
 
     report = add_command(
@@ -325,7 +323,5 @@ def register(commands: argparse._SubParsersAction) -> None:
                         help="patch sweeps (results/receding/<law>.nc)")
     report.add_argument("--profiles", type=input_file, nargs="+", required=True,
                         help="liftoff-profile files")
-    report.add_argument("--report-dir", type=Path, default=Path("results/report"),
-                        help="report directory receiving tables/ and figures/")
-    report.add_argument("--out", type=Path, required=True, help="section HTML fragment")
+    add_section_outputs(report)
     report.set_defaults(func=_report)

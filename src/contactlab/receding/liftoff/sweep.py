@@ -18,6 +18,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from contactlab.progress import Progress
 from contactlab.receding.core.solution import (
     flag_attrs,
     flag_bits,
@@ -192,20 +193,24 @@ def _continue(grid: np.ndarray, solve, coords: list[np.ndarray], passes: int = 3
             return
 
 
-def _finish(grid: np.ndarray, solve_at_n, refine_max_n: int, n: int) -> np.ndarray:
+def _finish(grid: np.ndarray, solve_at_n, refine_max_n: int, n: int,
+            what: str = "sweep") -> np.ndarray:
     """Records of every point after refinement in N (``refine_in_n``)."""
     records = np.empty(grid.shape, dtype=object)
-    for index in np.ndindex(grid.shape):
-        sol = grid[index]
-        if sol is None:
-            records[index] = _failed_record(n)
-            continue
-        try:
-            sol, start = refine_in_n(lambda m, seed, index=index: solve_at_n(index, m, seed),
-                                     sol, refine_max_n)
-        except (ValueError, np.linalg.LinAlgError):
-            start = np.nan
-        records[index] = _record(sol, start)
+    with Progress(f"{what}: contact checks, refining in N up to {refine_max_n}", grid.size,
+                  "points") as progress:
+        for index in np.ndindex(grid.shape):
+            sol = grid[index]
+            progress.advance()
+            if sol is None:
+                records[index] = _failed_record(n)
+                continue
+            try:
+                sol, start = refine_in_n(
+                    lambda m, seed, index=index: solve_at_n(index, m, seed), sol, refine_max_n)
+            except (ValueError, np.linalg.LinAlgError):
+                start = np.nan
+            records[index] = _record(sol, start)
     return records
 
 
@@ -246,19 +251,22 @@ def sweep_line(f_values, n: int, lam: float, e: float, chaise: bool, *,
             return solve_line(float(f_values[index[0]]), m, lam, e, guess=seed,
                               preformed=preformed, stick_zone_limit=stick_zone_limit)
 
-        for j in np.argsort(f_values)[::-1]:
-            try:
-                sol = solve((j,), prev)
-                grid[j] = sol
-                seed = _seed(sol)
-                if seed is not None and sol.admissible:
-                    prev = seed
-            except (ValueError, np.linalg.LinAlgError):
-                grid[j] = None
+        what = f"line sweep N = {n}" + (" (Chaise et al. model)" if suffix else "")
+        with Progress(f"{what}: solving", f_values.size, "points") as progress:
+            for j in np.argsort(f_values)[::-1]:
+                try:
+                    sol = solve((j,), prev)
+                    grid[j] = sol
+                    seed = _seed(sol)
+                    if seed is not None and sol.admissible:
+                        prev = seed
+                except (ValueError, np.linalg.LinAlgError):
+                    grid[j] = None
+                progress.advance()
         if continuation:
             _continue(grid, solve, [None])
         records = _finish(grid, lambda index, m, seed, solve=solve: solve(
-            index, _seed(seed), m), refine_max_n, n)
+            index, _seed(seed), m), refine_max_n, n, what)
         what = " (Chaise et al. model, bounded-bounded densities only)" if suffix else ""
         data.update(_variables(records, ("f",), suffix, what))
     for key in [k for k in data if k.startswith("remote_slip") and k.endswith("_chaise")]:
@@ -316,6 +324,8 @@ def sweep_patch(law: str, f_values, w_values, n: int, lam_b: float, e_extra: flo
                              load.law, continuous=False, seed_only=True)
 
     seeds: dict[int, LiftoffSolution] = {}  # by w index: last good solution
+    what = f"{law} patch sweep N = {n}"
+    progress = Progress(f"{what}: solving", grid.size, "points")
     for i in np.argsort(f_values)[::-1]:
         prev_w: tuple[int, LiftoffSolution] | None = None
         for j in np.argsort(w_values):
@@ -342,13 +352,15 @@ def sweep_patch(law: str, f_values, w_values, n: int, lam_b: float, e_extra: flo
                 except (ValueError, np.linalg.LinAlgError):
                     pass
             grid[index] = best
+            progress.advance()
             if _good(best):
                 seeds[j] = best
                 prev_w = (j, best)
+    progress.finish()
     if continuation:
         _continue(grid, quick, [None, w_values])
     records = _finish(grid, lambda index, m, seed: full(index, _seed(seed), m),
-                      refine_max_n, n)
+                      refine_max_n, n, what)
     k_n = np.full(grid.shape, np.nan)
     k_b = np.full(grid.shape, np.nan)
     if law != "table":  # K_N, K_B need a named amplitude
