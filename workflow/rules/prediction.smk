@@ -43,8 +43,11 @@ rule prediction_pair:
         tol=_PRED["solver_tol"],
     log:
         logs("prediction/{test}.log"),
+    benchmark:
+        logs("benchmarks/prediction_pair_{test}.tsv"),
     shell:
-        "contactlab prediction pair --test {wildcards.test:q}"
+        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
+        " contactlab prediction pair --test {wildcards.test:q}"
         " --specimen-scan {input.specimen:q} --pad-scan {input.pad:q}"
         " --specimen-lambda-c-um {params.specimen_lambda_c:q}"
         " --pad-lambda-c-um {params.pad_lambda_c:q}"
