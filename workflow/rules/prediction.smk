@@ -6,10 +6,16 @@
 import re
 
 from contactlab.prediction.pairs import pair_lookup
+from contactlab.published import PUBLISHED_TESTS
 from contactlab.rulehelpers import pdf_files, table_files
 
 _PRED = config["prediction"]
 PREDICTION_TESTS = list(TEST_IDS)
+# the summary from the published steps exists only for a sheet with a thesis test: a
+# study of a user's own tests compares with the values from its raw data alone
+_PUBLISHED_SUMMARY = [result("stiffness/summary_from_published_steps.nc")] * any(
+    t in PUBLISHED_TESTS for t in PREDICTION_TESTS
+)
 _PAIR_PATTERN = "|".join(re.escape(t) for t in PREDICTION_TESTS) or "(?!)"
 # a test's two surfaces, looked up when its job is planned: a missing areal scan stops
 # that planning with the sheet, test, surface and column; other targets are unaffected
@@ -66,16 +72,17 @@ rule prediction_summary:
     input:
         predictions=expand(result("prediction/{test}.nc"), test=PREDICTION_TESTS),
         raw=result("stiffness/summary.nc"),
-        published=result("stiffness/summary_from_published_steps.nc"),
+        published=_PUBLISHED_SUMMARY,
     output:
         result("prediction/summary.nc"),
     params:
+        published=[w for path in _PUBLISHED_SUMMARY for w in ("--published-summary", path)],
         ratio=_PRED["tangential_ratio"],
     log:
         logs("prediction/summary.log"),
     shell:
         "contactlab prediction summarize {input.predictions:q} --raw-summary {input.raw:q}"
-        " --published-summary {input.published:q} --tangential-ratio {params.ratio:q}"
+        " {params.published:q} --tangential-ratio {params.ratio:q}"
         " --out {output:q} 2> {log:q}"
 
 
