@@ -15,8 +15,11 @@ Each iteration: ``delta`` is the mean gap of the free cells, the direction the f
 cells' gap (conjugate to the previous one while the free set stays the same), the step
 length exact for the quadratic energy; pressures leaving ``[0, H]`` are clipped, open
 cells that penetrate and plastic cells whose gap opened rejoin the free set with the
-step's pressure, and the load is restored by scaling the pressures below the cap. A
-conjugate step keeps the load and needs one convolution; a step that clips needs two.
+step's pressure, and the load is restored by scaling the pressures below the cap
+(:func:`restore_load`: where the whole contact at the cap cannot carry it, the open
+cells nearest contact join). Where no free cell is left, or the free cells give no
+descent, the step runs on the whole contact. A conjugate step keeps the load and needs
+one convolution; a step that clips needs two.
 
 It is the algorithm of ContactMechanics' ``constrained_conjugate_gradients``, which
 :mod:`.normal` used before, with the load restored on the cells below the cap
@@ -24,7 +27,7 @@ instead of on all of them (restoring it on plastic cells pushes them above the c
 and truncating them unbalances the load again: about 120 iterations per level where
 the elastic solve needs 30, at 512 x 512), arrays on the window instead of the padded
 grid, and one convolution per conjugate step. ``tests/prediction/test_bounded.py``
-checks it against the library, elastic and capped, and both against Hertz.
+checks it against the library, elastic and capped; ``test_validation.py`` against Hertz.
 
 Convergence is checked on the conditions above, not on the last step: ``residual`` is
 the largest of the free cells' ``|g|``, the open cells' penetration and the plastic
