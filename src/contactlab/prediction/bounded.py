@@ -31,7 +31,8 @@ checks it against the library, elastic and capped; ``test_validation.py`` agains
 
 Convergence is checked on the conditions above, not on the last step: ``residual`` is
 the largest of the free cells' ``|g|``, the open cells' penetration and the plastic
-cells' opening, over ``scale`` (Sq of the heights); converged when below ``tol``.
+cells' opening, over ``scale`` (Sq of the heights); converged when below ``tol`` and the
+mean pressure is the load within ``tol``.
 """
 
 from __future__ import annotations
@@ -101,7 +102,7 @@ def _scale_to(values: Array, target: float, cap: float) -> Array:
     k = np.arange(order.size)
     s = (target - k * cap) / others
     previous = np.r_[np.inf, order[:-1]]
-    valid = (s > 0) & (s * order <= cap) & (s * previous >= cap)
+    valid = (s > 0) & (s * order <= cap * (1 + 1e-12)) & (s * previous >= cap * (1 - 1e-12))
     return np.minimum(values * float(s[np.argmax(valid)]), cap)
 
 
@@ -174,7 +175,9 @@ def solve_bounded(apply: Callable[[Array], Array], gap0: Array, mean: float,
         g_old = g_new
     g, free, delta = _gap(apply(p), gap0, p, cap)  # the check on a fresh convolution
     residual = _violation(g, p, free, cap) / scale
-    return BoundedSolution(p, g, delta, p >= cap, it, residual, bool(residual < tol))
+    load_kept = abs(p.mean() - mean) <= tol * mean
+    return BoundedSolution(p, g, delta, p >= cap, it, residual,
+                           bool(residual < tol and load_kept))
 
 
 def _direction(apply: Callable[[Array], Array], g: Array, free: Mask, t: Array,
