@@ -7,6 +7,11 @@ stiffness, partial-slip curve), with the iteration counts; then the whole pair (
 and plastic) with the two variants run one after the other and side by side in two
 processes (the 2-core figure).
 
+Measured 2026-11-24 on the shared 2-core VM (CPU s per model, RU1, 512 x 512): with
+ContactMechanics' solver 56 elastic and 211 capped (1426 Polonsky-Keer iterations);
+with :mod:`contactlab.prediction.bounded` and one BLAS thread 30.6 and 30.5 (240
+iterations capped), both side by side 64 CPU-s. S1: 32.1 and 41.1.
+
 Run from the repository root after the demo scans exist
 (``snakemake -j2 results/surfaces/demo_scans/RU1_pad_B_areal.x3p``):
 ``.venv/bin/python benchmarks/prediction_bem.py [--grid 512] [--tests RU1 S1]``.

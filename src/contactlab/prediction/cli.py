@@ -16,8 +16,9 @@ from contactlab.cliutil import (
     positive_float,
 )
 
-SOURCE = ("contactlab.prediction; rough-contact BEM (ContactMechanics, Polonsky-Keer; "
-          "Cerruti cell coefficients) on the scans of each pair, thesis ch. 2")
+SOURCE = ("contactlab.prediction; rough-contact BEM (Polonsky-Keer bounded at the "
+          "hardness; Boussinesq and Cerruti cell coefficients) on the scans of each pair, "
+          "thesis ch. 2")
 EXAMPLES = """\
   contactlab prediction pair --test RU1 \\
       --specimen-scan results/surfaces/demo_scans/rough_specimen_B_areal.x3p \\
@@ -58,7 +59,6 @@ def _pair(args: argparse.Namespace) -> None:
     ds = predict_pair(composite, material, args.max_normal_load_kN / args.nominal_area_mm2,
                       args.nominal_area_mm2, fractions, args.plastic_cap == "on",
                       args.slip_points, args.tol)
-    from importlib.metadata import version
 
     ds.attrs.update(
         test=args.test, specimen_scan=str(args.specimen_scan), pad_scan=str(args.pad_scan),
@@ -71,7 +71,8 @@ def _pair(args: argparse.Namespace) -> None:
         slip_points=args.slip_points, tol=args.tol,
         half_space="non-periodic, zero-padded FFT; window mean traction and displacement "
                    "removed (mean-free window of a nominally flat interface)",
-        ContactMechanics_version=version("ContactMechanics"))
+        normal_solver="contactlab.prediction.bounded: Polonsky-Keer conjugate gradients, "
+                      "pressure bounded by the hardness (checked against ContactMechanics)")
     stamp(ds, title=f"Contact stiffness of test {args.test} predicted from its scans",
           source=SOURCE + ", eqs 2.1-2.5",
           history=f"contactlab prediction pair --test {args.test}")

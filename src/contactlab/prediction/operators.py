@@ -88,20 +88,27 @@ class PairCompliance:
         """Composite contact modulus ``E / (2 (1 - nu^2))`` of the pair."""
         return self.youngs_modulus / (2.0 * (1.0 - self.poissons_ratio**2))
 
-    def _out(self, padded: Array) -> Array:
-        window = padded[: self.nx, : self.ny]
+    def _out(self, window: Array) -> Array:
         return window - window.mean() if self.mean_free else window
 
-    def _convolve(self, field_hat: Array, key: str) -> Array:
-        return self._out(sfft.irfft2(field_hat * self._hat[key], s=(2 * self.nx, 2 * self.ny)))
-
     def _hat_of(self, values: Array) -> Array:
+        """Spectrum of ``values`` zero-padded to ``2nx x 2ny`` (``rfft2``'s layout); the
+        rows of padding are zero, so the first transform runs on the window's rows only."""
         if values.shape != (self.nx, self.ny):
             raise ValueError(f"traction field of shape {values.shape}, grid is "
                              f"{(self.nx, self.ny)}")
         if self.mean_free:
             values = values - values.mean()
-        return sfft.rfft2(values, s=(2 * self.nx, 2 * self.ny))
+        return sfft.fft(sfft.rfft(values, n=2 * self.ny, axis=1), n=2 * self.nx, axis=0)
+
+    def _window(self, spectrum: Array) -> Array:
+        """The window ``[:nx, :ny]`` of the inverse of a padded spectrum (the second
+        transform on the window's rows only)."""
+        rows = sfft.ifft(spectrum, axis=0)[: self.nx]
+        return sfft.irfft(rows, n=2 * self.ny, axis=1)[:, : self.ny]
+
+    def _convolve(self, field_hat: Array, key: str) -> Array:
+        return self._out(self._window(field_hat * self._hat[key]))
 
     def normal(self, pressure: Array) -> Array:
         """Relative normal displacement (closing positive) of the pair due to ``pressure``."""
@@ -114,7 +121,6 @@ class PairCompliance:
     def tangential_xy(self, qx: Array, qy: Array) -> tuple[Array, Array]:
         """Relative ``(u_x, u_y)`` due to the shear tractions ``(qx, qy)``."""
         hx, hy = self._hat_of(qx), self._hat_of(qy)
-        s = (2 * self.nx, 2 * self.ny)
-        ux = sfft.irfft2(hx * self._hat["xx"] + hy * self._hat["xy"], s=s)
-        uy = sfft.irfft2(hx * self._hat["xy"] + hy * self._hat["yy"], s=s)
+        ux = self._window(hx * self._hat["xx"] + hy * self._hat["xy"])
+        uy = self._window(hx * self._hat["xy"] + hy * self._hat["yy"])
         return self._out(ux), self._out(uy)

@@ -31,6 +31,7 @@ from contactlab.prediction.composite import Composite
 from contactlab.prediction.normal import NormalSolution, solve_normal
 from contactlab.prediction.operators import PairCompliance
 from contactlab.prediction.tangential import normal_set, partial_slip, stuck
+from contactlab.receding.core._blas import single_thread
 
 Array = NDArray[np.float64]
 
@@ -103,7 +104,18 @@ class VariantResult:
 
 def solve_variant(composite: Composite, material: Material, pressures: Array,
                   hardness: float | None, slip_points: int, tol: float) -> VariantResult:
-    """Normal levels, the tangent at the last level, stuck and partial slip there."""
+    """Normal levels, the tangent at the last level, stuck and partial slip there.
+
+    With one BLAS thread: the solvers' dot products are of 10^4-10^5 values, and BLAS
+    threads on a busy machine made each take milliseconds (half the solve time at
+    512 x 512); parallelism comes from running pairs side by side.
+    """
+    with single_thread():
+        return _solve_variant(composite, material, pressures, hardness, slip_points, tol)
+
+
+def _solve_variant(composite: Composite, material: Material, pressures: Array,
+                   hardness: float | None, slip_points: int, tol: float) -> VariantResult:
     heights, dx, dy = composite.heights, composite.dx, composite.dy
     p_max = float(pressures[-1])
     ladder = np.concatenate([pressures[:-1], [p_max * (1 - TANGENT_STEP), p_max,
@@ -142,8 +154,7 @@ def _select(sol: NormalSolution, keep: NDArray[np.bool_]) -> NormalSolution:
         rigid_approach=sol.rigid_approach[keep], contact_fraction=sol.contact_fraction[keep],
         plastic_fraction=sol.plastic_fraction[keep], iterations=sol.iterations[keep],
         residual=sol.residual[keep], converged=sol.converged[keep],
-        pressure_field=sol.pressure_field, contact=sol.contact, plastic=sol.plastic,
-        heights=sol.heights)
+        pressure_field=sol.pressure_field, contact=sol.contact, plastic=sol.plastic)
 
 
 def _tangent_at_max(sol: NormalSolution, p_max: float) -> float:
@@ -200,71 +211,58 @@ def predict_pair(composite: Composite, material: Material, pressure_max: float,
     return _dataset(composite, material, pressures, area_mm2, results)
 
 
-def _dataset(composite: Composite, material: Material, pressures: Array, area_mm2: float,
-             results: dict[str, VariantResult]) -> xr.Dataset:
-    variants = list(results)
-    p_max = float(pressures[-1])
-    load_kN = pressures * area_mm2
-    per_level: dict[str, list] = {k: [] for k in (
-        "separation", "approach", "contact_fraction", "plastic_fraction", "Kn_An",
-        "normal_iterations", "normal_residual", "normal_converged")}
-    scalar: dict[str, list] = {k: [] for k in (
-        "Kn_An_max", "alpha_n", "beta_n", "P0", "beta_n_moe", "gof", "fit_converged",
-        "Kn_An_fit", "Kn_An_set", "set_iterations", "set_residual", "set_converged",
-        "contact_fraction_max", "plastic_fraction_max")}
-    per_dir: dict[str, list] = {k: [] for k in (
-        "Kt0_An_stuck", "stuck_iterations", "stuck_residual", "stuck_converged")}
-    per_slip: dict[str, list] = {k: [] for k in (
-        "slip_Q_over_fPn", "slip_remote_over_f", "slip_displacement_over_f", "slip_stick_fraction",
-        "slip_iterations", "slip_residual", "slip_converged")}
-    pressure_maps = []
-    window = composite.heights.size * composite.dx * composite.dy
-    for v in variants:
-        r = results[v]
-        n = r.normal
-        per_level["separation"].append(n.separation)
-        per_level["approach"].append(n.separation[0] - n.separation)
-        per_level["contact_fraction"].append(n.contact_fraction)
-        per_level["plastic_fraction"].append(n.plastic_fraction)
-        # central differences over every solved level (the extra ones at the test's load
-        # included), so the last main level is not a one-sided difference
-        slope = -PER_UM * np.gradient(r.solved.pressure, r.solved.separation)
-        per_level["Kn_An"].append(slope[np.isin(r.solved.pressure, n.pressure)])
-        per_level["normal_iterations"].append(n.iterations)
-        per_level["normal_residual"].append(n.residual)
-        per_level["normal_converged"].append(n.converged.astype(np.int8))
-        kn_max = _tangent_at_max(r.solved, p_max)
-        fit = normal_fit(n.separation[0] - n.separation, load_kN, area_mm2, load_kN[-1])
-        scalar["Kn_An_max"].append(kn_max)
-        for key in ("alpha_n", "beta_n", "P0", "beta_n_moe", "gof", "Kn_An_fit"):
-            scalar[key].append(fit[key])
-        scalar["fit_converged"].append(int(fit["fit_converged"]))
-        nset = r.normal_set
-        scalar["Kn_An_set"].append(np.nan if nset is None
-                                   else PER_UM * nset.interface_stiffness / window)
-        scalar["set_iterations"].append(0 if nset is None else nset.iterations)
-        scalar["set_residual"].append(np.nan if nset is None else nset.residual)
-        scalar["set_converged"].append(NOT_SOLVED if nset is None else int(nset.converged))
-        scalar["contact_fraction_max"].append(float(np.mean(r.solved.contact)))
-        scalar["plastic_fraction_max"].append(float(np.mean(r.solved.plastic)))
-        per_dir["Kt0_An_stuck"].append([PER_UM * r.stuck[d].interface_stiffness / window
-                                        for d in DIRECTIONS])
-        per_dir["stuck_iterations"].append([r.stuck[d].iterations for d in DIRECTIONS])
-        per_dir["stuck_residual"].append([r.stuck[d].residual for d in DIRECTIONS])
-        per_dir["stuck_converged"].append([int(r.stuck[d].converged) for d in DIRECTIONS])
-        s = r.slip
-        per_slip["slip_Q_over_fPn"].append(s.load / (p_max * window))
-        per_slip["slip_remote_over_f"].append(s.delta)
-        per_slip["slip_displacement_over_f"].append(s.interface)
-        per_slip["slip_stick_fraction"].append(s.stick_fraction)
-        per_slip["slip_iterations"].append(s.iterations)
-        per_slip["slip_residual"].append(s.residual)
-        per_slip["slip_converged"].append(s.converged.astype(np.int8))
-        pressure_maps.append(r.solved.pressure_field.astype(np.float32))
+def _record(r: VariantResult, load_kN: Array, area_mm2: float, window: float) -> dict:
+    """One variant's values, keyed as in :func:`_meta`."""
+    n, nset, s = r.normal, r.normal_set, r.slip
+    p_max = float(n.pressure[-1])
+    # central differences over every solved level (the extra ones at the test's load
+    # included), so the last main level is not a one-sided difference
+    slope = -PER_UM * np.gradient(r.solved.pressure, r.solved.separation)
+    fit = normal_fit(n.separation[0] - n.separation, load_kN, area_mm2, load_kN[-1])
+    stuck = [r.stuck[d] for d in DIRECTIONS]
+    return {
+        "separation": n.separation, "approach": n.separation[0] - n.separation,
+        "contact_fraction": n.contact_fraction, "plastic_fraction": n.plastic_fraction,
+        "Kn_An": slope[np.isin(r.solved.pressure, n.pressure)],
+        **_diagnostics("normal", n.iterations, n.residual, n.converged),
+        "Kn_An_max": _tangent_at_max(r.solved, p_max),
+        **{k: fit[k] for k in ("alpha_n", "beta_n", "P0", "beta_n_moe", "gof", "Kn_An_fit",
+                               "fit_converged")},
+        "Kn_An_set": np.nan if nset is None else PER_UM * nset.interface_stiffness / window,
+        **(_diagnostics("set", 0, np.nan, NOT_SOLVED) if nset is None else
+           _diagnostics("set", nset.iterations, nset.residual, nset.converged)),
+        "contact_fraction_max": float(np.mean(r.solved.contact)),
+        "plastic_fraction_max": float(np.mean(r.solved.plastic)),
+        "Kt0_An_stuck": [PER_UM * k.interface_stiffness / window for k in stuck],
+        **_diagnostics("stuck", [k.iterations for k in stuck], [k.residual for k in stuck],
+                       [k.converged for k in stuck]),
+        "slip_Q_over_fPn": s.load / (p_max * window), "slip_remote_over_f": s.delta,
+        "slip_displacement_over_f": s.interface, "slip_stick_fraction": s.stick_fraction,
+        **_diagnostics("slip", s.iterations, s.residual, s.converged),
+    }
+
+
+def _diagnostics(solver: str, iterations: object, residual: object,
+                 converged: object) -> dict[str, NDArray]:
+    """``<solver>_iterations``, ``_residual`` and ``_converged`` (int8 flags)."""
+    return {f"{solver}_iterations": np.asarray(iterations, dtype=np.int64),
+            f"{solver}_residual": np.asarray(residual, dtype=float),
+            f"{solver}_converged": np.asarray(converged).astype(np.int8)}
+
+
+def _diagnostics_meta(solver: str, dims: tuple[str, ...], iterations: str, residual: str,
+                      converged: str) -> dict[str, tuple]:
+    """Dimensions, units and long names of one solver's three diagnostics."""
+    return {f"{solver}_iterations": (dims, "1", iterations),
+            f"{solver}_residual": (dims, "1", residual),
+            f"{solver}_converged": (dims, "1", converged)}
+
+
+def _meta() -> dict[str, tuple]:
+    """Dimensions, units and long name of every per-variant variable."""
     dims_l, dims_s, dims_d, dims_q = (("variant", "Pn_An"), ("variant",),
                                       ("variant", "direction"), ("variant", "slip"))
-    flag = {"flag_values": np.array([0, 1], dtype=np.int8), "flag_meanings": "no yes"}
-    meta = {
+    return {
         "separation": (dims_l, "um", "mean-plane separation: mean gap over the window"),
         "approach": (dims_l, "um", "normal contact displacement -uc from the first level "
                                    "(decrease of the separation)"),
@@ -272,10 +270,10 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
         "plastic_fraction": (dims_l, "1", "area at the hardness over the window area"),
         "Kn_An": (dims_l, "kN/mm3", "normal contact stiffness per nominal area, "
                                     "d(Pn/An)/d(separation), central differences"),
-        "normal_iterations": (dims_l, "1", "Polonsky-Keer iterations"),
-        "normal_residual": (dims_l, "1", "largest penetration over Sq or tensile force over "
-                                         "the mean cell force at exit"),
-        "normal_converged": (dims_l, "1", "normal solution converged"),
+        **_diagnostics_meta("normal", dims_l, "Polonsky-Keer iterations",
+                            "largest violation of the contact conditions (gap, "
+                            "penetration, opening at the cap) over Sq",
+                            "normal solution converged"),
         "Kn_An_max": (dims_s, "kN/mm3", "normal contact stiffness per nominal area at the "
                                         "test's load, central difference"),
         "alpha_n": (dims_s, "kN", "alpha_n of eq. (2.2) fitted to the predicted curve"),
@@ -287,16 +285,15 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
         "Kn_An_fit": (dims_s, "kN/mm3", "Kn/An at the test's load by eq. (2.4) from the fit"),
         "Kn_An_set": (dims_s, "kN/mm3", "normal stiffness per nominal area of the fixed "
                                         "contact set at the test's load (elastic only)"),
-        "set_iterations": (dims_s, "1", "conjugate-gradient iterations of the set stiffness"),
-        "set_residual": (dims_s, "1", "relative residual of the set stiffness"),
-        "set_converged": (dims_s, "1", "set stiffness converged (not solved with the cap)"),
+        **_diagnostics_meta("set", dims_s, "conjugate-gradient iterations of the set "
+                            "stiffness", "relative residual of the set stiffness",
+                            "set stiffness converged (not solved with the cap)"),
         "contact_fraction_max": (dims_s, "1", "real contact fraction at the test's load"),
         "plastic_fraction_max": (dims_s, "1", "plastic contact fraction at the test's load"),
         "Kt0_An_stuck": (dims_d, "kN/mm3", "tangential stiffness per nominal area of the "
                                            "fully stuck contact at the test's load"),
-        "stuck_iterations": (dims_d, "1", "conjugate-gradient iterations, stuck contact"),
-        "stuck_residual": (dims_d, "1", "relative residual, stuck contact"),
-        "stuck_converged": (dims_d, "1", "stuck solution converged"),
+        **_diagnostics_meta("stuck", dims_d, "conjugate-gradient iterations, stuck contact",
+                            "relative residual, stuck contact", "stuck solution converged"),
         "slip_Q_over_fPn": (dims_q, "1", "Coulomb partial slip: tangential load over "
                                          "f times the normal load"),
         "slip_displacement_over_f": (dims_q, "um", "Coulomb partial slip: tangential contact "
@@ -304,11 +301,21 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
         "slip_remote_over_f": (dims_q, "um", "Coulomb partial slip: prescribed remote "
                                              "displacement over f (mean-free window)"),
         "slip_stick_fraction": (dims_q, "1", "stuck fraction of the contact area"),
-        "slip_iterations": (dims_q, "1", "projected conjugate-gradient iterations"),
-        "slip_residual": (dims_q, "1", "largest projected gradient over the displacement"),
-        "slip_converged": (dims_q, "1", "partial-slip solution converged"),
+        **_diagnostics_meta("slip", dims_q, "projected conjugate-gradient iterations",
+                            "largest projected gradient over the displacement",
+                            "partial-slip solution converged"),
     }
-    data = {**per_level, **scalar, **per_dir, **per_slip}
+
+
+def _dataset(composite: Composite, material: Material, pressures: Array, area_mm2: float,
+             results: dict[str, VariantResult]) -> xr.Dataset:
+    variants = list(results)
+    p_max = float(pressures[-1])
+    window = composite.heights.size * composite.dx * composite.dy
+    records = [_record(results[v], pressures * area_mm2, area_mm2, window) for v in variants]
+    flag = {"flag_values": np.array([0, 1], dtype=np.int8), "flag_meanings": "no yes"}
+    meta = _meta()
+    data = {name: [rec[name] for rec in records] for name in meta}
     ds = xr.Dataset()
     for name, (dims, units, long_name) in meta.items():
         attrs = _attrs(long_name, units)
@@ -325,7 +332,9 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
     nx, ny = composite.heights.shape
     ds["height"] = (("x", "y"), composite.heights.astype(np.float32),
                     _attrs("composite roughness height (specimen + mirrored pad)", "um"))
-    ds["pressure"] = (("variant", "x", "y"), np.stack(pressure_maps),
+    ds["pressure"] = (("variant", "x", "y"),
+                      np.stack([results[v].solved.pressure_field.astype(np.float32)
+                                for v in variants]),
                       _attrs("contact pressure at the test's load", "kN/mm2"))
     scalars = {
         "Sq_specimen": (composite.sq_specimen, "um", "Sq of the specimen roughness (scan)"),
@@ -342,12 +351,12 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
     ds["max_normal_load"] = ((), p_max * area_mm2, _attrs("the test's maximum normal load "
                                                           "-Pn", "kN"))
     ds["Str_composite"] = ((), *_str(composite))
-    ds["beta_n_Seq"] = (dims_s, ds["beta_n"].values * composite.seq,
+    ds["beta_n_Seq"] = ("variant", ds["beta_n"].values * composite.seq,
                         _attrs("beta_n * Seq (Tables 2.3, 2.10), predicted", "1"))
     kt_x = ds["Kt0_An_stuck"].values[:, DIRECTIONS.index("x")]
-    ds["Cc_stuck"] = (dims_s, kt_x / ds["Kn_An_max"].values,
+    ds["Cc_stuck"] = ("variant", kt_x / ds["Kn_An_max"].values,
                       _attrs("Cc = Kt0/Kn, fully stuck, at the test's load", "1"))
-    ds["Cc_set"] = (dims_s, kt_x / ds["Kn_An_set"].values,
+    ds["Cc_set"] = ("variant", kt_x / ds["Kn_An_set"].values,
                     _attrs("stuck Kt over the normal stiffness of the same contact set", "1"))
     return ds.assign_coords(
         variant=("variant", np.array(variants, dtype=object), {"long_name": "material model"}),
