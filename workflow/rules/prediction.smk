@@ -80,6 +80,8 @@ rule prediction_summary:
         ratio=_PRED["tangential_ratio"],
     log:
         logs("prediction/summary.log"),
+    benchmark:
+        logs("benchmarks/prediction_summary.tsv"),
     shell:
         "contactlab prediction summarize {input.predictions:q} --raw-summary {input.raw:q}"
         " {params.published:q} --tangential-ratio {params.ratio:q}"
@@ -118,6 +120,8 @@ rule report_prediction:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
         logs("report/prediction.log"),
+    benchmark:
+        logs("benchmarks/report_prediction.tsv"),
     shell:
         "contactlab prediction report {input.predictions:q} --summary {input.summary:q}"
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
