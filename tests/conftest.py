@@ -49,7 +49,10 @@ def run_snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]
     env = dict(os.environ)
     env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
     return subprocess.run(
-        [sys.executable, "-m", "snakemake", "--configfile", "config/e2e.yaml", *args],
+        # greedy scheduling as workflow/profiles/default sets; --configfile takes the
+        # further config files a test passes first in ``args``
+        [sys.executable, "-m", "snakemake", "--scheduler", "greedy",
+         "--configfile", "config/e2e.yaml", *args],
         cwd=workdir, env=env, capture_output=True, text=True, check=False,
     )
 
