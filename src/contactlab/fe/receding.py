@@ -27,6 +27,7 @@ from contactlab.fe.deck import (
     receding_deck,
     traction_unit,
 )
+from contactlab.fe.frd import read_dat_displacements
 from contactlab.fe.interface import (
     N_TOL,
     SLIP_TOL,
@@ -57,6 +58,23 @@ def _nodal(run: CcxRun, block: str, comp: str, ids: np.ndarray) -> np.ndarray:
     return data.values[comp][[index[int(i)] for i in ids]]
 
 
+def _interface_displacements(run: CcxRun, strip: np.ndarray, block: np.ndarray
+                             ) -> tuple[np.ndarray, np.ndarray]:
+    """(u_x, u_y) of the strip minus the block at the paired interface nodes, from the
+    ``.dat`` (7 digits) when it has both sets, else from the ``.frd``."""
+    printed = read_dat_displacements(run.dat)
+    if "STRIP_BOTTOM" in printed and "BLOCK_TOP" in printed:
+        rows = []
+        for name, ids in (("STRIP_BOTTOM", strip), ("BLOCK_TOP", block)):
+            nodes, values = printed[name]
+            index = {int(n): i for i, n in enumerate(nodes)}
+            rows.append(values[[index[int(i)] for i in ids]])
+        diff = rows[0] - rows[1]
+        return diff[:, 0], diff[:, 1]
+    return (_nodal(run, "DISP", "D1", strip) - _nodal(run, "DISP", "D1", block),
+            _nodal(run, "DISP", "D2", strip) - _nodal(run, "DISP", "D2", block))
+
+
 def interface_profiles(mesh: PlaneMesh, run: CcxRun, model: RecedingModel,
                        thickness: float) -> dict[str, np.ndarray]:
     """x/c, N, S, separation and slip at the interface nodes (normalised, Part III).
@@ -64,18 +82,18 @@ def interface_profiles(mesh: PlaneMesh, run: CcxRun, model: RecedingModel,
     N = -CPRESS and S = CSHEAR1 of the slave (strip) surface: the strip's local tangent
     points along +x, so CSHEAR1 is sigma_xy in the thesis's sign (checked against the
     block's nodal sigma_xy in the tests). Separation and slip are strip minus block
-    displacements of the paired interface nodes.
+    displacements of the paired interface nodes (7 digits, from the ``.dat``).
     """
     x, strip, block = mesh.interface
     q = traction_unit(model, thickness)
     unit = displacement_unit(model, thickness)
+    slip, separation = _interface_displacements(run, strip, block)
     return {
         "x": x / thickness,
         "N": -_nodal(run, "CONTACT", "CPRESS", strip) / q,
         "S": _nodal(run, "CONTACT", "CSHEAR1", strip) / q,
-        "separation": (_nodal(run, "DISP", "D2", strip) - _nodal(run, "DISP", "D2", block))
-        / unit,
-        "slip": (_nodal(run, "DISP", "D1", strip) - _nodal(run, "DISP", "D1", block)) / unit,
+        "separation": separation / unit,
+        "slip": slip / unit,
         "sigma_xy_block": _nodal(run, "STRESS", "SXY", block) / q,
         "sigma_yy_block": _nodal(run, "STRESS", "SYY", block) / q,
     }
@@ -101,7 +119,7 @@ def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = ""
     model.check()
     geom = geometry_for(model, geom)
     mesh = strip_on_block(geom)
-    deck = receding_deck(mesh, model, geom.h)
+    deck = receding_deck(mesh, model, geom.h, geom.thickness)
     run = run_ccx(deck, job=model.problem, threads=threads, keep=keep)
     prof = interface_profiles(mesh, run, model, geom.thickness)
     b, a = transitions(prof, model)
