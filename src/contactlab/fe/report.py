@@ -101,6 +101,32 @@ def convergence_table(conv: list[xr.Dataset]) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
+def study_table(studies: list[xr.Dataset]) -> pd.DataFrame:
+    """One row per problem, block edges and quantity: raw FE, FE extrapolated to h -> 0 and
+    L -> infinity with its uncertainty, DDT at the reference N with its N-spread, and the
+    difference in percent and in units of the combined uncertainty (issue 18)."""
+    rows = []
+    for ds in studies:
+        for i, edges in enumerate(ds["edges"].values):
+            for j, q in enumerate(ds["quantity"].values):
+                if not np.isfinite(ds["ddt"].values[j]):
+                    continue
+                rows.append({
+                    "problem": ds.attrs["problem"], "edges": str(edges), "quantity": str(q),
+                    "FE raw": float(ds["raw"][i, j]),
+                    "FE h->0, L->inf": float(ds["extrapolated"][i, j]),
+                    "+-": float(ds["uncertainty"][i, j]),
+                    "order p": float(ds["mesh_order"][i, j]),
+                    "L power": float(ds["domain_power"][i, j]),
+                    f"DDT N={ds.attrs['ddt_n_reference']}": float(ds["ddt"][j]),
+                    "DDT +-": float(ds["ddt_uncertainty"][j]),
+                    "raw diff (%)": float(ds["raw_difference"][i, j]),
+                    "diff (%)": float(ds["difference"][i, j]),
+                    "z": float(ds["z"][i, j]),
+                })
+    return pd.DataFrame(rows)
+
+
 def convergence_figure(conv: list[xr.Dataset]) -> plt.Figure:
     """Transition points against h/c, and each problem's normal traction per mesh."""
     fig, axes = plt.subplots(2, len(conv), figsize=(4.2 * len(conv), 6.4), squeeze=False)
@@ -166,7 +192,7 @@ def _note_for(ds: xr.Dataset) -> str:
 
 
 def build_section(results: list[Path], convergence: list[Path], asperity: Path | None,
-                  report_dir: Path, out: Path) -> None:
+                  report_dir: Path, out: Path, study: list[Path] | None = None) -> None:
     """Write the FE section, its tables and figures."""
     report_dir = Path(report_dir)
     datasets = load_datasets(results, "FE comparison")
@@ -216,6 +242,30 @@ def build_section(results: list[Path], convergence: list[Path], asperity: Path |
         sec.figure(convergence_figure(conv), "Transition points against the element size and "
                    "the normal traction on each mesh (sec. 8.3).",
                    report_dir / "figures" / "fe_convergence.png")
+    studies = load_datasets(study or [], "FE study")
+    if studies:
+        first = studies[0]
+        sec.paragraph(
+            "Mesh and domain study (issue 18): each quantity on meshes h/c = "
+            f"{', '.join(f'{v:g}' for v in first['h'].values)} of the configured model and on "
+            f"domains (strip length and block depth scaled) L/c = "
+            f"{', '.join(f'{v:g}' for v in first['length'].values)} at h/c = "
+            f"{first.attrs['h_ref']:g}, extrapolated to h -> 0 (Richardson with the observed "
+            "order p; GCI uncertainty, 3 x the spread where the series is not monotone) and "
+            "L -> infinity (q_inf + C/L^m, m = 1 or 2 by the smaller residual). Block edges "
+            "encastred as in the thesis or displaced as the half-plane under the net load "
+            "(farfield: Flamant). b and a are read off the tractions node by node and move "
+            "in steps of h; b_sep and a_slip place the same points inside the element from "
+            "the onset of separation and slip (~ |x - p|^(3/2)). K_T: remote slope of the "
+            "separation. z: difference over the combined uncertainty."
+        )
+        sec.table(study_table(studies), "FE extrapolated to h -> 0 and L -> infinity against "
+                  "the DDT (units of c; K_T as in chs 6-7)",
+                  report_dir / "tables" / "fe_study.csv", digits=4)
+        for ds in studies:
+            if not int(ds.attrs.get("all_converged", 1)):
+                sec.note(f"{ds.attrs['problem']}: some FE run or DDT solve of the study did "
+                         "not converge (mesh_converged, domain_converged, ddt_converged).")
     if asperity is not None and Path(asperity).exists():
         with xr.open_dataset(asperity) as ds:
             asp = ds.load()
