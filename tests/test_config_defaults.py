@@ -55,6 +55,7 @@ def test_schema_defaults_fill_a_minimal_study(repo: Path) -> None:
     assert config["stiffness"]["errors"]["piston_area_cm2"] == 6.5
     assert config["stiffness"]["raw"]["tangential_pressure"] == "multiply"
     assert config["fe"] == {"enabled": False, "ddt_n": 100, "increments": 1, "levels": {},
+                            "farfield_passes": 2,
                             "problems": {}, "study": {
                                 "enabled": False, "problems": ["gap", "line", "uniform"],
                                 "edges": ["encastre", "farfield"], "h": [0.05, 0.025, 0.0125],

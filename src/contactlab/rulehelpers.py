@@ -149,7 +149,13 @@ def receding_args(fe: dict, problem: str, level: str) -> list[str]:
         "increments": fe["increments"],
         "level": level,
     }
-    return [word for key, value in options.items() for word in (f"--{key}", str(value))]
+    return [*(word for key, value in options.items() for word in (f"--{key}", str(value))),
+            *_farfield_args(fe, spec["edges"])]
+
+
+def _farfield_args(fe: dict, edges: str) -> list[str]:
+    """``--farfield-passes N`` for far-field edges only (other models do not depend on it)."""
+    return ["--farfield-passes", str(fe["farfield_passes"])] if edges == "farfield" else []
 
 
 def comparison_run(fe: dict, problem: str, results: str = "results/") -> str:
@@ -259,7 +265,8 @@ def study_receding_args(fe: dict, problem: str, edges: str, h: str, scale: str) 
         "x-fine": spec["x_fine"], "edges": edges, "young": spec["young"],
         "increments": fe["increments"], "level": f"h{h}_s{scale}",
     }
-    return [word for key, value in options.items() for word in (f"--{key}", str(value))]
+    return [*(word for key, value in options.items() for word in (f"--{key}", str(value))),
+            *_farfield_args(fe, edges)]
 
 
 def study_args(config: dict, problem: str) -> list[str]:

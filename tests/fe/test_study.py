@@ -106,6 +106,7 @@ def _fe(study: dict) -> dict:
                 "gap": {"w_hat": 2.5, "f": 0.5, "length": 20, "depth": 20, "x_fine": 5.0,
                         "edges": "roller", "young": 200000, "level": "c"}}
     return {"enabled": True, "increments": 1, "ddt_n": 40, "levels": {"c": 0.1},
+            "farfield_passes": 2,
             "problems": problems, "study": study}
 
 
@@ -119,7 +120,9 @@ def test_study_rule_helpers() -> None:
     args = rulehelpers.study_receding_args(fe, "line", "farfield", "0.1", "2")
     opts = dict(zip(args[::2], args[1::2], strict=True))
     assert opts["--length"] == "12" and opts["--depth"] == "12" and opts["--h"] == "0.1"
-    assert opts["--edges"] == "farfield"
+    assert opts["--edges"] == "farfield" and opts["--farfield-passes"] == "2"
+    assert "--farfield-passes" not in rulehelpers.study_receding_args(
+        fe, "line", "encastre", "0.1", "1")
     with pytest.raises(ValueError, match=r"not in fe\.study"):
         rulehelpers.study_receding_args(fe, "line", "farfield", "0.3", "1")
     with pytest.raises(ValueError, match="x_fine"):
@@ -151,9 +154,10 @@ def test_coarse_study_end_to_end(tmp_path: Path) -> None:
         assert ds.attrs["all_converged"] == 1
         ext = ds["extrapolated"].sel(edges="farfield")
         ddt = ds["ddt"]
-        # coarse meshes, N = 40: the separation point and the remote slope within 2 %
-        for q in ("b_sep", "K_T"):
-            assert abs(float(ext.sel(quantity=q) / ddt.sel(quantity=q)) - 1) < 0.02
+        # coarse meshes, N = 40 (K_T moves by 1 % from N = 40 to 100): b_sep within 2 %,
+        # the remote slope within 3 %
+        for q, tol in (("b_sep", 0.02), ("K_T", 0.03)):
+            assert abs(float(ext.sel(quantity=q) / ddt.sel(quantity=q)) - 1) < tol
         # K_T needs four nodes beyond b + 2c: none on the coarsest mesh and shortest strip
         assert np.isfinite(ds["uncertainty"].sel(quantity=["b", "b_sep", "a", "a_slip"])).all()
         assert np.isnan(float(ds["mesh_series"].sel(edges="farfield", quantity="K_T")[0]))

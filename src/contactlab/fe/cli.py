@@ -31,7 +31,7 @@ def _receding(args: argparse.Namespace) -> None:
 
     model = RecedingModel(
         problem=args.problem, w=args.w_hat, f=args.f, young=args.young, poisson=args.poisson,
-        edges=args.edges, increments=args.increments,
+        edges=args.edges, increments=args.increments, farfield_passes=args.farfield_passes,
     )
     geom = StripBlockGeometry(
         length=args.length, thickness=1.0, depth=args.depth, h=args.h, x_fine=args.x_fine,
@@ -189,6 +189,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                      help="element growth ratio away from the fine mesh")
     rec.add_argument("--increments", type=int, required=True,
                      help="load increments (config fe.increments)")
+    rec.add_argument("--farfield-passes", type=int, default=1,
+                     help="farfield edges: 1 = Flamant's field of the net load; each further "
+                          "pass imposes the half-plane's field of the previous pass's "
+                          "interface tractions (config fe.farfield_passes)")
     rec.add_argument("--level", default="", help="name of the mesh level (metadata)")
     rec.add_argument("--threads", type=int, default=1, help="ccx threads")
     rec.add_argument("--keep", default=None, help="keep the ccx work directory here")

@@ -36,6 +36,10 @@ class RecedingModel:
     contact stiffness (N/mm^3) and ``stick_slope`` the tangential stiffness of sticking
     contact (N/mm^3); both are multiples of E/h when not given. One load increment by
     default: a receding contact under proportional load is self-similar (chs 5-7).
+    ``farfield`` edges: the first pass imposes Flamant's field of the net load, each further
+    pass (``farfield_passes``) the half-plane's field under the interface forces of the
+    previous one (``farfield_forces``: x (mm), normal and tangential nodal forces, N/mm, of
+    the full model's interface).
     """
 
     problem: str
@@ -48,6 +52,8 @@ class RecedingModel:
     penalty: float | None = None
     stick_slope: float | None = None
     increments: int = 1
+    farfield_passes: int = 1
+    farfield_forces: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
     def check(self) -> None:
         if self.problem not in PROBLEMS:
@@ -58,6 +64,8 @@ class RecedingModel:
             raise ValueError(f"bad friction, load or material in {self}")
         if self.problem != "line" and self.w <= 0:
             raise ValueError(f"w must be > 0 for the {self.problem} problem, got {self.w}")
+        if self.farfield_passes < 1:
+            raise ValueError(f"farfield_passes must be >= 1, got {self.farfield_passes}")
         if self.edges == "farfield" and self.problem == "gap":
             raise ValueError("farfield edges need a finite net load: line or uniform, not "
                              "gap (its roller block carries the far field exactly)")
@@ -99,14 +107,20 @@ def penalty_defaults(model: RecedingModel, h: float) -> tuple[float, float]:
 
 
 def _farfield_boundary(mesh: PlaneMesh, model: RecedingModel, thickness: float) -> list[str]:
-    """*BOUNDARY lines imposing Flamant's displacements (net force of the model) on the
-    block's base and far edge, ramped with the load in the step."""
-    from contactlab.fe.farfield import flamant_displacements
+    """*BOUNDARY lines imposing the half-plane's displacements on the block's base and far
+    edge, ramped with the load in the step: Flamant's for the net force, or those of the
+    interface forces of a previous pass (``model.farfield_forces``)."""
+    from contactlab.fe.farfield import flamant_displacements, halfplane_displacements
 
     ids = sorted(set(mesh.node_sets["BLOCK_BASE"]) | set(mesh.node_sets["BLOCK_RIGHT"]))
     xy = np.array([mesh.nodes[n] for n in ids])
-    ux, uy = flamant_displacements(xy[:, 0], xy[:, 1], model.net_force(thickness),
-                                   model.young, model.poisson, r0=thickness)
+    if model.farfield_forces is None:
+        ux, uy = flamant_displacements(xy[:, 0], xy[:, 1], model.net_force(thickness),
+                                       model.young, model.poisson, r0=thickness)
+    else:
+        xs, fn, ft = model.farfield_forces
+        ux, uy = halfplane_displacements(xy[:, 0], xy[:, 1], xs, fn, ft, model.young,
+                                         model.poisson, r0=thickness)
     out = ["*BOUNDARY"]
     for n, x, dx, dy in zip(ids, xy[:, 0], ux, uy, strict=True):
         out.append(f"{n}, 1, 1, {0.0 if abs(x) < 1e-12 else dx:.10g}")

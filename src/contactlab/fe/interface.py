@@ -23,6 +23,9 @@ import numpy as np
 #: Default thresholds of the contact and slip criteria (see module docstring).
 N_TOL = 1e-3
 SLIP_TOL = 1e-2
+#: Opening or slip below this fraction of its largest value counts as none (round-off of
+#: the displacement differences, penalty penetration) in :func:`onset_point`.
+ONSET_FLOOR = 1e-4
 
 
 def _crossing(x: np.ndarray, y: np.ndarray, i: int, level: float) -> float:
@@ -113,7 +116,9 @@ def onset_point(x: np.ndarray, g: np.ndarray, p_nodes: float, beyond: bool) -> f
     nodes do not grow outward.
     Node-based points move in steps of h; this one converges smoothly with h.
     """
-    x, g = np.asarray(x, float), np.cbrt(np.clip(np.asarray(g, float), 0.0, None)) ** 2
+    g = np.asarray(g, float)
+    floor = ONSET_FLOOR * float(np.nanmax(np.abs(g))) if g.size else 0.0
+    x, g = np.asarray(x, float), np.cbrt(np.where(g > floor, g, 0.0)) ** 2
     if not np.isfinite(p_nodes):
         return np.nan
     if beyond:

@@ -16,6 +16,8 @@ uniform     p on |x| <= w, w_hat = 2.5 (8.13), f 0.3  25 x 1, 25 x 25        enc
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import xarray as xr
 
@@ -113,9 +115,31 @@ def _var(values, long_name: str, units: str = "1", dims=("x",), **attrs) -> xr.V
     return xr.Variable(dims, np.asarray(values), {"long_name": long_name, "units": units, **attrs})
 
 
+def interface_forces(prof: dict[str, np.ndarray], model: RecedingModel, thickness: float
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """x (mm) and the normal (pressing) and tangential nodal forces (N/mm) of the full
+    model's interface tractions: the half model's nodes and their mirror images (N even,
+    S odd in x), trapezoidal weights."""
+    x = prof["x"] * thickness
+    weight = np.zeros_like(x)
+    weight[1:] += 0.5 * np.diff(x)
+    weight[:-1] += 0.5 * np.diff(x)
+    q = traction_unit(model, thickness)
+    fn, ft = -prof["N"] * q * weight, prof["S"] * q * weight
+    mirror = x > 0
+    return (np.concatenate([x, -x[mirror]]), np.concatenate([fn, fn[mirror]]),
+            np.concatenate([ft, -ft[mirror]]))
+
+
 def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = "",
                  threads: int = 1, keep: str | None = None) -> xr.Dataset:
-    """Mesh, run and post-process one model; the Dataset of one FE solution."""
+    """Mesh, run and post-process one model; the Dataset of one FE solution.
+
+    With ``farfield`` edges and ``farfield_passes`` > 1 the model is solved again with the
+    half-plane displacements of the previous pass's interface forces on the outer boundary
+    (:mod:`contactlab.fe.farfield`); ``farfield_change`` records how far the last pass
+    moved b and a.
+    """
     model.check()
     geom = geometry_for(model, geom)
     mesh = strip_on_block(geom)
@@ -123,6 +147,17 @@ def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = ""
     run = run_ccx(deck, job=model.problem, threads=threads, keep=keep)
     prof = interface_profiles(mesh, run, model, geom.thickness)
     b, a = transitions(prof, model)
+    passes = model.farfield_passes if model.edges == "farfield" else 1
+    change = 0.0
+    for _ in range(passes - 1):
+        forces = interface_forces(prof, model, geom.thickness)
+        deck = receding_deck(mesh, replace(model, farfield_forces=forces), geom.h,
+                             geom.thickness)
+        run = run_ccx(deck, job=model.problem, threads=threads, keep=keep)
+        prof = interface_profiles(mesh, run, model, geom.thickness)
+        b_new, a_new = transitions(prof, model)
+        change = float(np.nanmax(np.abs([b_new - b, a_new - a])))
+        b, a = b_new, a_new
     name = STICK_SLIP_NAME[model.problem]
     k, lam = penalty_defaults(model, geom.h)
     x = mesh.interface[0]
@@ -155,6 +190,8 @@ def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = ""
             "equilibrium_error": _var(carried / applied - 1.0,
                                       "interface normal force over applied load minus 1",
                                       dims=()),
+            "farfield_change": _var(change, "largest change of b/c and a/c in the last "
+                                    "far-field pass (0 without one)", dims=()),
             "max_penetration": _var(float(max(0.0, -np.min(prof["separation"]))),
                                     "largest penalty penetration (normalised like separation)",
                                     dims=()),
@@ -167,7 +204,8 @@ def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = ""
         strip_length_mm=geom.length, strip_thickness_mm=geom.thickness,
         block_depth_mm=geom.depth, x_fine_mm=geom.x_fine, layer_rows=geom.layer_rows,
         growth=geom.growth, penalty_N_per_mm3=k, stick_slope_N_per_mm3=lam,
-        load_increments=model.increments, element_types="CPE4 (strip), CPE4 + CPE3 (block)",
+        load_increments=model.increments, farfield_passes=passes,
+        element_types="CPE4 (strip), CPE4 + CPE3 (block)",
         contact="surface-to-surface penalty, strip slave, block master, Coulomb friction",
         n_tol=N_TOL, slip_tol=SLIP_TOL, solver=f"CalculiX ccx {ccx_version()}",
         converged=int(run.sta["final_time"] >= 1.0 - 1e-9),

@@ -81,6 +81,11 @@ def agreement_table(results: list[xr.Dataset]) -> pd.DataFrame:
             "a FE": float(ds[f"{a}_fe"]),
             "a DDT": float(ds[f"{a}_ddt"]),
             "a diff (%)": float(ds[f"{a}_difference"]),
+            "b_sep FE": float(ds["b_sep_fe"]) if "b_sep_fe" in ds else np.nan,
+            "b_sep diff (%)": float(ds["b_sep_difference"]) if "b_sep_fe" in ds else np.nan,
+            "a_slip FE": float(ds[f"{a}_slip_fe"]) if f"{a}_slip_fe" in ds else np.nan,
+            "a_slip diff (%)": (float(ds[f"{a}_slip_difference"])
+                                if f"{a}_slip_fe" in ds else np.nan),
             "max |dN|": float(ds["N_max_difference"]),
             "max |dS|": float(ds["S_max_difference"]),
         })
