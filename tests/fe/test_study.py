@@ -13,7 +13,7 @@ from contactlab import rulehelpers
 from contactlab.cli import main
 from contactlab.fe import extrapolate as ex
 from contactlab.fe.deck import RecedingModel, receding_deck
-from contactlab.fe.farfield import flamant_displacements
+from contactlab.fe.farfield import flamant_displacements, halfplane_displacements
 from contactlab.fe.interface import onset_point, plastic_slip, remote_slope
 from contactlab.fe.mesh2d import StripBlockGeometry, strip_on_block
 
@@ -65,6 +65,33 @@ def test_flamant_field_is_the_half_plane_point_force() -> None:
     assert np.allclose(2 * mu * exy, -srr * np.sin(th) * np.cos(th), atol=1e-7)
     ux, _ = flamant_displacements(np.array([1.0, 5.0]), np.array([0.0, 0.0]), force, young, nu)
     assert np.allclose(ux, -(3 - 4 * nu - 1) * force / (8 * mu))
+
+
+def test_halfplane_field_superposes_point_forces() -> None:
+    """One normal source is Flamant's field up to a translation in y; opposite tangential
+    forces at +-x give u_x odd and u_y even in x (the symmetric half model)."""
+    young, nu = 200.0, 0.3
+    x, y = np.array([3.0, 5.0, 0.0]), np.array([-4.0, -1.0, -6.0])
+    fx, fy = flamant_displacements(x, y, 2.0, young, nu)
+    hx, hy = halfplane_displacements(x, y, [0.0], [2.0], [0.0], young, nu)
+    assert np.allclose(hx, fx) and np.allclose(hy - fy, (hy - fy)[0])
+    xs, ft = np.array([0.5, -0.5]), np.array([0.3, -0.3])
+    ux, uy = halfplane_displacements(np.array([2.0, -2.0]), np.array([-3.0, -3.0]), xs,
+                                     np.zeros(2), ft, young, nu)
+    assert ux[0] == pytest.approx(-ux[1]) and uy[0] == pytest.approx(uy[1])
+    assert ux[0] != 0.0
+
+
+def test_interface_forces_carry_the_load() -> None:
+    from contactlab.fe.receding import interface_forces
+
+    x = np.linspace(0.0, 2.0, 41)
+    prof = {"x": x, "N": -np.sqrt(np.clip(1 - (x / 1.8) ** 2, 0, None)), "S": 0.2 * x}
+    model = RecedingModel("line", load=3.0)
+    xs, fn, ft = interface_forces(prof, model, thickness=2.0)
+    assert xs.size == 2 * x.size - 1 and np.isclose(ft.sum(), 0.0)
+    expected = 2 * np.trapezoid(-prof["N"], x * 2.0) * 3.0 / 2.0
+    assert fn.sum() == pytest.approx(expected, rel=1e-12)
 
 
 def test_farfield_deck_imposes_displacements_in_the_step() -> None:

@@ -124,6 +124,7 @@ def interface_forces(prof: dict[str, np.ndarray], model: RecedingModel, thicknes
     weight = np.zeros_like(x)
     weight[1:] += 0.5 * np.diff(x)
     weight[:-1] += 0.5 * np.diff(x)
+    weight[x == 0] *= 2.0  # the node on the plane of symmetry carries both halves
     q = traction_unit(model, thickness)
     fn, ft = -prof["N"] * q * weight, prof["S"] * q * weight
     mirror = x > 0
