@@ -107,6 +107,14 @@ def test_farfield_deck_imposes_displacements_in_the_step() -> None:
         RecedingModel("gap", edges="farfield").check()
 
 
+def test_farfield_run_needs_its_passes(tmp_path: Path, capsys) -> None:
+    code = main(["fe", "receding", "--problem", "line", "--f", "0.5", "--w-hat", "0", "--h",
+                 "0.2", "--length", "5", "--depth", "5", "--x-fine", "2", "--edges", "farfield",
+                 "--young", "20000", "--increments", "1", "--out", str(tmp_path / "r.nc")])
+    assert code != 0 and "--farfield-passes" in capsys.readouterr().err
+    assert not (tmp_path / "r.nc").exists()
+
+
 def test_onset_point_places_a_three_halves_start_inside_the_element() -> None:
     x = np.arange(0.0, 2.0, 0.1)
     a = 0.83
@@ -194,6 +202,6 @@ def test_coarse_study_end_to_end(tmp_path: Path) -> None:
     cmp_ = tmp_path / "line.nc"
     assert main(["fe", "compare", "--run", runs[0], "--ddt-n", "20", "--lam", "3.5", "--e",
                  "5", "--out", str(cmp_)]) == 0
-    assert main(["fe", "report", "--results", str(cmp_), "--study", str(out),
+    assert main(["fe", "report", "--results", str(cmp_), "--study-results", str(out),
                  "--report-dir", str(tmp_path / "report"), "--out", str(section)]) == 0
     assert "fe_study.csv" in section.read_text()

@@ -180,7 +180,7 @@ rule report_fe:
         convergence=lambda wc, input: (
             ["--convergence", *input.convergence] if input.convergence else []
         ),
-        study=lambda wc, input: ["--study", *input.study] if input.study else [],
+        study=lambda wc, input: ["--study-results", *input.study] if input.study else [],
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
         logs("report/fe.log"),

@@ -29,9 +29,13 @@ def _receding(args: argparse.Namespace) -> None:
     from contactlab.fe.receding import run_receding
     from contactlab.io import stamp, write_netcdf
 
+    if args.edges == "farfield" and args.farfield_passes is None:
+        raise ValueError("--edges farfield needs --farfield-passes (config "
+                         "fe.farfield_passes)")
     model = RecedingModel(
         problem=args.problem, w=args.w_hat, f=args.f, young=args.young, poisson=args.poisson,
-        edges=args.edges, increments=args.increments, farfield_passes=args.farfield_passes,
+        edges=args.edges, increments=args.increments,
+        **({"farfield_passes": args.farfield_passes} if args.farfield_passes else {}),
     )
     geom = StripBlockGeometry(
         length=args.length, thickness=1.0, depth=args.depth, h=args.h, x_fine=args.x_fine,
@@ -149,7 +153,7 @@ def _report(args: argparse.Namespace) -> None:
     from contactlab.fe.report import build_section
 
     build_section(args.results, args.convergence, args.asperity, args.report_dir, args.out,
-                  study=args.study)
+                  study=args.study_results)
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -189,10 +193,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                      help="element growth ratio away from the fine mesh")
     rec.add_argument("--increments", type=int, required=True,
                      help="load increments (config fe.increments)")
-    rec.add_argument("--farfield-passes", type=int, default=1,
-                     help="farfield edges: 1 = Flamant's field of the net load; each further "
-                          "pass imposes the half-plane's field of the previous pass's "
-                          "interface tractions (config fe.farfield_passes)")
+    rec.add_argument("--farfield-passes", type=int, default=None,
+                     help="farfield edges (required with them): 1 = Flamant's field of the "
+                          "net load; each further pass imposes the half-plane's field of the "
+                          "previous pass's interface tractions (config fe.farfield_passes)")
     rec.add_argument("--level", default="", help="name of the mesh level (metadata)")
     rec.add_argument("--threads", type=int, default=1, help="ccx threads")
     rec.add_argument("--keep", default=None, help="keep the ccx work directory here")
@@ -300,7 +304,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                      help="results/fe/{gap,line,uniform}.nc")
     rep.add_argument("--convergence", nargs="*", type=input_file, default=[],
                      help="results/fe/convergence_<problem>.nc")
-    rep.add_argument("--study", nargs="*", type=input_file, default=[],
+    rep.add_argument("--study-results", nargs="*", type=input_file, default=[],
                      help="results/fe/study_<problem>.nc (issue 18)")
     rep.add_argument("--asperity", type=input_file, default=None,
                      help="results/fe/asperity_plastic.nc")

@@ -52,7 +52,7 @@ class RecedingModel:
     penalty: float | None = None
     stick_slope: float | None = None
     increments: int = 1
-    farfield_passes: int = 1
+    farfield_passes: int = 2
     farfield_forces: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
     def check(self) -> None:
