@@ -254,20 +254,22 @@ def build_section(results: list[Path], convergence: list[Path], asperity: Path |
                    report_dir / "figures" / "fe_convergence.png")
     studies = load_datasets(study or [], "FE study")
     if studies:
-        first = studies[0]
+        series = "; ".join(
+            f"{ds.attrs['problem']}: h/c = {', '.join(f'{v:g}' for v in ds['h'].values)}, "
+            f"L/c = {', '.join(f'{v:g}' for v in ds['length'].values)} at h/c = "
+            f"{ds.attrs['h_ref']:g}" for ds in studies)
         sec.paragraph(
-            "Mesh and domain study (issue 18): each quantity on meshes h/c = "
-            f"{', '.join(f'{v:g}' for v in first['h'].values)} of the configured model and on "
-            f"domains (strip length and block depth scaled) L/c = "
-            f"{', '.join(f'{v:g}' for v in first['length'].values)} at h/c = "
-            f"{first.attrs['h_ref']:g}, extrapolated to h -> 0 (Richardson with the observed "
+            "Mesh and domain study (issue 18): each quantity on a mesh series of the "
+            "configured model and a domain series (strip length and block depth scaled) "
+            f"({series}), extrapolated to h -> 0 (Richardson with the observed "
             "order p; GCI uncertainty, 3 x the spread where the series is not monotone) and "
             "L -> infinity (q_inf + C/L^m, m = 1 or 2 by the smaller residual). Block edges "
-            "encastred as in the thesis or displaced as the half-plane under the net load "
-            "(farfield: Flamant). b and a are read off the tractions node by node and move "
-            "in steps of h; b_sep and a_slip place the same points inside the element from "
-            "the onset of separation and slip (~ |x - p|^(3/2)). K_T: remote slope of the "
-            "separation. z: difference over the combined uncertainty."
+            "encastred as in the thesis or displaced as the half-plane (farfield: Flamant's "
+            "field of the net load, then with fe.farfield_passes = 2 the field of the first "
+            "solve's interface tractions). b and a are read off the tractions node by node "
+            "and move in steps of h; b_sep and a_slip place the same points inside the "
+            "element from the onset of separation and slip (~ |x - p|^(3/2)). K_T: remote "
+            "slope of the separation. z: difference over the combined uncertainty."
         )
         sec.table(study_table(studies), "FE extrapolated to h -> 0 and L -> infinity against "
                   "the DDT (units of c; K_T as in chs 6-7)",
