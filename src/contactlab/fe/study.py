@@ -211,6 +211,8 @@ def study(runs: list[xr.Dataset], h_ref: float, length: float, ddt_n: int,
         depth_over_length=float(runs[0].attrs["block_depth_mm"])
         / float(runs[0].attrs["strip_length_mm"]),
         solver=runs[0].attrs.get("solver", "ccx"),
+        farfield_passes=int(max(int(r.attrs.get("farfield_passes", 1)) for r in runs
+                                if r.attrs["edges"] == "farfield")) if "farfield" in edges else 0,
         all_converged=int(all(map(all, conv_mesh)) and all(map(all, conv_dom))
                           and bool(ddt_conv.all())),
         method=("Richardson in h with the observed order (GCI, F_s 1.25; 3 x spread when "
