@@ -55,7 +55,12 @@ def test_schema_defaults_fill_a_minimal_study(repo: Path) -> None:
     assert config["stiffness"]["errors"]["piston_area_cm2"] == 6.5
     assert config["stiffness"]["raw"]["tangential_pressure"] == "multiply"
     assert config["fe"] == {"enabled": False, "ddt_n": 100, "increments": 1, "levels": {},
-                            "problems": {}}
+                            "farfield_passes": 2,
+                            "problems": {}, "study": {
+                                "enabled": False, "problems": ["gap", "line", "uniform"],
+                                "edges": ["encastre", "farfield"], "h": [0.05, 0.025, 0.0125],
+                                "scale": [0.5, 1.0, 2.0], "h_ref": 0.025,
+                                "ddt_n": [50, 100, 200]}}
 
 
 def test_config_readme_is_generated_from_the_schema(repo: Path) -> None:

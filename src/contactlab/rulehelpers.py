@@ -149,7 +149,13 @@ def receding_args(fe: dict, problem: str, level: str) -> list[str]:
         "increments": fe["increments"],
         "level": level,
     }
-    return [word for key, value in options.items() for word in (f"--{key}", str(value))]
+    return [*(word for key, value in options.items() for word in (f"--{key}", str(value))),
+            *_farfield_args(fe, spec["edges"])]
+
+
+def _farfield_args(fe: dict, edges: str) -> list[str]:
+    """``--farfield-passes N`` for far-field edges only (other models do not depend on it)."""
+    return ["--farfield-passes", str(fe["farfield_passes"])] if edges == "farfield" else []
 
 
 def comparison_run(fe: dict, problem: str, results: str = "results/") -> str:
@@ -211,6 +217,69 @@ def convergence_files(fe: dict, results: str = "results/") -> list[str]:
         return []
     return [f"{results}fe/convergence_{p}.nc" for p, spec in fe.get("problems", {}).items()
             if spec.get("convergence")]
+
+
+def study_edges(fe: dict, problem: str) -> list[str]:
+    """Block edges of a problem in the FE study: the gap problem keeps its own (issue 18)."""
+    if problem == "gap":
+        return [fe["problems"]["gap"]["edges"]]
+    return list(fe["study"]["edges"])
+
+
+def study_runs(fe: dict, problem: str, results: str = "results/") -> list[str]:
+    """The FE runs of one problem's h and L study: every h of ``fe.study.h`` on the configured
+    domain (scale 1), every scale of ``fe.study.scale`` at ``h_ref``, for each block edge."""
+    study = fe["study"]
+    points = [(h, 1.0) for h in study["h"]] + [(study["h_ref"], s) for s in study["scale"]]
+    unique = list(dict.fromkeys((float(h), float(s)) for h, s in points))
+    return [f"{results}fe/study/{problem}_{edges}_h{h:g}_s{s:g}.nc"
+            for edges in study_edges(fe, problem) for h, s in unique]
+
+
+def study_files(fe: dict, results: str = "results/") -> list[str]:
+    """<results>fe/study_<problem>.nc of every studied problem (empty when the study is off)."""
+    study = fe.get("study", {})
+    if not (fe.get("enabled", False) and study.get("enabled", False)):
+        return []
+    return [f"{results}fe/study_{p}.nc" for p in study["problems"]]
+
+
+def study_receding_args(fe: dict, problem: str, edges: str, h: str, scale: str) -> list[str]:
+    """Arguments of ``contactlab fe receding`` for one run of the study: the problem's
+    configuration with h/c = ``h`` and strip length and block depth times ``scale``."""
+    study = fe["study"]
+    hs = {f"{float(v):g}": float(v) for v in [*study["h"], study["h_ref"]]}
+    scales = {f"{float(v):g}": float(v) for v in study["scale"]}
+    if h not in hs or scale not in scales or edges not in study_edges(fe, problem):
+        raise ValueError(f"fe study run {problem}_{edges}_h{h}_s{scale} is not in fe.study "
+                         f"(h {sorted(hs)}, scale {sorted(scales)}, edges "
+                         f"{study_edges(fe, problem)})")
+    spec = fe["problems"][problem]
+    length = spec["length"] * scales[scale]
+    if not spec["x_fine"] < length:
+        raise ValueError(f"fe.study.scale {scale} makes the {problem} strip ({length:g} c) "
+                         f"shorter than fe.problems.{problem}.x_fine ({spec['x_fine']:g} c)")
+    options = {
+        "problem": problem, "f": spec["f"], "w-hat": spec.get("w_hat", 0.0), "h": hs[h],
+        "length": f"{length:g}", "depth": f"{spec['depth'] * scales[scale]:g}",
+        "x-fine": spec["x_fine"], "edges": edges, "young": spec["young"],
+        "increments": fe["increments"], "level": f"h{h}_s{scale}",
+    }
+    return [*(word for key, value in options.items() for word in (f"--{key}", str(value))),
+            *_farfield_args(fe, edges)]
+
+
+def study_args(config: dict, problem: str) -> list[str]:
+    """Arguments of ``contactlab fe study`` beyond the runs: the series' definitions and the
+    DDT reference (N, its convergence check, lambda and e or lambda_b and e - w)."""
+    fe = config["fe"]
+    study = fe["study"]
+    spec = fe["problems"][problem]
+    return [
+        "--h-ref", f"{float(study['h_ref']):g}", "--length", f"{float(spec['length']):g}",
+        "--ddt-n", str(fe["ddt_n"]), "--ddt-n-check", *[str(n) for n in study["ddt_n"]],
+        *ddt_args(config, problem),
+    ]
 
 
 def asperity_runs(fe: dict, results: str = "results/") -> list[str]:

@@ -4,13 +4,14 @@
 # model and mesh, so `-j N` runs N of them at once. `fe: {enabled: false}` drops the branch.
 
 from contactlab import rulehelpers
-from contactlab.rulehelpers import pdf_files, table_files
+from contactlab.rulehelpers import pdf_files
 
 FE = config["fe"]
 FE_ON = FE["enabled"]
 FE_PROBLEMS = list(FE["problems"]) if FE_ON else []
 FE_ASPERITY = rulehelpers.asperity_runs(FE, RESULTS)
 FE_CONVERGENCE = rulehelpers.convergence_files(FE, RESULTS)
+FE_STUDY = rulehelpers.study_files(FE, RESULTS)
 FE_FIGURES = [
     *expand(result("report/figures/fe_{problem}.png"), problem=FE_PROBLEMS),
     *([result("report/figures/fe_convergence.png")] if FE_CONVERGENCE else []),
@@ -54,6 +55,8 @@ rule fe_compare:
         ddt=lambda wc: rulehelpers.ddt_file_arg(FE, wc.problem),
     log:
         logs("fe/compare_{problem}.log"),
+    benchmark:
+        logs("benchmarks/fe_compare_{problem}.tsv"),
     shell:
         "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1"
         " contactlab fe compare --run {input.run:q} --ddt-n {params.n:q}"
@@ -70,8 +73,56 @@ rule fe_convergence:
         problem="gap|line|uniform",
     log:
         logs("fe/convergence_{problem}.log"),
+    benchmark:
+        logs("benchmarks/fe_convergence_{problem}.tsv"),
     shell:
         "contactlab fe convergence {input:q} --out {output:q} 2> {log:q}"
+
+
+rule fe_study_receding:
+    """One run of the h and L study (issue 18): a problem with given block edges, h/c and
+    domain scale (strip length and block depth times the scale)."""
+    output:
+        result("fe/study/{problem}_{edges}_h{h}_s{scale}.nc"),
+    wildcard_constraints:
+        problem="gap|line|uniform",
+        edges="roller|encastre|farfield",
+        h=r"[0-9.e-]+",
+        scale=r"[0-9.]+",
+    params:
+        args=lambda wc: rulehelpers.study_receding_args(
+            FE, wc.problem, wc.edges, wc.h, wc.scale
+        ),
+    log:
+        logs("fe/study/{problem}_{edges}_h{h}_s{scale}.log"),
+    benchmark:
+        logs("benchmarks/fe_study_receding_{problem}_{edges}_h{h}_s{scale}.tsv"),
+    threads: 1
+    shell:
+        "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1"
+        " contactlab fe receding {params.args:q} --threads {threads:q}"
+        " --out {output:q} 2> {log:q}"
+
+
+rule fe_study:
+    """results/fe/study_{problem}.nc: extrapolation to h -> 0 and L -> infinity of every
+    transition point and K_T, beside the DDT solution and its N-convergence (issue 18)."""
+    input:
+        runs=lambda wc: rulehelpers.study_runs(FE, wc.problem, RESULTS),
+        solver=lambda wc: rulehelpers.ddt_sources(wc.problem),
+    output:
+        result("fe/study_{problem}.nc"),
+    wildcard_constraints:
+        problem="gap|line|uniform",
+    params:
+        args=lambda wc: rulehelpers.study_args(config, wc.problem),
+    log:
+        logs("fe/study_{problem}.log"),
+    benchmark:
+        logs("benchmarks/fe_study_{problem}.tsv"),
+    shell:
+        "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1"
+        " contactlab fe study {input.runs:q} {params.args:q} --out {output:q} 2> {log:q}"
 
 
 rule fe_asperity:
@@ -104,6 +155,8 @@ rule fe_asperity_gather:
         bem=lambda wc, input: ["--bem", *input.bem] if input.bem else [],
     log:
         logs("fe/asperity_gather.log"),
+    benchmark:
+        logs("benchmarks/fe_asperity_gather.tsv"),
     shell:
         "contactlab fe asperity-gather {input.runs:q} {params.bem:q} --out {output:q}"
         " 2> {log:q}"
@@ -114,12 +167,15 @@ rule report_fe:
     input:
         results=expand(result("fe/{problem}.nc"), problem=FE_PROBLEMS),
         convergence=FE_CONVERGENCE,
+        study=FE_STUDY,
         asperity=[result("fe/asperity_plastic.nc")] if FE_ASPERITY else [],
     output:
         section=result("report/sections/70_fe.html"),
-        tables=table_files(
+        tables=report_tables(
+            "Finite elements",
             result("report/tables/fe_agreement.csv"),
             *([result("report/tables/fe_convergence.csv")] if FE_CONVERGENCE else []),
+            *([result("report/tables/fe_study.csv")] if FE_STUDY else []),
             *([result("report/tables/fe_asperity.csv")] if FE_ASPERITY else []),
         ),
         figures=report(
@@ -133,18 +189,22 @@ rule report_fe:
         convergence=lambda wc, input: (
             ["--convergence", *input.convergence] if input.convergence else []
         ),
+        study=lambda wc, input: ["--study-results", *input.study] if input.study else [],
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
         logs("report/fe.log"),
+    benchmark:
+        logs("benchmarks/report_fe.tsv"),
     shell:
         "contactlab fe report --results {input.results:q} {params.convergence:q}"
-        " {params.asperity:q}"
+        " {params.asperity:q} {params.study:q}"
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
 
 
 if FE_ON:
     ALL_TARGETS.extend(expand(result("fe/{problem}.nc"), problem=FE_PROBLEMS))
     ALL_TARGETS.extend(FE_CONVERGENCE)
+    ALL_TARGETS.extend(FE_STUDY)
     ALL_TARGETS.extend([result("fe/asperity_plastic.nc")] if FE_ASPERITY else [])
     REPORT_SECTIONS.append(result("report/sections/70_fe.html"))
 
@@ -154,5 +214,6 @@ if FE_ON:
 localrules:
     fe_compare,
     fe_convergence,
+    fe_study,
     fe_asperity_gather,
     report_fe,

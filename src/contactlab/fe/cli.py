@@ -29,9 +29,13 @@ def _receding(args: argparse.Namespace) -> None:
     from contactlab.fe.receding import run_receding
     from contactlab.io import stamp, write_netcdf
 
+    if args.edges == "farfield" and args.farfield_passes is None:
+        raise ValueError("--edges farfield needs --farfield-passes (config "
+                         "fe.farfield_passes)")
     model = RecedingModel(
         problem=args.problem, w=args.w_hat, f=args.f, young=args.young, poisson=args.poisson,
         edges=args.edges, increments=args.increments,
+        **({"farfield_passes": args.farfield_passes} if args.farfield_passes else {}),
     )
     geom = StripBlockGeometry(
         length=args.length, thickness=1.0, depth=args.depth, h=args.h, x_fine=args.x_fine,
@@ -88,6 +92,25 @@ def _convergence(args: argparse.Namespace) -> None:
     write_netcdf(out, args.out)
 
 
+def _study(args: argparse.Namespace) -> None:
+    from contactlab.fe.study import study
+    from contactlab.io import load_datasets, stamp, write_netcdf
+
+    runs = load_datasets(args.runs, "FE run")
+    out = study(runs, args.h_ref, args.length, args.ddt_n, args.ddt_n_check, lam=args.lam,
+                e=args.e, lam_b=args.lam_b, e_minus_w=args.e_minus_w)
+    stamp(
+        out,
+        title=f"FE mesh and domain study of '{out.attrs['problem']}' against the DDT "
+              "(thesis ch. 8, issue 18)",
+        source="contactlab fe receding runs on mesh and domain series; extrapolation to "
+               "h -> 0 and L -> infinity; DDT from the receding branch's solvers",
+        history="contactlab fe study " + " ".join(str(p) for p in args.runs),
+        inputs=runs,
+    )
+    write_netcdf(out, args.out)
+
+
 def _asperity(args: argparse.Namespace) -> None:
     from contactlab.fe.asperity import AsperityModel, run_asperity
     from contactlab.io import stamp, write_netcdf
@@ -129,7 +152,8 @@ def _asperity_gather(args: argparse.Namespace) -> None:
 def _report(args: argparse.Namespace) -> None:
     from contactlab.fe.report import build_section
 
-    build_section(args.results, args.convergence, args.asperity, args.report_dir, args.out)
+    build_section(args.results, args.convergence, args.asperity, args.report_dir, args.out,
+                  study=args.study_results)
 
 
 def register(subparsers: argparse._SubParsersAction) -> None:
@@ -157,8 +181,9 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     rec.add_argument("--depth", type=float, required=True, help="block depth over c")
     rec.add_argument("--x-fine", type=float, required=True,
                      help="end of the uniform interface mesh over c")
-    rec.add_argument("--edges", choices=("roller", "encastre"), required=True,
-                     help="block far edge free on rollers (Fig. 8.1) or encastre")
+    rec.add_argument("--edges", choices=("roller", "encastre", "farfield"), required=True,
+                     help="block far edge free on rollers (Fig. 8.1), encastre, or displaced "
+                          "as the half-plane under the net load (farfield; line, uniform)")
     rec.add_argument("--young", type=float, required=True,
                      help="Young's modulus E, N/mm^2 (results are normalised)")
     rec.add_argument("--poisson", type=float, default=0.3, help="Poisson's ratio")
@@ -168,6 +193,10 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                      help="element growth ratio away from the fine mesh")
     rec.add_argument("--increments", type=int, required=True,
                      help="load increments (config fe.increments)")
+    rec.add_argument("--farfield-passes", type=int, default=None,
+                     help="farfield edges (required with them): 1 = Flamant's field of the "
+                          "net load; each further pass imposes the half-plane's field of the "
+                          "previous pass's interface tractions (config fe.farfield_passes)")
     rec.add_argument("--level", default="", help="name of the mesh level (metadata)")
     rec.add_argument("--threads", type=int, default=1, help="ccx threads")
     rec.add_argument("--keep", default=None, help="keep the ccx work directory here")
@@ -204,6 +233,30 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     conv.add_argument("runs", nargs="+", type=input_file, help="outputs of `fe receding`")
     add_output(conv)
     conv.set_defaults(func=_convergence)
+
+    stu = add_command(
+        commands, "study", help="extrapolate an h and L study to h -> 0, L -> inf (issue 18)",
+        description="Transition points and remote slope of one problem on a mesh series "
+                    "and a domain series, extrapolated to h -> 0 (Richardson) and L -> "
+                    "infinity (1/L or 1/L^2), per block boundary condition, beside the DDT "
+                    "solution and its N-convergence.")
+    stu.add_argument("runs", nargs="+", type=input_file, help="outputs of `fe receding`")
+    stu.add_argument("--h-ref", type=float, required=True,
+                     help="h/c of the domain series (config fe.study.h_ref)")
+    stu.add_argument("--length", type=float, required=True,
+                     help="strip length / c of the mesh series (config fe.problems.<p>.length)")
+    stu.add_argument("--ddt-n", type=int, required=True,
+                     help="reference Gauss-Chebyshev points N (config fe.ddt_n)")
+    stu.add_argument("--ddt-n-check", type=int, nargs="+", required=True,
+                     help="N of the DDT convergence check (config fe.study.ddt_n)")
+    stu.add_argument("--lam", type=float, default=None, help="line load: lambda (receding.line)")
+    stu.add_argument("--e", type=float, default=None, help="line load: e/c (receding.line)")
+    stu.add_argument("--lam-b", type=float, default=None,
+                     help="patch: lambda_b (receding.patches)")
+    stu.add_argument("--e-minus-w", type=float, default=None,
+                     help="patch: (e - w)/c (receding.patches)")
+    stu.add_argument("--out", type=Path, required=True, help="netCDF output")
+    stu.set_defaults(func=_study)
 
     asp = add_command(
         commands, "asperity", help="elastic-plastic stuck asperity (sec. 3.2.2)",
@@ -251,6 +304,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
                      help="results/fe/{gap,line,uniform}.nc")
     rep.add_argument("--convergence", nargs="*", type=input_file, default=[],
                      help="results/fe/convergence_<problem>.nc")
+    rep.add_argument("--study-results", nargs="*", type=input_file, default=[],
+                     help="results/fe/study_<problem>.nc (issue 18)")
     rep.add_argument("--asperity", type=input_file, default=None,
                      help="results/fe/asperity_plastic.nc")
     add_section_outputs(rep)

@@ -2,8 +2,10 @@
 
 :func:`agreement` adds to an FE solution (from :func:`contactlab.fe.receding.run_receding`)
 the DDT transition points ``b_ddt`` and ``a_ddt`` (``a3_ddt`` for the gap problem), the
-differences in percent, and the DDT profiles on the FE grid. :func:`convergence` stacks
-the transition points and sizes of several meshes of one problem (sec. 8.3).
+differences in percent, the same points placed inside the element (``b_sep_fe``,
+``a_slip_fe``: :mod:`contactlab.fe.study`), and the DDT profiles on the FE grid.
+:func:`convergence` stacks the transition points and sizes of several meshes of one
+problem (sec. 8.3).
 """
 
 from __future__ import annotations
@@ -14,6 +16,7 @@ import xarray as xr
 from contactlab.fe.ddt import DdtReference
 from contactlab.fe.interface import profile_difference
 from contactlab.fe.receding import STICK_SLIP_NAME
+from contactlab.fe.study import run_quantities
 
 
 def _scalar(value: float, long_name: str, units: str = "1") -> xr.DataArray:
@@ -38,6 +41,13 @@ def agreement(fe: xr.Dataset, ref: DdtReference) -> xr.Dataset:
                                  "(b_fe - b_ddt) / b_ddt", "percent")
     ds[f"{a}_difference"] = _scalar(percent_difference(float(ds[f"{a}_fe"]), ref.a),
                                     f"({a}_fe - {a}_ddt) / {a}_ddt", "percent")
+    # the same points placed inside the element from the onset of separation and slip
+    points = run_quantities(ds)
+    for key, src, ddt in (("b_sep", "b_sep", ref.b), (f"{a}_slip", "a_slip", ref.a)):
+        ds[f"{key}_fe"] = _scalar(points[src], f"{key.split('_')[0]}/c from the onset of "
+                                  f"{'separation' if src == 'b_sep' else 'slip'} (FE)")
+        ds[f"{key}_difference"] = _scalar(percent_difference(points[src], ddt),
+                                          f"({key}_fe - DDT) / DDT", "percent")
     labels = {"N": "normal traction N/q", "S": "shear traction S/q",
               "separation": "separation v2 - v1", "slip": "relative slip u2 - u1"}
     for name, long in labels.items():

@@ -9,8 +9,10 @@ slope. Loads (symmetric half models, x = 0 is the plane of symmetry):
 ``line``     a line load P at (0, c), half of it on the half model (Fig. 8.7, ch. 6);
 ``uniform``  pressure p on the strip's top for x <= w (Fig. 8.13, ch. 7).
 
-Boundary conditions of the block: ``roller`` (base fixed in y, far edge free: Fig. 8.1) or
-``encastre`` (base and far edge fixed: Figs 8.7, 8.13). Both bodies have u_x = 0 on x = 0.
+Boundary conditions of the block: ``roller`` (base fixed in y, far edge free: Fig. 8.1),
+``encastre`` (base and far edge fixed: Figs 8.7, 8.13) or ``farfield`` (base and far edge
+displaced as the half-plane under the net load, :mod:`contactlab.fe.farfield`; line load and
+patch only, issue 18). Both bodies have u_x = 0 on x = 0.
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ import numpy as np
 from contactlab.fe.mesh2d import PlaneMesh
 
 PROBLEMS = ("gap", "line", "uniform")
-EDGES = ("roller", "encastre")
+EDGES = ("roller", "encastre", "farfield")
 
 
 @dataclass
@@ -34,6 +36,10 @@ class RecedingModel:
     contact stiffness (N/mm^3) and ``stick_slope`` the tangential stiffness of sticking
     contact (N/mm^3); both are multiples of E/h when not given. One load increment by
     default: a receding contact under proportional load is self-similar (chs 5-7).
+    ``farfield`` edges: the first pass imposes Flamant's field of the net load, each further
+    pass (``farfield_passes``) the half-plane's field under the interface forces of the
+    previous one (``farfield_forces``: x (mm), normal and tangential nodal forces, N/mm, of
+    the full model's interface).
     """
 
     problem: str
@@ -46,6 +52,8 @@ class RecedingModel:
     penalty: float | None = None
     stick_slope: float | None = None
     increments: int = 1
+    farfield_passes: int = 2
+    farfield_forces: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
 
     def check(self) -> None:
         if self.problem not in PROBLEMS:
@@ -56,6 +64,19 @@ class RecedingModel:
             raise ValueError(f"bad friction, load or material in {self}")
         if self.problem != "line" and self.w <= 0:
             raise ValueError(f"w must be > 0 for the {self.problem} problem, got {self.w}")
+        if self.farfield_passes < 1:
+            raise ValueError(f"farfield_passes must be >= 1, got {self.farfield_passes}")
+        if self.edges == "farfield" and self.problem == "gap":
+            raise ValueError("farfield edges need a finite net load: line or uniform, not "
+                             "gap (its roller block carries the far field exactly)")
+
+    def net_force(self, thickness: float) -> float:
+        """Net normal force of the full model per unit length (N/mm): P, or 2 p w c."""
+        if self.problem == "line":
+            return self.load
+        if self.problem == "uniform":
+            return 2.0 * self.load * self.w * thickness
+        raise ValueError("the gap problem's load has no finite resultant")
 
 
 def _ids(values: list[int], per_line: int = 12) -> str:
@@ -85,8 +106,32 @@ def penalty_defaults(model: RecedingModel, h: float) -> tuple[float, float]:
     return float(k), float(lam)
 
 
-def receding_deck(mesh: PlaneMesh, model: RecedingModel, h: float) -> str:
-    """The CalculiX input deck (text) of ``model`` on ``mesh``; ``h`` the finest element size."""
+def _farfield_boundary(mesh: PlaneMesh, model: RecedingModel, thickness: float) -> list[str]:
+    """*BOUNDARY lines imposing the half-plane's displacements on the block's base and far
+    edge, ramped with the load in the step: Flamant's for the net force, or those of the
+    interface forces of a previous pass (``model.farfield_forces``)."""
+    from contactlab.fe.farfield import flamant_displacements, halfplane_displacements
+
+    ids = sorted(set(mesh.node_sets["BLOCK_BASE"]) | set(mesh.node_sets["BLOCK_RIGHT"]))
+    xy = np.array([mesh.nodes[n] for n in ids])
+    if model.farfield_forces is None:
+        ux, uy = flamant_displacements(xy[:, 0], xy[:, 1], model.net_force(thickness),
+                                       model.young, model.poisson, r0=thickness)
+    else:
+        xs, fn, ft = model.farfield_forces
+        ux, uy = halfplane_displacements(xy[:, 0], xy[:, 1], xs, fn, ft, model.young,
+                                         model.poisson, r0=thickness)
+    out = ["*BOUNDARY"]
+    for n, x, dx, dy in zip(ids, xy[:, 0], ux, uy, strict=True):
+        out.append(f"{n}, 1, 1, {0.0 if abs(x) < 1e-12 else dx:.10g}")
+        out.append(f"{n}, 2, 2, {dy:.10g}")
+    return out
+
+
+def receding_deck(mesh: PlaneMesh, model: RecedingModel, h: float,
+                  thickness: float = 1.0) -> str:
+    """The CalculiX input deck (text) of ``model`` on ``mesh``; ``h`` the finest element size,
+    ``thickness`` the strip's c (mm; sets the far-field load of a patch)."""
     model.check()
     k, lam = penalty_defaults(model, h)
     out: list[str] = [
@@ -123,7 +168,7 @@ def receding_deck(mesh: PlaneMesh, model: RecedingModel, h: float) -> str:
     out += ["*BOUNDARY", "STRIP_LEFT, 1, 1", "BLOCK_LEFT, 1, 1"]
     if model.edges == "roller":
         out.append("BLOCK_BASE, 2, 2")
-    else:
+    elif model.edges == "encastre":
         out += ["BLOCK_BASE, 1, 2", "BLOCK_RIGHT, 1, 2"]
     dt = 1.0 / max(1, model.increments)
     out += [
@@ -131,6 +176,8 @@ def receding_deck(mesh: PlaneMesh, model: RecedingModel, h: float) -> str:
         "*STATIC",
         f"{dt:.6g}, 1., {dt * 1e-4:.6g}, {dt:.6g}",
     ]
+    if model.edges == "farfield":
+        out += _farfield_boundary(mesh, model, thickness)
     if model.problem == "line":
         if len(top) != 1:
             raise ValueError("the line-load model needs exactly one node at (0, c)")
@@ -139,6 +186,10 @@ def receding_deck(mesh: PlaneMesh, model: RecedingModel, h: float) -> str:
         out.append("*DLOAD")
         out += [f"{e}, P{face}, {model.load:.10g}" for e, face in _loaded_faces(mesh, model)]
     out += [
+        # the interface displacements again with 7 digits: separation and slip are small
+        # differences of them (the gap problem's separation is ~1e-4 of the displacement)
+        "*NODE PRINT, NSET=STRIP_BOTTOM", "U",
+        "*NODE PRINT, NSET=BLOCK_TOP", "U",
         "*NODE FILE, NSET=NALL", "U",
         "*EL FILE", "S",
         "*CONTACT FILE", "CDIS, CSTR",

@@ -1,4 +1,4 @@
-"""A small reader for CalculiX result files (``.frd``, ASCII) and ``.sta`` summaries.
+"""A small reader for CalculiX result files (``.frd``, ASCII, ``.dat``) and ``.sta`` summaries.
 
 Only what the cross-checks need: node coordinates and the nodal result blocks (DISP,
 STRESS, CONTACT, ...) of every increment. The ``.frd`` layout is fixed-width: a
@@ -124,4 +124,30 @@ def read_sta(path: str | os.PathLike[str]) -> dict[str, float]:
                 out["final_time"] = float(parts[5])
             except ValueError:
                 continue
+    return out
+
+
+def read_dat_displacements(dat: str) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """Node ids and (u_x, u_y, u_z) rows of each ``*NODE PRINT`` set's last displacement
+    block in a ``.dat`` text. The ``.dat`` carries 7 significant digits, the ``.frd`` 6: a
+    separation that is a small difference of two displacements needs them."""
+    out: dict[str, tuple[np.ndarray, np.ndarray]] = {}
+    lines = dat.splitlines()
+    i = 0
+    while i < len(lines):
+        words = lines[i].split()
+        if len(words) > 4 and words[0] == "displacements" and words[2] == "for":
+            name = words[4]
+            i += 1
+            ids, rows = [], []
+            while i < len(lines) and not lines[i].strip():  # blank line after the header
+                i += 1
+            while i < len(lines) and lines[i].strip():
+                parts = lines[i].split()
+                ids.append(int(parts[0]))
+                rows.append([float(v) for v in parts[1:4]])
+                i += 1
+            out[name] = (np.array(ids, dtype=int), np.array(rows, dtype=float))
+            continue
+        i += 1
     return out

@@ -23,6 +23,9 @@ import numpy as np
 #: Default thresholds of the contact and slip criteria (see module docstring).
 N_TOL = 1e-3
 SLIP_TOL = 1e-2
+#: Opening or slip below this fraction of its largest value counts as none (round-off of
+#: the displacement differences, penalty penetration) in :func:`onset_point`.
+ONSET_FLOOR = 1e-4
 
 
 def _crossing(x: np.ndarray, y: np.ndarray, i: int, level: float) -> float:
@@ -98,3 +101,61 @@ def profile_difference(x: np.ndarray, fe: np.ndarray, ref: np.ndarray,
     if not scale:
         return np.nan
     return float(np.max(np.abs(fe[ok] - ref[ok])) / scale)
+
+
+def onset_point(x: np.ndarray, g: np.ndarray, p_nodes: float, beyond: bool) -> float:
+    """A transition point placed inside its element from the profile that starts there.
+
+    Near a smooth transition p of a receding contact the opening (separation beyond the
+    separation point b) and the slip (beyond a stick-slip point) grow as |x - p|^(3/2),
+    as the traction falls as |x - p|^(1/2) (square-root ends, as in Cattaneo-Mindlin
+    partial slip), so g^(2/3) is linear in x there: it is extrapolated to zero through the
+    first two nodes with g > 0 past the node-based estimate ``p_nodes``
+    (:func:`separation_point`, :func:`stick_slip_point`), on the side x > p (``beyond``) or
+    x < p. The answer is kept within two elements of the first such node; NaN when the two
+    nodes do not grow outward.
+    Node-based points move in steps of h; this one converges smoothly with h.
+    """
+    g = np.asarray(g, float)
+    floor = ONSET_FLOOR * float(np.nanmax(np.abs(g))) if g.size else 0.0
+    x, g = np.asarray(x, float), np.cbrt(np.where(g > floor, g, 0.0)) ** 2
+    if not np.isfinite(p_nodes):
+        return np.nan
+    if beyond:
+        cand = np.nonzero((x > p_nodes) & (g > 0))[0]
+        if cand.size == 0 or cand[0] + 1 >= x.size or cand[0] < 2:
+            return np.nan
+        j, k = int(cand[0]), int(cand[0]) + 1
+    else:
+        cand = np.nonzero((x < p_nodes) & (g > 0))[0]
+        if cand.size == 0 or cand[-1] < 1 or cand[-1] + 2 >= x.size:
+            return np.nan
+        j, k = int(cand[-1]), int(cand[-1]) - 1
+    if not g[k] > g[j] > 0:
+        return np.nan
+    p = x[j] - g[j] * (x[k] - x[j]) / (g[k] - g[j])
+    lo, hi = (x[j - 2], x[j]) if beyond else (x[j], x[j + 2])
+    return float(np.clip(p, lo, hi))
+
+
+def plastic_slip(slip: np.ndarray, s: np.ndarray, micro: float) -> np.ndarray:
+    """|slip| less the penalty's elastic micro-slip |S| ``micro`` (both normalised; ``micro``
+    is q / (stick slope x displacement unit)): zero where the interface sticks."""
+    return np.abs(np.asarray(slip, float)) - np.abs(np.asarray(s, float)) * micro
+
+
+def remote_slope(x: np.ndarray, separation: np.ndarray, b: float, start: float = 2.0,
+                 end: float = 0.9) -> float:
+    """Slope K of the separation far beyond b (the thesis's k_l, eqs 6.9, 7.34).
+
+    The separation of a layer lifting off a half-plane tends to K x + C ln x + const (the
+    half-plane surface under a net force falls as ln x, Flamant): fitted over
+    b + ``start`` <= x <= ``end`` max(x); NaN with fewer than four nodes there.
+    """
+    x, sep = np.asarray(x, float), np.asarray(separation, float)
+    sel = (x >= b + start) & (x <= end * x.max()) & np.isfinite(sep)
+    if not np.isfinite(b) or sel.sum() < 4:
+        return np.nan
+    a = np.c_[np.ones(sel.sum()), x[sel], np.log(x[sel])]
+    coef, *_ = np.linalg.lstsq(a, sep[sel], rcond=None)
+    return float(coef[1])

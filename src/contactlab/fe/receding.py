@@ -16,6 +16,8 @@ uniform     p on |x| <= w, w_hat = 2.5 (8.13), f 0.3  25 x 1, 25 x 25        enc
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import xarray as xr
 
@@ -27,6 +29,7 @@ from contactlab.fe.deck import (
     receding_deck,
     traction_unit,
 )
+from contactlab.fe.frd import read_dat_displacements
 from contactlab.fe.interface import (
     N_TOL,
     SLIP_TOL,
@@ -57,6 +60,23 @@ def _nodal(run: CcxRun, block: str, comp: str, ids: np.ndarray) -> np.ndarray:
     return data.values[comp][[index[int(i)] for i in ids]]
 
 
+def _interface_displacements(run: CcxRun, strip: np.ndarray, block: np.ndarray
+                             ) -> tuple[np.ndarray, np.ndarray]:
+    """(u_x, u_y) of the strip minus the block at the paired interface nodes, from the
+    ``.dat`` (7 digits) when it has both sets, else from the ``.frd``."""
+    printed = read_dat_displacements(run.dat)
+    if "STRIP_BOTTOM" in printed and "BLOCK_TOP" in printed:
+        rows = []
+        for name, ids in (("STRIP_BOTTOM", strip), ("BLOCK_TOP", block)):
+            nodes, values = printed[name]
+            index = {int(n): i for i, n in enumerate(nodes)}
+            rows.append(values[[index[int(i)] for i in ids]])
+        diff = rows[0] - rows[1]
+        return diff[:, 0], diff[:, 1]
+    return (_nodal(run, "DISP", "D1", strip) - _nodal(run, "DISP", "D1", block),
+            _nodal(run, "DISP", "D2", strip) - _nodal(run, "DISP", "D2", block))
+
+
 def interface_profiles(mesh: PlaneMesh, run: CcxRun, model: RecedingModel,
                        thickness: float) -> dict[str, np.ndarray]:
     """x/c, N, S, separation and slip at the interface nodes (normalised, Part III).
@@ -64,18 +84,18 @@ def interface_profiles(mesh: PlaneMesh, run: CcxRun, model: RecedingModel,
     N = -CPRESS and S = CSHEAR1 of the slave (strip) surface: the strip's local tangent
     points along +x, so CSHEAR1 is sigma_xy in the thesis's sign (checked against the
     block's nodal sigma_xy in the tests). Separation and slip are strip minus block
-    displacements of the paired interface nodes.
+    displacements of the paired interface nodes (7 digits, from the ``.dat``).
     """
     x, strip, block = mesh.interface
     q = traction_unit(model, thickness)
     unit = displacement_unit(model, thickness)
+    slip, separation = _interface_displacements(run, strip, block)
     return {
         "x": x / thickness,
         "N": -_nodal(run, "CONTACT", "CPRESS", strip) / q,
         "S": _nodal(run, "CONTACT", "CSHEAR1", strip) / q,
-        "separation": (_nodal(run, "DISP", "D2", strip) - _nodal(run, "DISP", "D2", block))
-        / unit,
-        "slip": (_nodal(run, "DISP", "D1", strip) - _nodal(run, "DISP", "D1", block)) / unit,
+        "separation": separation / unit,
+        "slip": slip / unit,
         "sigma_xy_block": _nodal(run, "STRESS", "SXY", block) / q,
         "sigma_yy_block": _nodal(run, "STRESS", "SYY", block) / q,
     }
@@ -95,16 +115,50 @@ def _var(values, long_name: str, units: str = "1", dims=("x",), **attrs) -> xr.V
     return xr.Variable(dims, np.asarray(values), {"long_name": long_name, "units": units, **attrs})
 
 
+def interface_forces(prof: dict[str, np.ndarray], model: RecedingModel, thickness: float
+                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """x (mm) and the normal (pressing) and tangential nodal forces (N/mm) of the full
+    model's interface tractions: the half model's nodes and their mirror images (N even,
+    S odd in x), trapezoidal weights."""
+    x = prof["x"] * thickness
+    weight = np.zeros_like(x)
+    weight[1:] += 0.5 * np.diff(x)
+    weight[:-1] += 0.5 * np.diff(x)
+    weight[x == 0] *= 2.0  # the node on the plane of symmetry carries both halves
+    q = traction_unit(model, thickness)
+    fn, ft = -prof["N"] * q * weight, prof["S"] * q * weight
+    mirror = x > 0
+    return (np.concatenate([x, -x[mirror]]), np.concatenate([fn, fn[mirror]]),
+            np.concatenate([ft, -ft[mirror]]))
+
+
 def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = "",
                  threads: int = 1, keep: str | None = None) -> xr.Dataset:
-    """Mesh, run and post-process one model; the Dataset of one FE solution."""
+    """Mesh, run and post-process one model; the Dataset of one FE solution.
+
+    With ``farfield`` edges and ``farfield_passes`` > 1 the model is solved again with the
+    half-plane displacements of the previous pass's interface forces on the outer boundary
+    (:mod:`contactlab.fe.farfield`); ``farfield_change`` records how far the last pass
+    moved b and a.
+    """
     model.check()
     geom = geometry_for(model, geom)
     mesh = strip_on_block(geom)
-    deck = receding_deck(mesh, model, geom.h)
+    deck = receding_deck(mesh, model, geom.h, geom.thickness)
     run = run_ccx(deck, job=model.problem, threads=threads, keep=keep)
     prof = interface_profiles(mesh, run, model, geom.thickness)
     b, a = transitions(prof, model)
+    passes = model.farfield_passes if model.edges == "farfield" else 1
+    change = 0.0
+    for _ in range(passes - 1):
+        forces = interface_forces(prof, model, geom.thickness)
+        deck = receding_deck(mesh, replace(model, farfield_forces=forces), geom.h,
+                             geom.thickness)
+        run = run_ccx(deck, job=model.problem, threads=threads, keep=keep)
+        prof = interface_profiles(mesh, run, model, geom.thickness)
+        b_new, a_new = transitions(prof, model)
+        change = float(np.nanmax(np.abs([b_new - b, a_new - a])))
+        b, a = b_new, a_new
     name = STICK_SLIP_NAME[model.problem]
     k, lam = penalty_defaults(model, geom.h)
     x = mesh.interface[0]
@@ -137,6 +191,8 @@ def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = ""
             "equilibrium_error": _var(carried / applied - 1.0,
                                       "interface normal force over applied load minus 1",
                                       dims=()),
+            "farfield_change": _var(change, "largest change of b/c and a/c in the last "
+                                    "far-field pass (0 without one)", dims=()),
             "max_penetration": _var(float(max(0.0, -np.min(prof["separation"]))),
                                     "largest penalty penetration (normalised like separation)",
                                     dims=()),
@@ -149,7 +205,8 @@ def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = ""
         strip_length_mm=geom.length, strip_thickness_mm=geom.thickness,
         block_depth_mm=geom.depth, x_fine_mm=geom.x_fine, layer_rows=geom.layer_rows,
         growth=geom.growth, penalty_N_per_mm3=k, stick_slope_N_per_mm3=lam,
-        load_increments=model.increments, element_types="CPE4 (strip), CPE4 + CPE3 (block)",
+        load_increments=model.increments, farfield_passes=passes,
+        element_types="CPE4 (strip), CPE4 + CPE3 (block)",
         contact="surface-to-surface penalty, strip slave, block master, Coulomb friction",
         n_tol=N_TOL, slip_tol=SLIP_TOL, solver=f"CalculiX ccx {ccx_version()}",
         converged=int(run.sta["final_time"] >= 1.0 - 1e-9),
