@@ -28,6 +28,8 @@ rule fe_receding:
         level=r"[A-Za-z0-9]+",
     params:
         args=lambda wc: rulehelpers.receding_args(FE, wc.problem, wc.level),
+    # long jobs first, so that none of them starts last (greedy scheduler)
+    priority: 10
     log:
         logs("fe/receding_{problem}_{level}.log"),
     benchmark:

@@ -39,6 +39,8 @@ rule receding_gap_chunk:
             RECEDING["refine_max_n"] if int(wc.n) == RECEDING["n"] else int(wc.n)
         ),
         continuation=["--continuation"] if RECEDING["continuation"] else ["--no-continuation"],
+    # long jobs first, so that none of them starts last (greedy scheduler)
+    priority: 10
     log:
         logs("receding/gap_N{n}_{chunk}.log"),
     benchmark:
@@ -219,6 +221,8 @@ rule receding_line_chunk:
         stick_zone_limit=LINE["stick_zone_limit"],
         refine_max_n=LINE["refine_max_n"],
         continuation=["--continuation"] if LINE["continuation"] else ["--no-continuation"],
+    # long jobs first, so that none of them starts last (greedy scheduler)
+    priority: 10
     log:
         logs("receding/line_{chunk}.log"),
     benchmark:
