@@ -11,7 +11,7 @@ from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
 from contactlab.config_check import ConfigError, check_config, load_yaml_file
-from contactlab.rulehelpers import demo_data_files
+from contactlab.rulehelpers import demo_data_files, table_files
 from contactlab.study import changes, coerce, export_provenance, logs_dir, results_dir
 from contactlab.testsheet import TestSheetError, check_data_files, check_rows, read_test_sheet
 
@@ -88,12 +88,12 @@ REPORT_SECTIONS = []
 def report_tables(category, *csv):
     """Report tables for Snakemake's report (CSV, shown as tables under ``category``), each
     with the Markdown copy :func:`contactlab.io.write_table` writes beside it."""
-    tables = []
-    for name in csv:
-        table = report(name, category=category, subcategory="Tables",
-                       labels={"table": Path(name).stem})
-        tables += [table, str(Path(name).with_suffix(".md"))]
-    return tables
+
+    def annotated(path):
+        return report(path, category=category, subcategory="Tables",
+                      labels={"table": Path(path).stem})
+
+    return [path if path.endswith(".md") else annotated(path) for path in table_files(*csv)]
 
 
 wildcard_constraints:
