@@ -117,14 +117,8 @@ def zones_figure(sweeps: list[xr.Dataset], f_fixed: float, w_fixed: float) -> pl
 
 def densities_figure(profile: xr.Dataset) -> plt.Figure:
     """Fig. 5.6: climb (top) and glide (bottom) densities."""
-    fig, (top, bottom) = plt.subplots(2, 1, figsize=(6, 5), sharex=True)
-    top.plot(profile["x"], profile["climb_density"], "C3")
-    top.set_ylabel("B_y 2mu/((kappa+1)p)")
-    bottom.plot(profile["x"], profile["glide_density"], "C0")
-    bottom.set_ylabel("B_x 2mu/((kappa+1)p)")
-    bottom.set_xlabel("x/c")
-    top.set_title(_profile_title(profile), fontsize=9)
-    return fig
+    return _two_panels(profile, ("climb_density", "B_y 2mu/((kappa+1)p)"),
+                       ("glide_density", "B_x 2mu/((kappa+1)p)"))
 
 
 def tractions_figure(profile: xr.Dataset) -> plt.Figure:
@@ -146,11 +140,17 @@ def tractions_figure(profile: xr.Dataset) -> plt.Figure:
 
 def displacements_figure(profile: xr.Dataset) -> plt.Figure:
     """Fig. 5.8: separation v2 - v1 (top) and slip u2 - u1 (bottom)."""
+    return _two_panels(profile, ("separation", "(v2 - v1) 2mu/((kappa+1)pc)"),
+                       ("slip", "(u2 - u1) 2mu/((kappa+1)pc)"))
+
+
+def _two_panels(profile: xr.Dataset, top_curve: tuple[str, str],
+                bottom_curve: tuple[str, str]) -> plt.Figure:
+    """Two profile variables (name, axis label) over x/c, red above and blue below."""
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(6, 5), sharex=True)
-    top.plot(profile["x"], profile["separation"], "C3")
-    top.set_ylabel("(v2 - v1) 2mu/((kappa+1)pc)")
-    bottom.plot(profile["x"], profile["slip"], "C0")
-    bottom.set_ylabel("(u2 - u1) 2mu/((kappa+1)pc)")
+    for ax, (name, label), colour in ((top, top_curve, "C3"), (bottom, bottom_curve, "C0")):
+        ax.plot(profile["x"], profile[name], colour)
+        ax.set_ylabel(label)
     bottom.set_xlabel("x/c")
     top.set_title(_profile_title(profile), fontsize=9)
     return fig
