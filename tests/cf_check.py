@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Iterable
 from pathlib import Path
 
+import netCDF4
 from compliance_checker.base import BaseCheck
 from compliance_checker.runner import CheckSuite
 
@@ -27,3 +29,19 @@ def cf_errors(path: Path) -> list[str]:
     # a finding about the file; only this one is known
     assert set(crashed) <= {"check_coordinate_variables_strict_monotonicity"}, crashed
     return errors
+
+
+def one_per_layout(paths: Iterable[Path]) -> list[Path]:
+    """The first file of each layout (variables with their dimensions, types and attribute
+    names, and the global attribute names): files of one layout come from one writer, and
+    the checker's "must" checks look at that layout (~0.8 s a file, 92 files, 31 layouts)."""
+    chosen: dict[tuple, Path] = {}
+    for path in sorted(paths):
+        with netCDF4.Dataset(path) as ds:
+            layout = (
+                tuple(sorted((name, var.dimensions, str(var.dtype), tuple(sorted(var.ncattrs())))
+                             for name, var in ds.variables.items())),
+                tuple(sorted(ds.ncattrs())),
+            )
+        chosen.setdefault(layout, path)
+    return list(chosen.values())

@@ -16,7 +16,6 @@ import json
 import re
 import subprocess
 from collections.abc import Callable, Iterator, Mapping
-from concurrent.futures import ThreadPoolExecutor
 from typing import Any
 
 #: Rules a parameter of each branch may rerun (prefixes), besides the report page.
@@ -131,29 +130,34 @@ def planned(output: str) -> tuple[set[str], str]:
 
 
 def check_all(config: dict, schema: Mapping[str, Any],
-              dry_run: Callable[[str], subprocess.CompletedProcess[str]]) -> list[str]:
-    """Walk every parameter; return one line per parameter that fails its check."""
+              dry_runs: Callable[[list[str]], list[subprocess.CompletedProcess[str]]]
+              ) -> list[str]:
+    """Walk every parameter; return one line per parameter that fails its check.
+
+    ``dry_runs`` takes the ``--config`` overrides and returns the dry runs' outputs.
+    """
     cases = list(walk(config, schema))
-
-    def one(case: tuple[str, list[str], Any, str]) -> str | None:
-        branch, keys, value, text = case
-        section = _set(config, keys, value)[branch]
-        run = dry_run(f"{branch}={json.dumps(section)}")
-        name = ".".join(keys)
-        if run.returncode != 0:
-            return f"{name}: dry run failed: {(run.stdout + run.stderr)[-300:]}"
-        rules, commands = planned(run.stdout)
-        own = {r for r in rules if r.startswith(BRANCH_RULES[branch])}
-        other = rules - own - set(ALWAYS)
-        if not own:
-            return f"{name} = {value!r}: no job reruns (is it passed to a rule?)"
-        if other:
-            return f"{name}: reruns jobs of other branches: {sorted(other)}"
-        if text and text not in commands:
-            return f"{name} = {value!r}: '{text}' on no rerun command line"
-        return None
-
-    with ThreadPoolExecutor(max_workers=2) as pool:
-        results = list(pool.map(one, cases))
     assert len(cases) > 40, f"only {len(cases)} parameters walked"
-    return [r for r in results if r]
+    runs = dry_runs([f"{branch}={json.dumps(_set(config, keys, value)[branch])}"
+                     for branch, keys, value, _ in cases])
+    failures = (_failure(case, run) for case, run in zip(cases, runs, strict=True))
+    return [failure for failure in failures if failure]
+
+
+def _failure(case: tuple[str, list[str], Any, str],
+             run: subprocess.CompletedProcess[str]) -> str | None:
+    """Why a parameter's dry run fails the check, or None."""
+    branch, keys, value, text = case
+    name = ".".join(keys)
+    if run.returncode != 0:
+        return f"{name}: dry run failed: {(run.stdout + run.stderr)[-300:]}"
+    rules, commands = planned(run.stdout)
+    own = {r for r in rules if r.startswith(BRANCH_RULES[branch])}
+    other = rules - own - set(ALWAYS)
+    if not own:
+        return f"{name} = {value!r}: no job reruns (is it passed to a rule?)"
+    if other:
+        return f"{name}: reruns jobs of other branches: {sorted(other)}"
+    if text and text not in commands:
+        return f"{name} = {value!r}: '{text}' on no rerun command line"
+    return None

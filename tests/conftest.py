@@ -44,23 +44,49 @@ def workflow_copy(tmp_path: Path) -> Path:
     return copy_workflow(tmp_path)
 
 
-def run_snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]:
-    """Snakemake on the end-to-end config in ``workdir``, this environment first on PATH."""
+#: greedy scheduling as workflow/profiles/default sets; --configfile takes the further
+#: config files a test passes first in its arguments
+SNAKEMAKE_ARGS = ("--scheduler", "greedy", "--configfile", "config/e2e.yaml")
+
+
+def _environment() -> dict[str, str]:
+    """This environment first on PATH (the rules call ``contactlab``)."""
     env = dict(os.environ)
     env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
+    return env
+
+
+def run_snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]:
+    """Snakemake on the end-to-end config in ``workdir``."""
     return subprocess.run(
-        # greedy scheduling as workflow/profiles/default sets; --configfile takes the
-        # further config files a test passes first in ``args``
-        [sys.executable, "-m", "snakemake", "--scheduler", "greedy",
-         "--configfile", "config/e2e.yaml", *args],
-        cwd=workdir, env=env, capture_output=True, text=True, check=False,
+        [sys.executable, "-m", "snakemake", *SNAKEMAKE_ARGS, *args],
+        cwd=workdir, env=_environment(), capture_output=True, text=True, check=False,
     )
+
+
+def run_snakemake_many(workdir: Path, commands: list[list[str]]
+                       ) -> list[subprocess.CompletedProcess[str]]:
+    """:func:`run_snakemake` for each argument list, in forks of one process
+    (tests/dry_runs.py); stderr is merged into stdout."""
+    batch = subprocess.run(
+        [sys.executable, str(REPO / "tests" / "dry_runs.py"), str(workdir)],
+        input=json.dumps([[*SNAKEMAKE_ARGS, *args] for args in commands]),
+        env=_environment(), capture_output=True, text=True, check=True,
+    )
+    return [subprocess.CompletedProcess(args, run["returncode"], run["stdout"], "")
+            for args, run in zip(commands, json.loads(batch.stdout), strict=True)]
 
 
 @pytest.fixture
 def snakemake() -> Callable[..., subprocess.CompletedProcess[str]]:
     """:func:`run_snakemake`, for tests that drive the workflow."""
     return run_snakemake
+
+
+@pytest.fixture
+def snakemake_many() -> Callable[..., list[subprocess.CompletedProcess[str]]]:
+    """:func:`run_snakemake_many`, for tests that plan many variants of one workflow."""
+    return run_snakemake_many
 
 
 @pytest.fixture(scope="session")

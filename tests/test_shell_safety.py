@@ -99,16 +99,11 @@ def _write_sheets(work: Path, prefix: str, rename: dict[str, str]) -> None:
 
 
 @pytest.mark.slow
-def test_hostile_paths_are_taken_literally(workflow_copy: Path, snakemake) -> None:
+def test_hostile_paths_are_taken_literally(workflow_copy: Path, e2e_run: Path,
+                                           snakemake) -> None:
+    """The session's end-to-end run (same config) holds the plainly named originals."""
     work = workflow_copy
-    _write_sheets(work, "plain", {})
-    plain = {"tests": "config/plain_tests.csv", "surfaces": {"sheet": "config/plain_surfaces.csv"}}
-    (work / "config" / "plain.yaml").write_text(
-        f"tests: {plain['tests']}\nsurfaces:\n  sheet: {plain['surfaces']['sheet']}\n")
-    targets = ["results/stiffness/RU1.nc", "results/surfaces/seq.nc"]
-    run = snakemake(work, "config/plain.yaml", "-j2", "--", *targets)
-    assert run.returncode == 0, run.stderr[-3000:]
-
+    _write_sheets(work, "plain", {})  # the paths to copy (the demo data of e2e_run)
     # copy the plain inputs into a hostile folder with hostile file names
     rename = {}
     folder = Path("user data", HOSTILE)
@@ -122,22 +117,27 @@ def test_hostile_paths_are_taken_literally(workflow_copy: Path, snakemake) -> No
         source = Path(original)
         target = folder / f"{source.parent.name} {HOSTILE} {source.name}"
         (work / target.parent).mkdir(parents=True, exist_ok=True)
-        shutil.copy2(work / source, work / target)
+        shutil.copy2(e2e_run / source, work / target)
         rename[original] = str(target)
     _write_sheets(work, "hostile", rename)
     (work / "config" / "hostile.yaml").write_text(
         "study: hostile\ntests: config/hostile_tests.csv\n"
         "surfaces:\n  sheet: config/hostile_surfaces.csv\n")
+    targets = ["stiffness/RU1.nc", "surfaces/seq.nc"]
     run = snakemake(work, "config/hostile.yaml", "-j2", "--",
-                    *[t.replace("results/", "results/studies/hostile/") for t in targets])
+                    *[f"results/studies/hostile/{t}" for t in targets])
     assert run.returncode == 0, run.stderr[-3000:]
 
     assert not list(work.rglob("PWNED")) and not list(Path.cwd().glob("PWNED"))
-    for target in targets:
-        hostile = target.replace("results/", "results/studies/hostile/")
-        with xr.open_dataset(work / target) as a, xr.open_dataset(work / hostile) as b:
-            xr.testing.assert_equal(a.load(), b.load())  # values and coordinates, not attrs
+    hostile = work / "results" / "studies" / "hostile"
+    plain = e2e_run / "results"
+    with xr.open_dataset(plain / "stiffness" / "RU1.nc") as a, \
+            xr.open_dataset(hostile / "stiffness" / "RU1.nc") as b:
+        xr.testing.assert_equal(a.load(), b.load())  # values and coordinates, not attrs
+    with xr.open_dataset(plain / "surfaces" / "seq.nc") as a, \
+            xr.open_dataset(hostile / "surfaces" / "seq.nc") as b:
+        xr.testing.assert_equal(a.sel(test=["RU1"]).load(), b.load())
     for surface in SURFACES:
-        with xr.open_dataset(work / f"results/surfaces/{surface}.nc") as a, \
-                xr.open_dataset(work / f"results/studies/hostile/surfaces/{surface}.nc") as b:
+        with xr.open_dataset(plain / "surfaces" / f"{surface}.nc") as a, \
+                xr.open_dataset(hostile / "surfaces" / f"{surface}.nc") as b:
             xr.testing.assert_equal(a.load(), b.load())

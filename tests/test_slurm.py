@@ -22,25 +22,20 @@ import xarray as xr
 REPO = Path(__file__).resolve().parents[1]
 SLURM_LOCAL = REPO / ".ci" / "slurm-local"
 
-#: A few jobs of every branch: two gap and two line chunks, one patch and one table
-#: chunk, two BEM grids, one BEM family, one FE model, one stiffness test, the scans.
+#: A few jobs of every branch: two line-load chunks and one table chunk with their gathers,
+#: one BEM family, one FE model, one stiffness test and the texture job.
 TARGETS = [
-    "results/receding/gap.nc",
     "results/receding/line.nc",
-    "results/receding/uniform.nc",
     "results/receding/table_parabolic.nc",
-    "results/asperity/grid_bem.nc",
     "results/asperity/bem/coulomb.nc",
     "results/fe/runs/gap_coarse.nc",
     "results/stiffness/RU1.nc",
     "results/surfaces/texture.nc",
 ]
 #: rules that must have been cluster jobs, and gathers that must have run locally
-REMOTE_RULES = {"receding_gap_chunk", "receding_line_chunk", "receding_patch_chunk",
-                "receding_table_chunk", "asperity_grid_bem", "asperity_bem", "fe_receding",
+REMOTE_RULES = {"receding_line_chunk", "receding_table_chunk", "asperity_bem", "fe_receding",
                 "stiffness_process", "surfaces_texture"}
-LOCAL_RULES = {"receding_gap_gather", "receding_line_gather", "receding_patch_gather",
-               "receding_table_gather", "asperity_grid_bem_gather"}
+LOCAL_RULES = {"receding_line_gather", "receding_table_gather"}
 
 
 def _slurm_answers() -> bool:

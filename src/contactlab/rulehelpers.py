@@ -188,17 +188,25 @@ def ddt_args(config: dict, problem: str) -> list[str]:
     return []
 
 
+#: The module of the receding solver each FE problem is checked against (the functions
+#: are ``contactlab.fe.ddt.SOLVERS``; named here so the DAG does not import the solvers).
+DDT_SOLVER_MODULES = {
+    "gap": "contactlab.receding.gap.solver",
+    "line": "contactlab.receding.liftoff.line",
+    "uniform": "contactlab.receding.liftoff.patch",
+}
+
+
 def ddt_sources(problem: str, root: str = ".") -> list[str]:
-    """The source file of the receding solver the comparison calls (``fe.ddt.SOLVERS``).
+    """The source file of the receding solver the comparison calls.
 
     As an input of ``fe_compare`` it makes the comparison rerun when the solver changes.
     Relative to ``root`` (the working directory) when the package lives below it.
     """
-    import inspect
+    from importlib.util import find_spec
 
-    from contactlab.fe.ddt import SOLVERS
-
-    path = Path(inspect.getsourcefile(SOLVERS[problem]) or "").resolve()
+    spec = find_spec(DDT_SOLVER_MODULES[problem])
+    path = Path(spec.origin if spec and spec.origin else "").resolve()
     try:
         return [path.relative_to(Path(root).resolve()).as_posix()]
     except ValueError:

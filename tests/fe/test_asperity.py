@@ -66,7 +66,7 @@ def test_reaction_totals_parser() -> None:
 @pytest.mark.slow
 def test_coarse_plastic_asperity_run_and_gather(tmp_path: Path) -> None:
     out = tmp_path / "sy3000.nc"
-    args = ["fe", "asperity", "--yield-stress", "3000", "--h-contact", "0.6", "--h-far", "6",
+    args = ["fe", "asperity", "--yield-stress", "3000", "--h-contact", "0.9", "--h-far", "6",
             "--half-width", "8", "--height", "8", "--normal-increments", "1",
             "--tangential-increments", "2", "--out", str(out)]
     assert main(args) == 0

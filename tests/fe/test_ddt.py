@@ -9,12 +9,15 @@ from contactlab.fe.ddt import SOLVERS, reference
 from contactlab.receding.gap.solver import solve_gap
 from contactlab.receding.liftoff.line import solve_line
 from contactlab.receding.liftoff.patch import solve_patch
+from contactlab.rulehelpers import DDT_SOLVER_MODULES
 
 X = np.linspace(0.0, 4.0, 9)
 
 
 def test_each_problem_has_its_solver() -> None:
     assert SOLVERS == {"gap": solve_gap, "line": solve_line, "uniform": solve_patch}
+    # the workflow names the same modules as inputs without importing them
+    assert {p: f.__module__ for p, f in SOLVERS.items()} == DDT_SOLVER_MODULES
 
 
 def test_line_reference_uses_the_given_lambda_and_e() -> None:

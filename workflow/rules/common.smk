@@ -6,11 +6,10 @@
 
 from pathlib import Path
 
-import yaml
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
-from contactlab.config_check import ConfigError, check_config, load_yaml_file
+from contactlab.config_check import ConfigError, check_config, load_yaml_file, parse_yaml
 from contactlab.rulehelpers import demo_data_files, table_files
 from contactlab.study import changes, coerce, export_provenance, logs_dir, results_dir
 from contactlab.testsheet import TestSheetError, check_data_files, check_rows, read_test_sheet
@@ -21,8 +20,7 @@ def _config_files():
 
 
 def _load_yaml(path):
-    with open(Path(workflow.basedir) / path, encoding="utf-8") as stream:
-        return yaml.safe_load(stream)
+    return parse_yaml((Path(workflow.basedir) / path).read_text(encoding="utf-8"))
 
 
 
