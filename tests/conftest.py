@@ -38,6 +38,24 @@ def copy_workflow(dest: Path) -> Path:
     return dest
 
 
+#: The thesis tests of the session's end-to-end run: one per specimen family (the other six
+#: add 18 jobs of the same code, ~50 CPU-s, to every test session).
+E2E_TESTS = ("RU1", "SU2", "S3")
+
+
+def limit_test_sheet(work: Path, tests: tuple[str, ...] = E2E_TESTS) -> Path:
+    """Point the copy's end-to-end config at a sheet of ``tests`` only; return ``work``."""
+    lines = (work / "config" / "tests.csv").read_text(encoding="utf-8").splitlines()
+    kept = [lines[0], *(line for line in lines[1:] if line.split(",", 1)[0] in tests)]
+    (work / "config" / "e2e_tests.csv").write_text("\n".join(kept) + "\n", encoding="utf-8")
+    config = work / "config" / "e2e.yaml"
+    text = config.read_text(encoding="utf-8")
+    assert "tests: config/tests.csv\n" in text
+    config.write_text(text.replace("tests: config/tests.csv\n", "tests: config/e2e_tests.csv\n"),
+                      encoding="utf-8")
+    return work
+
+
 @pytest.fixture
 def workflow_copy(tmp_path: Path) -> Path:
     """A fresh copy of the workflow in a temporary directory."""
@@ -78,6 +96,12 @@ def run_snakemake_many(workdir: Path, commands: list[list[str]]
 
 
 @pytest.fixture
+def e2e_copy(workflow_copy: Path) -> Path:
+    """A fresh copy configured as the session's end-to-end run (:func:`limit_test_sheet`)."""
+    return limit_test_sheet(workflow_copy)
+
+
+@pytest.fixture
 def snakemake() -> Callable[..., subprocess.CompletedProcess[str]]:
     """:func:`run_snakemake`, for tests that drive the workflow."""
     return run_snakemake
@@ -91,14 +115,20 @@ def snakemake_many() -> Callable[..., list[subprocess.CompletedProcess[str]]]:
 
 @pytest.fixture(scope="session")
 def e2e_run(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """The end-to-end study (tests/e2e_config.yaml) built once per test session.
+    """The end-to-end study (tests/e2e_config.yaml, tests :data:`E2E_TESTS`) built once
+    per test session.
 
     ``snakemake -j2 all`` in a copy of the workflow, shared by every test that reads its
     results (end-to-end checks, byte-identical rebuilds, the Slurm run) and by every xdist
     worker: the first to ask builds it under a file lock, the others wait and reuse it.
     Tests run side by side on it: they may add files (a named study under results/studies,
     a report archive) but must not rewrite results or edit inputs (copy it for that).
+    ``CONTACTLAB_E2E_RUN=<folder>`` names a finished run to use instead (a developer's
+    shortcut when changing only the tests that read it).
     """
+    reuse = os.environ.get("CONTACTLAB_E2E_RUN")
+    if reuse:  # a finished run of this tree, for iterating on the tests that read it
+        return Path(reuse)
     root = tmp_path_factory.getbasetemp()
     if os.environ.get("PYTEST_XDIST_WORKER"):
         root = root.parent  # shared by the workers of this session
@@ -108,7 +138,7 @@ def e2e_run(tmp_path_factory: pytest.TempPathFactory) -> Path:
         if not status.exists():
             shutil.rmtree(work, ignore_errors=True)
             work.mkdir()
-            run = run_snakemake(copy_workflow(work), "-j2", "all")
+            run = run_snakemake(limit_test_sheet(copy_workflow(work)), "-j2", "all")
             status.write_text(json.dumps({"returncode": run.returncode,
                                           "stderr": run.stderr[-3000:]}))
     built = json.loads(status.read_text())

@@ -65,9 +65,10 @@ def test_cf_checker_finds_a_fill_value_on_a_coordinate(tmp_path: Path) -> None:
 
 
 @pytest.mark.slow
-def test_small_targets_rebuild_byte_identical(workflow_copy: Path, e2e_run: Path,
+def test_small_targets_rebuild_byte_identical(e2e_copy: Path, e2e_run: Path,
                                               snakemake) -> None:
     """The targets built on their own, in another directory, equal the end-to-end run's."""
+    workflow_copy = e2e_copy
     run = snakemake(workflow_copy, "-j2", *TARGETS)
     assert run.returncode == 0, run.stderr[-3000:]
     files = _files(workflow_copy)

@@ -83,8 +83,8 @@ def _slurm_jobs(log: str) -> dict[str, str]:
 
 @pytest.mark.slow
 def test_study_through_slurm_equals_the_local_run(
-        workflow_copy: Path, slurm_cluster, snakemake, e2e_run: Path) -> None:
-    local, cluster = e2e_run, workflow_copy  # the local run: the session's end-to-end run
+        e2e_copy: Path, slurm_cluster, snakemake, e2e_run: Path) -> None:
+    local, cluster = e2e_run, e2e_copy  # the local run: the session's end-to-end run
     # the profile as users run it; only the status polls are made quicker for the test
     run = snakemake(cluster, "--profile", "workflow/profiles/slurm",
                     "--slurm-init-seconds-before-status-checks", "2",
