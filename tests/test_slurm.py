@@ -85,6 +85,10 @@ def _slurm_jobs(log: str) -> dict[str, str]:
 def test_study_through_slurm_equals_the_local_run(
         e2e_copy: Path, slurm_cluster, snakemake, e2e_run: Path) -> None:
     local, cluster = e2e_run, e2e_copy  # the local run: the session's end-to-end run
+    # the demo data are inputs here, not subjects: taken from the local run (newer than
+    # everything they depend on, so not rebuilt), they spare the chain two Slurm rounds
+    for demo in ("results/demo", "results/surfaces/demo_scans"):
+        shutil.copytree(local / demo, cluster / demo)
     # the profile as users run it; only the status polls are made quicker for the test
     run = snakemake(cluster, "--profile", "workflow/profiles/slurm",
                     "--slurm-init-seconds-before-status-checks", "2",
