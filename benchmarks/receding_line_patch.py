@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import time
 
-from contactlab.receding.core._blas import single_thread
+from contactlab.blas import single_thread
 from contactlab.receding.liftoff.line import solve_line
 from contactlab.receding.liftoff.loading import make_load
 from contactlab.receding.liftoff.patch import solve_patch

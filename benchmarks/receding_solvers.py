@@ -25,7 +25,7 @@ import time
 from collections.abc import Callable
 from pathlib import Path
 
-from contactlab.receding.core._blas import single_thread
+from contactlab.blas import single_thread
 from contactlab.receding.gap.solver import solve_gap
 from contactlab.receding.liftoff.line import solve_line
 from contactlab.receding.liftoff.patch import solve_patch

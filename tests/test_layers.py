@@ -4,9 +4,9 @@ The map (also in docs/CONVENTIONS.md, "Layers"), lowest first; a module may impo
 of its own layer and of the layers below it, never above:
 
 0. ground floor: ``contactlab`` itself, ``io``, ``study``, ``published``, ``testsheet``,
-   ``csvlines``, ``config_check``, ``config_docs``, ``setup_check``, ``progress`` -- files,
-   provenance, the thesis's transcribed tables, the test sheet, the set-up's system
-   packages, the log format and progress reports;
+   ``csvlines``, ``config_check``, ``config_docs``, ``setup_check``, ``progress``, ``blas``
+   -- files, provenance, the thesis's transcribed tables, the test sheet, the set-up's
+   system packages, the log format and progress reports, one BLAS thread;
 1. science: every module of a branch package (``surfaces``, ``stiffness``, ``asperity``,
    ``receding``, ``fe``, ``prediction`` and their sub-packages) that is not a report builder
    or a command line -- numbers and files in, numbers and datasets out;
@@ -33,7 +33,7 @@ PACKAGE = SRC / "contactlab"
 GROUND = {"contactlab", "contactlab.__init__", "contactlab.io", "contactlab.study",
           "contactlab.published", "contactlab.testsheet", "contactlab.csvlines",
           "contactlab.config_check", "contactlab.config_docs", "contactlab.setup_check",
-          "contactlab.progress"}
+          "contactlab.progress", "contactlab.blas"}
 BRANCHES = ("surfaces", "stiffness", "asperity", "receding", "fe", "prediction")
 LAYERS = ("ground floor", "science", "report toolkit", "report builder", "command line",
           "workflow")

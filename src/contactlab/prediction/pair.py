@@ -27,11 +27,11 @@ import numpy as np
 import xarray as xr
 from numpy.typing import NDArray
 
+from contactlab.blas import single_thread
 from contactlab.prediction.composite import Composite
 from contactlab.prediction.normal import NormalSolution, solve_normal
 from contactlab.prediction.operators import PairCompliance
 from contactlab.prediction.tangential import normal_set, partial_slip, stuck
-from contactlab.receding.core._blas import single_thread
 
 Array = NDArray[np.float64]
 

@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy import linalg, optimize
 
-from contactlab.receding.core._blas import single_thread
+from contactlab.blas import single_thread
 
 
 @dataclass

@@ -18,7 +18,7 @@ import time
 
 import numpy as np
 
-from contactlab.receding.core._blas import single_thread
+from contactlab.blas import single_thread
 from contactlab.receding.core.dislocations import DensityInterval
 from contactlab.receding.core.quadrature import interpolation_matrix
 from contactlab.receding.core.solve import LinearSystem, find_transitions

@@ -74,7 +74,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from contactlab.receding.core._blas import single_thread
+from contactlab.blas import single_thread
 from contactlab.receding.core.dislocations import DensityInterval
 from contactlab.receding.core.quadrature import interpolation_matrix, legendre
 from contactlab.receding.core.solution import (

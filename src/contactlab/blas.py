@@ -1,9 +1,10 @@
-"""One BLAS thread while the receding solvers run their many small dense solves.
+"""One BLAS thread while a solver runs many small dense solves or FFTs.
 
-The root finders solve hundreds of systems of 100-200 unknowns; BLAS threads only add
-overhead at that size and, on a machine busy with other jobs, made each solve 50-100x
-slower (measured: numpy.linalg.solve of 200 x 200 took 60-120 ms instead of 0.5 ms at a
-load average of 5 on 2 cores). Parallelism comes from running sweep jobs side by side.
+The receding root finders solve hundreds of systems of 100-200 unknowns, the rough-contact
+prediction convolves grids of a few hundred cells a side; BLAS threads only add overhead
+at that size and, on a machine busy with other jobs, made each solve 50-100x slower
+(measured: numpy.linalg.solve of 200 x 200 took 60-120 ms instead of 0.5 ms at a load
+average of 5 on 2 cores). Parallelism comes from running jobs side by side.
 """
 
 from __future__ import annotations
