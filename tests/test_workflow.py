@@ -56,7 +56,7 @@ def test_workflow_end_to_end(e2e_run: Path, snakemake) -> None:
 
 @pytest.mark.slow
 @pytest.mark.filterwarnings("ignore:The ioos_sos checker:DeprecationWarning")
-def test_every_result_file_passes_a_cf_checker(e2e_run: Path) -> None:
+def test_every_layout_of_result_file_passes_a_cf_checker(e2e_run: Path) -> None:
     """Every layout of netCDF file the run writes passes a real CF checker (no failed
     "must" check)."""
     netcdf = sorted(p for p in (e2e_run / "results").rglob("*.nc") if "studies" not in p.parts)
