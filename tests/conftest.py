@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import atexit
 import fcntl
 import json
 import os
@@ -74,25 +75,45 @@ def _environment() -> dict[str, str]:
     return env
 
 
+class _SnakemakeForks:
+    """One tests/snakemake_forks.py process per pytest worker, started at first use."""
+
+    def __init__(self) -> None:
+        self._server: subprocess.Popen[str] | None = None
+
+    def run(self, workdir: Path, commands: list[list[str]], parallel: int = 1
+            ) -> list[subprocess.CompletedProcess[str]]:
+        if self._server is None or self._server.poll() is not None:
+            self._server = subprocess.Popen(
+                [sys.executable, str(REPO / "tests" / "snakemake_forks.py")],
+                stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=_environment())
+            atexit.register(self._server.kill)
+        assert self._server.stdin is not None and self._server.stdout is not None
+        argvs = [[*SNAKEMAKE_ARGS, *args] for args in commands]
+        self._server.stdin.write(json.dumps({"cwd": str(workdir), "env": _environment(),
+                                             "commands": argvs, "parallel": parallel}) + "\n")
+        self._server.stdin.flush()
+        answer = self._server.stdout.readline()
+        if not answer:
+            raise RuntimeError("tests/snakemake_forks.py ended; its errors are above")
+        return [subprocess.CompletedProcess(["snakemake", *argv], run["returncode"],
+                                            run["stdout"], run["stderr"])
+                for argv, run in zip(argvs, json.loads(answer), strict=True)]
+
+
+_FORKS = _SnakemakeForks()
+
+
 def run_snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]:
-    """Snakemake on the end-to-end config in ``workdir``."""
-    return subprocess.run(
-        [sys.executable, "-m", "snakemake", *SNAKEMAKE_ARGS, *args],
-        cwd=workdir, env=_environment(), capture_output=True, text=True, check=False,
-    )
+    """Snakemake on the end-to-end config in ``workdir`` (a fork of a process that has
+    Snakemake loaded: tests/snakemake_forks.py)."""
+    return _FORKS.run(workdir, [list(args)])[0]
 
 
 def run_snakemake_many(workdir: Path, commands: list[list[str]]
                        ) -> list[subprocess.CompletedProcess[str]]:
-    """:func:`run_snakemake` for each argument list, in forks of one process
-    (tests/dry_runs.py); stderr is merged into stdout."""
-    batch = subprocess.run(
-        [sys.executable, str(REPO / "tests" / "dry_runs.py"), str(workdir)],
-        input=json.dumps([[*SNAKEMAKE_ARGS, *args] for args in commands]),
-        env=_environment(), capture_output=True, text=True, check=True,
-    )
-    return [subprocess.CompletedProcess(args, run["returncode"], run["stdout"], "")
-            for args, run in zip(commands, json.loads(batch.stdout), strict=True)]
+    """:func:`run_snakemake` for each argument list, two at a time."""
+    return _FORKS.run(workdir, commands, parallel=2)
 
 
 @pytest.fixture

@@ -56,20 +56,12 @@ def test_arguments_and_file_lists(repo: Path) -> None:
     assert fe_wf.convergence_files({"enabled": False}) == []
 
 
-def test_asperity_opt_in_plans_its_jobs(workflow_copy: Path) -> None:
+def test_asperity_opt_in_plans_its_jobs(workflow_copy: Path, snakemake) -> None:
     """With fe.asperity.enabled the DAG gets one ccx job per yield stress plus the elastic."""
-    import os
-    import subprocess
-    import sys
-
-    env = dict(os.environ)
-    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
     (workflow_copy / "config" / "asperity_on.yaml").write_text(
         "fe:\n  asperity:\n    enabled: true\n    yield_stress: [3000]\n")
-    run = subprocess.run(
-        [sys.executable, "-m", "snakemake", "--configfile", "config/e2e.yaml",
-         "config/asperity_on.yaml", "-n", "--", "results/report/sections/70_fe.html"],
-        cwd=workflow_copy, env=env, capture_output=True, text=True, check=False)
+    run = snakemake(workflow_copy, "config/asperity_on.yaml", "-n", "--",
+                    "results/report/sections/70_fe.html")
     assert run.returncode == 0, run.stderr[-2000:]
     assert "results/fe/asperity/sy0.nc" in run.stdout
     assert "results/fe/asperity/sy3000.nc" in run.stdout
