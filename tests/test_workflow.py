@@ -115,8 +115,9 @@ def check_named_study_beside_default(work: Path, snakemake) -> None:
         "study: e2e_study\nreceding:\n  line: {lambda: 4.0}\n  patches:\n    tables:\n"
         "      ramp: {x: [0, 1], p: [1, 0.5]}\n")
     study = "results/studies/e2e_study/"
+    # (a named study of the stiffness and prediction branches: tests/prediction/test_user_pair.py)
     targets = [f"{study}receding/line.nc", f"{study}receding/profiles/line_f0.5.nc",
-               f"{study}receding/table_ramp.nc", f"{study}stiffness/RU1.nc",
+               f"{study}receding/table_ramp.nc",
                f"{study}report/sections/51_receding_line_patch.html"]
     run = snakemake(work, "config/study.yaml", "-j2", "--", *targets)
     assert run.returncode == 0, run.stderr[-3000:]
