@@ -69,7 +69,8 @@ SNAKEMAKE_ARGS = ("--scheduler", "greedy", "--configfile", "config/e2e.yaml")
 
 
 def _environment() -> dict[str, str]:
-    """This environment first on PATH (the rules call ``contactlab``)."""
+    """This environment first on PATH (the rules call ``contactlab``); each request to
+    the fork server carries it, so a test's changes to os.environ reach its command."""
     env = dict(os.environ)
     env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
     return env
@@ -86,7 +87,7 @@ class _SnakemakeForks:
         if self._server is None or self._server.poll() is not None:
             self._server = subprocess.Popen(
                 [sys.executable, str(REPO / "tests" / "snakemake_forks.py")],
-                stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True, env=_environment())
+                stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
             atexit.register(self._server.kill)
         assert self._server.stdin is not None and self._server.stdout is not None
         argvs = [[*SNAKEMAKE_ARGS, *args] for args in commands]

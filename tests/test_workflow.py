@@ -214,7 +214,7 @@ def test_study_files_validate_and_plan_under_their_folder(workflow_copy: Path, r
                                           for path in studies])
     for path, run in zip(studies, runs, strict=True):
         name = path.stem
-        assert run.returncode == 0, (name, run.stdout[-3000:])
+        assert run.returncode == 0, (name, run.stderr[-3000:])
         outputs = re.findall(r"^\s+output: (.+)$", run.stdout, re.M)
         files = [f for line in outputs for f in line.split(", ")]
         shared = ("results/demo/", "results/surfaces/demo_scans/")
