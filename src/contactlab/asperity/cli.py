@@ -113,9 +113,11 @@ def _grid_bem_gather(args: argparse.Namespace) -> None:
     from contactlab.io import load_datasets, stamp, write_netcdf
 
     parts = load_datasets(args.inputs, "BEM grid")
-    names = {v for ds in parts for v in ds.data_vars}
+    # in order of first appearance: a set's order follows the process's string hash seed,
+    # and the file's variable order (so its bytes) would change from run to run
+    names = dict.fromkeys(v for ds in parts for v in ds.data_vars)
     for i, ds in enumerate(parts):
-        for v in names - set(ds.data_vars):
+        for v in (name for name in names if name not in ds.data_vars):
             ref = next(p[v] for p in parts if v in p.data_vars)
             parts[i][v] = xr.full_like(ref, np.nan, dtype=float)
     order = np.argsort([int(ds["N"]) for ds in parts])
