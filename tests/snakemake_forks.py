@@ -6,7 +6,7 @@ answers each with one JSON line: a list of ``{"returncode", "stdout", "stderr"}`
 order of the commands. Snakemake and the modules the Snakefile imports load once; each
 command runs in a child forked from this process (``parallel`` at a time) with the
 request's folder and environment, so it costs its own parse, DAG and jobs (a dry run of
-the end-to-end study ~0.6 s) instead of a fresh interpreter's ~1.6 s. The tests start one
+the end-to-end study ~0.4 s) instead of a fresh interpreter's ~1.6 s. The tests start one
 such process per pytest worker (``tests/conftest.py``).
 """
 
@@ -81,7 +81,11 @@ def run(cwd: str, env: dict[str, str], commands: list[list[str]], parallel: int 
 
 def serve() -> None:
     """Answer requests from stdin until it closes."""
-    import snakemake.cli  # noqa: F401 - loaded once, inherited by every child
+    import jsonschema  # noqa: F401 - what the config check imports
+    import smart_open  # noqa: F401 - what Snakemake imports when it opens the Snakefile
+    import snakemake.cli
+
+    snakemake.cli.get_argument_parser()  # collects the plugins: registries are singletons
 
     # what workflow/rules/common.smk imports
     import contactlab.config_check
