@@ -9,10 +9,13 @@ import os
 import shutil
 import subprocess
 import sys
+import tempfile
+import threading
 from collections.abc import Callable
 from pathlib import Path
 
 import pytest
+from contactlab_forks import SOCKET_VARIABLE, write_launcher
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -68,22 +71,70 @@ def workflow_copy(tmp_path: Path) -> Path:
 SNAKEMAKE_ARGS = ("--scheduler", "greedy", "--configfile", "config/e2e.yaml")
 
 
-def _environment() -> dict[str, str]:
+class _ContactlabForks:
+    """A tests/contactlab_forks.py server, started at first use, and the ``contactlab``
+    launcher that hands the rules' commands to it."""
+
+    def __init__(self) -> None:
+        self._server: subprocess.Popen[str] | None = None
+        self.folder = Path()
+
+    def folder_and_socket(self) -> tuple[Path, Path]:
+        """The launcher's folder (to put first on PATH) and the server's socket."""
+        if self._server is None or self._server.poll() is not None:
+            self._start()
+        return self.folder, self.folder / "socket"
+
+    def _start(self) -> None:
+        self.folder = Path(tempfile.mkdtemp(prefix="contactlab-forks-"))
+        atexit.register(shutil.rmtree, self.folder, True)
+        write_launcher(self.folder, str(Path(sys.executable).parent / "contactlab"))
+        # a hash seed of its own even if the environment fixes one (test_results_files.py)
+        seed = int.from_bytes(os.urandom(4), "little") % (2**32 - 1) + 1
+        self._server = subprocess.Popen(
+            [sys.executable, str(REPO / "tests" / "contactlab_forks.py"),
+             str(self.folder / "socket")], stdout=subprocess.PIPE, text=True,
+            env={**os.environ, "PYTHONHASHSEED": str(seed)})
+        atexit.register(self._server.kill)
+        assert self._server.stdout is not None
+        if self._server.stdout.readline().strip() != "ready":
+            raise RuntimeError("tests/contactlab_forks.py did not start; its errors "
+                               "are above")
+
+    def close(self) -> None:
+        if self._server is not None:
+            self._server.kill()
+
+
+#: ``CONTACTLAB_REAL_JOBS=1`` runs every job of the tests as a fresh ``contactlab`` process
+REAL_JOBS = os.environ.get("CONTACTLAB_REAL_JOBS", "") not in ("", "0")
+
+
+def _environment(jobs: _ContactlabForks | None) -> dict[str, str]:
     """This environment first on PATH (the rules call ``contactlab``); each request to
-    the fork server carries it, so a test's changes to os.environ reach its command."""
+    the fork server carries it, so a test's changes to os.environ reach its command.
+    With ``jobs`` (and not :data:`REAL_JOBS`), its ``contactlab`` launcher comes first on
+    PATH: each job runs in a fork of a process that has the package loaded."""
     env = dict(os.environ)
-    env["PATH"] = f"{Path(sys.executable).parent}{os.pathsep}{env.get('PATH', '')}"
+    path = [str(Path(sys.executable).parent), env.get("PATH", "")]
+    if jobs is not None and not REAL_JOBS:
+        folder, socket = jobs.folder_and_socket()
+        path.insert(0, str(folder))
+        env[SOCKET_VARIABLE] = str(socket)
+    env["PATH"] = os.pathsep.join(path)
     return env
 
 
 class _SnakemakeForks:
-    """One tests/snakemake_forks.py process per pytest worker, started at first use."""
+    """A tests/snakemake_forks.py process, started at first use, whose jobs run in the
+    forks of their own :class:`_ContactlabForks` server."""
 
     def __init__(self) -> None:
         self._server: subprocess.Popen[str] | None = None
+        self.jobs = _ContactlabForks()
 
-    def run(self, workdir: Path, commands: list[list[str]], parallel: int = 1
-            ) -> list[subprocess.CompletedProcess[str]]:
+    def run(self, workdir: Path, commands: list[list[str]], parallel: int = 1,
+            real_jobs: bool = False) -> list[subprocess.CompletedProcess[str]]:
         if self._server is None or self._server.poll() is not None:
             self._server = subprocess.Popen(
                 [sys.executable, str(REPO / "tests" / "snakemake_forks.py")],
@@ -91,7 +142,8 @@ class _SnakemakeForks:
             atexit.register(self._server.kill)
         assert self._server.stdin is not None and self._server.stdout is not None
         argvs = [[*SNAKEMAKE_ARGS, *args] for args in commands]
-        self._server.stdin.write(json.dumps({"cwd": str(workdir), "env": _environment(),
+        env = _environment(None if real_jobs else self.jobs)
+        self._server.stdin.write(json.dumps({"cwd": str(workdir), "env": env,
                                              "commands": argvs, "parallel": parallel}) + "\n")
         self._server.stdin.flush()
         answer = self._server.stdout.readline()
@@ -101,14 +153,22 @@ class _SnakemakeForks:
                                             run["stdout"], run["stderr"])
                 for argv, run in zip(argvs, json.loads(answer), strict=True)]
 
+    def close(self) -> None:
+        if self._server is not None:
+            self._server.kill()
+        self.jobs.close()
 
+
+#: the servers of this pytest worker's tests (the end-to-end run has its own)
 _FORKS = _SnakemakeForks()
 
 
-def run_snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]:
+def run_snakemake(workdir: Path, *args: str, real_jobs: bool = False
+                  ) -> subprocess.CompletedProcess[str]:
     """Snakemake on the end-to-end config in ``workdir`` (a fork of a process that has
-    Snakemake loaded: tests/snakemake_forks.py)."""
-    return _FORKS.run(workdir, [list(args)])[0]
+    Snakemake loaded: tests/snakemake_forks.py); its jobs in forks of a process that has
+    contactlab loaded (tests/contactlab_forks.py) unless ``real_jobs``."""
+    return _FORKS.run(workdir, [list(args)], real_jobs=real_jobs)[0]
 
 
 def run_snakemake_many(workdir: Path, commands: list[list[str]]
@@ -130,9 +190,62 @@ def snakemake() -> Callable[..., subprocess.CompletedProcess[str]]:
 
 
 @pytest.fixture
+def job_environment() -> Callable[[bool], dict[str, str]]:
+    """The environment :func:`run_snakemake` gives its jobs: ``job_environment(True)`` with
+    the tests' ``contactlab`` launcher first on PATH, ``job_environment(False)`` without."""
+    return lambda forked: _environment(_FORKS.jobs if forked else None)
+
+
+@pytest.fixture
 def snakemake_many() -> Callable[..., list[subprocess.CompletedProcess[str]]]:
     """:func:`run_snakemake_many`, for tests that plan many variants of one workflow."""
     return run_snakemake_many
+
+
+def _build_e2e_run(root: Path, wait: bool) -> None:
+    """Build the end-to-end run under ``root`` unless built, holding ``root``'s lock; if
+    another process holds the lock, wait for it or, unless ``wait``, return at once."""
+    work, status = root / "e2e_run", root / "e2e_run.json"
+    with open(root / "e2e_run.lock", "w", encoding="utf-8") as lock:
+        try:
+            fcntl.flock(lock, fcntl.LOCK_EX if wait else fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            return
+        if not status.exists():
+            shutil.rmtree(work, ignore_errors=True)
+            work.mkdir()
+            forks = _SnakemakeForks()  # its own processes: see test_results_files.py
+            try:
+                run = forks.run(limit_test_sheet(copy_workflow(work)), [["-j2", "all"]])[0]
+            finally:
+                forks.close()
+            status.write_text(json.dumps({"returncode": run.returncode,
+                                          "stderr": run.stderr[-3000:]}))
+
+
+def _e2e_root(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The folder of the session's end-to-end run, shared by the xdist workers."""
+    root = tmp_path_factory.getbasetemp()
+    return root.parent if os.environ.get("PYTEST_XDIST_WORKER") else root
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """The tests that read the end-to-end run last: it builds in the background meanwhile
+    (:func:`e2e_run_in_background`)."""
+    items.sort(key=lambda item: "e2e_run" in getattr(item, "fixturenames", ()))
+
+
+@pytest.fixture(scope="session", autouse=True)
+def e2e_run_in_background(request: pytest.FixtureRequest,
+                          tmp_path_factory: pytest.TempPathFactory) -> None:
+    """Start building the end-to-end run at the session's first test if a collected test
+    reads it: the tests before it run meanwhile. One xdist worker builds it in a thread; the
+    others find its lock taken."""
+    if os.environ.get("CONTACTLAB_E2E_RUN") or not any(
+            "e2e_run" in getattr(item, "fixturenames", ()) for item in request.session.items):
+        return
+    threading.Thread(target=_build_e2e_run, daemon=True,
+                     args=(_e2e_root(tmp_path_factory), False)).start()
 
 
 @pytest.fixture(scope="session")
@@ -142,28 +255,18 @@ def e2e_run(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
     ``snakemake -j2 all`` in a copy of the workflow, shared by every test that reads its
     results (end-to-end checks, byte-identical rebuilds, the Slurm run) and by every xdist
-    worker: the first to ask builds it under a file lock, the others wait and reuse it.
-    Tests run side by side on it: they may add files (a named study under results/studies,
-    a report archive) but must not rewrite results or edit inputs (copy it for that).
-    ``CONTACTLAB_E2E_RUN=<folder>`` names a finished run to use instead (a developer's
-    shortcut when changing only the tests that read it).
+    worker: it starts building at the session's first test (:func:`e2e_run_in_background`)
+    and the tests that read it wait for it. They run side by side on it: they may add files
+    (a named study under results/studies, a report archive) but must not rewrite results or
+    edit inputs (copy it for that). ``CONTACTLAB_E2E_RUN=<folder>`` names a finished run to
+    use instead (a developer's shortcut when changing only the tests that read it).
     """
     reuse = os.environ.get("CONTACTLAB_E2E_RUN")
     if reuse:  # a finished run of this tree, for iterating on the tests that read it
         return Path(reuse)
-    root = tmp_path_factory.getbasetemp()
-    if os.environ.get("PYTEST_XDIST_WORKER"):
-        root = root.parent  # shared by the workers of this session
-    work, status = root / "e2e_run", root / "e2e_run.json"
-    with open(root / "e2e_run.lock", "w", encoding="utf-8") as lock:
-        fcntl.flock(lock, fcntl.LOCK_EX)
-        if not status.exists():
-            shutil.rmtree(work, ignore_errors=True)
-            work.mkdir()
-            run = run_snakemake(limit_test_sheet(copy_workflow(work)), "-j2", "all")
-            status.write_text(json.dumps({"returncode": run.returncode,
-                                          "stderr": run.stderr[-3000:]}))
-    built = json.loads(status.read_text())
+    root = _e2e_root(tmp_path_factory)
+    _build_e2e_run(root, True)
+    built = json.loads((root / "e2e_run.json").read_text())
     if built["returncode"] != 0:
         pytest.fail(f"the end-to-end run failed:\n{built['stderr']}")
-    return work
+    return root / "e2e_run"

@@ -1,0 +1,155 @@
+"""The rules' ``contactlab`` commands, each in a fork of one process that has it loaded.
+
+A workflow test runs tens of jobs that each compute for a fraction of a second but spend
+0.5-1.5 s starting Python and importing numpy, scipy, xarray, lmfit and matplotlib. For
+the tests only, :func:`start` runs a server that imports the package's modules once and
+writes a ``contactlab`` launcher to put first on PATH. The launcher (standard library
+only, ~20 ms) hands its command line, folder, environment and standard streams (as file
+descriptors) to the server over a Unix socket; the server forks, the child runs
+:func:`contactlab.cli.main` with them and sends back the exit status, which the launcher
+exits with. Nothing differs from a fresh process but the start: the same code, the job's
+own folder, environment, streams and log files. Without the server (its socket gone, or
+``CONTACTLAB_TEST_FORKS`` unset) the launcher runs the installed ``contactlab``.
+
+BLAS reads its thread count once, at import: the server loads it with one thread, as the
+solver rules ask (``OPENBLAS_NUM_THREADS=1``) and as :mod:`contactlab.blas` limits the
+solvers anyway.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import signal
+import socket
+import struct
+import sys
+from pathlib import Path
+
+#: the environment variable that names the server's socket
+SOCKET_VARIABLE = "CONTACTLAB_TEST_FORKS"
+
+LAUNCHER = '''#!{python} -IS
+"""contactlab for the tests: run by the server at ${variable} (tests/contactlab_forks.py)."""
+import json, os, socket, struct, sys
+path = os.environ.get("{variable}", "")
+try:
+    client = socket.socket(socket.AF_UNIX)
+    client.connect(path)
+except OSError:
+    os.execv("{real}", ["{real}", *sys.argv[1:]])
+payload = json.dumps({{"argv": sys.argv[1:], "cwd": os.getcwd(),
+                       "env": dict(os.environ)}}).encode()
+socket.send_fds(client, [struct.pack("!Q", len(payload))], [0, 1, 2])
+client.sendall(payload)
+answer = b""
+while len(answer) < 4:
+    chunk = client.recv(4 - len(answer))
+    if not chunk:
+        sys.exit("contactlab: the test server's child ended without a status")
+    answer += chunk
+sys.exit(struct.unpack("!i", answer)[0])
+'''
+
+
+def _receive(connection: socket.socket) -> tuple[dict, list[int]]:
+    """One request: the header with the three stream descriptors, then the JSON body."""
+    header, fds, _, _ = socket.recv_fds(connection, 8, 3)
+    size = struct.unpack("!Q", header)[0]
+    body = bytearray()
+    while len(body) < size:
+        chunk = connection.recv(size - len(body))
+        if not chunk:
+            raise ConnectionError("the launcher closed its request early")
+        body += chunk
+    return json.loads(body), fds
+
+
+def _child(request: dict, fds: list[int], connection: socket.socket) -> None:
+    """Run the request's command as ``contactlab`` would; send the status; never return."""
+    code = 1
+    try:
+        signal.signal(signal.SIGCHLD, signal.SIG_DFL)  # the job's subprocesses are waited for
+        for target, fd in enumerate(fds):
+            os.dup2(fd, target)
+            os.close(fd)
+        os.chdir(request["cwd"])
+        os.environ.clear()
+        os.environ.update(request["env"])
+        sys.argv = ["contactlab", *request["argv"]]
+        from contactlab.cli import main
+
+        code = main(request["argv"])
+    except SystemExit as exc:
+        code = exc.code if isinstance(exc.code, int) else 1 if exc.code else 0
+    except BaseException:
+        import traceback
+
+        traceback.print_exc()
+    finally:
+        try:
+            import logging
+
+            logging.shutdown()
+            sys.stdout.flush()
+            sys.stderr.flush()
+            connection.sendall(struct.pack("!i", code))
+        finally:
+            os._exit(code)
+
+
+def _preload() -> None:
+    """Import every module of the package (and so the science it imports) once."""
+    import importlib
+    import pkgutil
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import contactlab
+
+    for module in pkgutil.walk_packages(contactlab.__path__, "contactlab."):
+        if not module.name.endswith(".__main__"):
+            importlib.import_module(module.name)
+
+
+def serve(path: str) -> None:
+    """Accept launchers at ``path`` until killed; fork one child per command. Each command
+    line is logged to ``<path>.log``."""
+    _preload()
+    signal.signal(signal.SIGCHLD, signal.SIG_IGN)  # children reap themselves
+    listener = socket.socket(socket.AF_UNIX)
+    listener.bind(path)
+    listener.listen(16)
+    served = open(f"{path}.log", "a", encoding="utf-8")  # open until the server is killed
+    print("ready", flush=True)
+    while True:
+        connection, _ = listener.accept()
+        try:
+            request, fds = _receive(connection)
+        except (OSError, ValueError):
+            connection.close()
+            continue
+        served.write(json.dumps(request["argv"]) + "\n")
+        served.flush()
+        if os.fork() == 0:
+            served.close()
+            listener.close()
+            _child(request, fds, connection)
+        for fd in fds:
+            os.close(fd)
+        connection.close()
+
+
+def write_launcher(folder: Path, real: str) -> Path:
+    """The ``contactlab`` launcher in ``folder``, falling back to ``real``."""
+    launcher = folder / "contactlab"
+    launcher.write_text(LAUNCHER.format(python=sys.executable, variable=SOCKET_VARIABLE,
+                                        real=real), encoding="utf-8")
+    launcher.chmod(0o755)
+    return launcher
+
+
+if __name__ == "__main__":
+    os.environ.update({"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"})
+    serve(sys.argv[1])
