@@ -48,15 +48,30 @@ E2E_TESTS = ("RU1", "SU2", "S3")
 
 
 def limit_test_sheet(work: Path, tests: tuple[str, ...] = E2E_TESTS) -> Path:
-    """Point the copy's end-to-end config at a sheet of ``tests`` only; return ``work``."""
-    lines = (work / "config" / "tests.csv").read_text(encoding="utf-8").splitlines()
-    kept = [lines[0], *(line for line in lines[1:] if line.split(",", 1)[0] in tests)]
-    (work / "config" / "e2e_tests.csv").write_text("\n".join(kept) + "\n", encoding="utf-8")
-    config = work / "config" / "e2e.yaml"
-    text = config.read_text(encoding="utf-8")
-    assert "tests: config/tests.csv\n" in text
-    config.write_text(text.replace("tests: config/tests.csv\n", "tests: config/e2e_tests.csv\n"),
-                      encoding="utf-8")
+    """Point the copy's end-to-end config at a test sheet of ``tests`` only and a surface
+    sheet of their surfaces, the profile rows of their specimens and the areal scans of all
+    specimens (S1's undefined Str gives a file layout of its own); return ``work``."""
+    config = work / "config"
+    lines = (config / "tests.csv").read_text(encoding="utf-8").splitlines()
+    rows = [line.split(",") for line in lines[1:] if line.split(",", 1)[0] in tests]
+    (config / "e2e_tests.csv").write_text("\n".join([lines[0], *map(",".join, rows)]) + "\n",
+                                          encoding="utf-8")
+    column = {name: i for i, name in enumerate(lines[0].split(","))}
+    surfaces = {"_".join(filter(None, (row[column[name]], row[column[f"{name}_side"]])))
+                for row in rows for name in ("specimen", "pad")}
+    specimens = tuple(f"{row[column['specimen']]}_" for row in rows)
+    sheet = [line for line in (config / "surfaces.csv").read_text(encoding="utf-8").splitlines()
+             if line.startswith(("#", "surface,", *specimens))
+             or line.split(",", 1)[0] in surfaces or line.split(",", 1)[0].endswith("_specimen")]
+    (config / "e2e_surfaces.csv").write_text("\n".join(sheet) + "\n", encoding="utf-8")
+    for name in ("tests", "surfaces"):  # as old as their sources: copied results stay current
+        stat = (config / f"{name}.csv").stat()
+        os.utime(config / f"e2e_{name}.csv", ns=(stat.st_atime_ns, stat.st_mtime_ns))
+    text = (config / "e2e.yaml").read_text(encoding="utf-8")
+    for name in ("tests", "surfaces"):
+        assert f"config/{name}.csv\n" in text
+        text = text.replace(f"config/{name}.csv\n", f"config/e2e_{name}.csv\n")
+    (config / "e2e.yaml").write_text(text, encoding="utf-8")
     return work
 
 
