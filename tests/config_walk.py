@@ -129,15 +129,18 @@ def planned(output: str) -> tuple[set[str], str]:
     return rules, output
 
 
-def check_all(config: dict, schema: Mapping[str, Any],
+def check_all(config: dict, schema: Mapping[str, Any], branch: str,
               dry_runs: Callable[[list[str]], list[subprocess.CompletedProcess[str]]]
               ) -> list[str]:
-    """Walk every parameter; return one line per parameter that fails its check.
+    """Walk every parameter of ``branch``; return one line per parameter that fails its
+    check.
 
     ``dry_runs`` takes the ``--config`` overrides and returns the dry runs' outputs.
     """
     cases = list(walk(config, schema))
     assert len(cases) > 40, f"only {len(cases)} parameters walked"
+    cases = [case for case in cases if case[0] == branch]
+    assert cases, f"no parameter of {branch} walked"
     runs = dry_runs([f"{branch}={json.dumps(_set(config, keys, value)[branch])}"
                      for branch, keys, value, _ in cases])
     failures = (_failure(case, run) for case, run in zip(cases, runs, strict=True))

@@ -13,7 +13,7 @@ import pytest
 import xarray as xr
 import yaml
 from cf_check import cf_errors, one_per_layout
-from config_walk import check_all
+from config_walk import BRANCH_RULES, check_all
 from snakemake.utils import validate
 
 
@@ -54,25 +54,37 @@ def test_workflow_end_to_end(e2e_run: Path, snakemake) -> None:
     check_named_study_beside_default(workflow_copy, snakemake)
 
 
+#: the result folders of netCDF files (demo: the stiffness demo's DIC fields); the e2e
+#: checks below run one folder or branch per test (a session ends sooner with several short
+#: tests than with one long one)
+BRANCHES = ("demo", "surfaces", "stiffness", "prediction", "asperity", "receding", "fe")
+
+
 @pytest.mark.slow
 @pytest.mark.filterwarnings("ignore:The ioos_sos checker:DeprecationWarning")
-def test_every_layout_of_result_file_passes_a_cf_checker(e2e_run: Path) -> None:
+@pytest.mark.parametrize("branch", BRANCHES)
+def test_every_layout_of_result_file_passes_a_cf_checker(e2e_run: Path, branch: str) -> None:
     """Every layout of netCDF file the run writes passes a real CF checker (no failed
     "must" check)."""
     netcdf = sorted(p for p in (e2e_run / "results").rglob("*.nc") if "studies" not in p.parts)
-    checked = one_per_layout(netcdf)
-    assert len(netcdf) > 50 and len(checked) > 30
+    layouts = one_per_layout(netcdf)
+    assert len(netcdf) > 50 and len(layouts) > 30
+    assert {p.relative_to(e2e_run / "results").parts[0] for p in netcdf} == set(BRANCHES)
+    checked = [p for p in layouts if p.relative_to(e2e_run / "results").parts[0] == branch]
+    assert checked
     assert {path.name: errors for path in checked if (errors := cf_errors(path))} == {}
 
 
 @pytest.mark.slow
-def test_every_parameter_reaches_its_jobs_and_only_them(e2e_run: Path, snakemake_many) -> None:
+@pytest.mark.parametrize("branch", sorted(BRANCH_RULES))
+def test_every_parameter_reaches_its_jobs_and_only_them(e2e_run: Path, snakemake_many,
+                                                         branch: str) -> None:
     """Each config leaf, changed within the schema, reruns jobs of its branch only, with the
     new value on a command line (tests/config_walk.py)."""
     config = yaml.safe_load((e2e_run / "config" / "e2e.yaml").read_text())
     validate(config, str(e2e_run / "workflow/schemas/config.schema.yaml"))  # + defaults
     schema = yaml.safe_load((e2e_run / "workflow/schemas/config.schema.yaml").read_text())
-    failures = check_all(config, schema, lambda overrides: snakemake_many(
+    failures = check_all(config, schema, branch, lambda overrides: snakemake_many(
         e2e_run, [["-n", "-p", "--config", override, "--", "all"] for override in overrides]))
     assert not failures, "\n".join(failures)
 
