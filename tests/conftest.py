@@ -128,11 +128,11 @@ REAL_JOBS = os.environ.get("CONTACTLAB_REAL_JOBS", "") not in ("", "0")
 def _environment(jobs: _ContactlabForks | None) -> dict[str, str]:
     """This environment first on PATH (the rules call ``contactlab``); each request to
     the fork server carries it, so a test's changes to os.environ reach its command.
-    With ``jobs`` (and not :data:`REAL_JOBS`), its ``contactlab`` launcher comes first on
-    PATH: each job runs in a fork of a process that has the package loaded."""
+    With ``jobs``, its ``contactlab`` launcher comes first on PATH: each job runs in a fork
+    of a process that has the package loaded."""
     env = dict(os.environ)
     path = [str(Path(sys.executable).parent), env.get("PATH", "")]
-    if jobs is not None and not REAL_JOBS:
+    if jobs is not None:
         folder, socket = jobs.folder_and_socket()
         path.insert(0, str(folder))
         env[SOCKET_VARIABLE] = str(socket)
@@ -157,7 +157,7 @@ class _SnakemakeForks:
             atexit.register(self._server.kill)
         assert self._server.stdin is not None and self._server.stdout is not None
         argvs = [[*SNAKEMAKE_ARGS, *args] for args in commands]
-        env = _environment(None if real_jobs else self.jobs)
+        env = _environment(None if real_jobs or REAL_JOBS else self.jobs)
         self._server.stdin.write(json.dumps({"cwd": str(workdir), "env": env,
                                              "commands": argvs, "parallel": parallel}) + "\n")
         self._server.stdin.flush()
