@@ -2,8 +2,10 @@
 
 A workflow test runs tens of jobs that each compute for a fraction of a second but spend
 0.5-1.5 s starting Python and importing numpy, scipy, xarray, lmfit and matplotlib. For
-the tests only, :func:`start` runs a server that imports the package's modules once and
-writes a ``contactlab`` launcher to put first on PATH. The launcher (standard library
+the tests only, ``python tests/contactlab_forks.py SOCKET`` (:func:`serve`) imports the
+package's modules once and answers at SOCKET; :func:`write_launcher` writes the
+``contactlab`` launcher to put first on PATH (tests/conftest.py starts one server per
+pytest worker and one for the end-to-end run). The launcher (standard library
 only, ~20 ms) hands its command line, folder, environment and standard streams (as file
 descriptors) to the server over a Unix socket; the server forks, the child runs
 :func:`contactlab.cli.main` with them and sends back the exit status, which the launcher
