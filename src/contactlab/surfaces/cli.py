@@ -54,6 +54,7 @@ def _texture_of(spec, bins: int, max_undefined: float, out_dir: Path, history: s
 
 def _texture(args: argparse.Namespace) -> None:
     from concurrent.futures import ProcessPoolExecutor
+    from contextlib import nullcontext
     from functools import partial
 
     from contactlab.surfaces.sheet import read_surface_sheet
@@ -75,17 +76,15 @@ def _texture(args: argparse.Namespace) -> None:
                f"--max-undefined-fraction {args.max_undefined_fraction}")
     one = partial(_texture_of, bins=args.bins, max_undefined=args.max_undefined_fraction,
                   out_dir=Path(args.out_dir), history=history)
-    if args.workers == 1 or len(specs) == 1:
-        notes = map(one, specs)
-    else:
-        pool = ProcessPoolExecutor(max_workers=min(args.workers, len(specs)))
-        notes = pool.map(one, specs)
-    for infos, warnings in notes:
-        for line in infos:
-            LOG.info("%s", line)
-        for line in warnings:
-            LOG.warning("%s", line)
-        progress.advance()
+    workers = 1 if len(specs) == 1 else min(args.workers, len(specs))
+    # the pool is shut down (its workers ended) before the command returns
+    with ProcessPoolExecutor(max_workers=workers) if workers > 1 else nullcontext() as pool:
+        for infos, warnings in (pool.map if pool else map)(one, specs):
+            for line in infos:
+                LOG.info("%s", line)
+            for line in warnings:
+                LOG.warning("%s", line)
+            progress.advance()
     progress.finish()
     if args.summary is not None:
         _write_summary([Path(args.out_dir) / f"{s.surface}.nc" for s in specs], args.summary)
