@@ -109,6 +109,7 @@ class _ContactlabForks:
         self._server = subprocess.Popen(
             [sys.executable, str(REPO / "tests" / "contactlab_forks.py"),
              str(self.folder / "socket")], stdout=subprocess.PIPE, text=True,
+            stdin=subprocess.PIPE,  # closes when this process ends, and so ends the server
             env={**os.environ, "PYTHONHASHSEED": str(seed)})
         atexit.register(self._server.kill)
         assert self._server.stdout is not None

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import json
 import re
+import shutil
 import subprocess
 from pathlib import Path
 
@@ -24,10 +25,15 @@ COMMANDS = {
 }
 
 
-def _answer(command: list[str], folder: Path, env: dict[str, str]) -> tuple[int, str, str]:
+def _answer(command: list[str], folder: Path, env: dict[str, str], inputs: Path | None = None
+            ) -> tuple[int, str, str]:
     """Exit status, stdout and stderr of ``command`` run as a rule runs it: through a shell,
-    in ``folder``, its streams redirected to files; times and the folder masked."""
-    folder.mkdir()
+    in ``folder`` (with the files of ``inputs``), its streams redirected to files; times and
+    the folder masked."""
+    if inputs is None:
+        folder.mkdir()
+    else:
+        shutil.copytree(inputs, folder)
     with open(folder.parent / f"{folder.name}.out", "w+") as out, \
             open(folder.parent / f"{folder.name}.err", "w+") as err:
         code = subprocess.run(["bash", "-c", 'contactlab "$@"', "contactlab", *command],
@@ -63,3 +69,40 @@ def test_launcher_answers_as_the_installed_command(name: str, tmp_path: Path,
         assert files["fork"].attrs["history"].startswith("1970-01-02")
         assert files["fork"].identical(files["installed"])
         assert files["fork"].identical(files["fallback"])
+
+
+def _processes_in(folder: Path) -> list[int]:
+    """Processes whose working folder is ``folder``."""
+    found = []
+    for proc in Path("/proc").iterdir():
+        try:
+            if proc.name.isdigit() and (proc / "cwd").resolve() == folder.resolve():
+                found.append(int(proc.name))
+        except OSError:  # ended meanwhile, or not ours to read
+            continue
+    return found
+
+
+def test_a_jobs_worker_processes_end_with_it(tmp_path: Path, job_environment) -> None:
+    """The texture job's process pool is shut down as at a normal interpreter exit: no
+    worker is left waiting for work once the launcher has its status."""
+    import numpy as np
+
+    from contactlab.surfaces.demo import write_demo_scan
+
+    for name, seed in (("a", 1), ("b", 2)):
+        write_demo_scan(np.random.default_rng(seed).normal(size=(128, 128)), 2.0, 2.0,
+                        tmp_path / f"{name}.x3p")
+    (tmp_path / "sheet.csv").write_text(
+        "surface,objective,areal_scan,profile_scan,profile_axis,profile_direction,"
+        "profile_length_mm,lambda_c_um,sampling_length_um\n"
+        "a,20x,a.x3p,,,,,80,\nb,20x,b.x3p,,,,,80,\n")
+    command = ["surfaces", "texture", "--sheet", "sheet.csv", "--out-dir", "out", "--bins",
+               "10", "--max-undefined-fraction", "0.5", "--summary", "summary.nc",
+               "--workers", "2"]
+    # the streams to a file, as a rule redirects them (a pipe would wait for a left worker)
+    code, _, err = _answer(command, tmp_path / "job", job_environment(True),
+                           inputs=tmp_path)
+    assert code == 0, err
+    assert (tmp_path / "job" / "summary.nc").is_file()
+    assert _processes_in(tmp_path / "job") == []
