@@ -7,6 +7,7 @@ import re
 import shutil
 import subprocess
 import zipfile
+from functools import cache
 from pathlib import Path
 
 import pytest
@@ -60,14 +61,20 @@ def test_workflow_end_to_end(e2e_run: Path, snakemake) -> None:
 BRANCHES = ("demo", "surfaces", "stiffness", "prediction", "asperity", "receding", "fe")
 
 
+@cache
+def _netcdf_and_layouts(results: Path) -> tuple[list[Path], list[Path]]:
+    """The run's netCDF files and the first of each layout, found once per worker."""
+    netcdf = sorted(p for p in results.rglob("*.nc") if "studies" not in p.parts)
+    return netcdf, one_per_layout(netcdf)
+
+
 @pytest.mark.slow
 @pytest.mark.filterwarnings("ignore:The ioos_sos checker:DeprecationWarning")
 @pytest.mark.parametrize("branch", BRANCHES)
 def test_every_layout_of_result_file_passes_a_cf_checker(e2e_run: Path, branch: str) -> None:
     """Every layout of netCDF file the run writes passes a real CF checker (no failed
     "must" check)."""
-    netcdf = sorted(p for p in (e2e_run / "results").rglob("*.nc") if "studies" not in p.parts)
-    layouts = one_per_layout(netcdf)
+    netcdf, layouts = _netcdf_and_layouts(e2e_run / "results")
     assert len(netcdf) > 50 and len(layouts) > 30
     assert {p.relative_to(e2e_run / "results").parts[0] for p in netcdf} == set(BRANCHES)
     checked = [p for p in layouts if p.relative_to(e2e_run / "results").parts[0] == branch]
