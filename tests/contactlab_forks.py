@@ -17,12 +17,18 @@ the installed ``contactlab``.
 BLAS reads its thread count once, at import: the server loads it with one thread, as the
 solver rules ask (``OPENBLAS_NUM_THREADS=1``) and as :mod:`contactlab.blas` limits the
 solvers anyway.
+
+The loaded modules' objects are moved out of the garbage collector's reach
+(:func:`gc.freeze`) before the first fork: they live as long as the server, and a child's
+full collections would otherwise walk them all (and copy the pages they sit on) at every
+job. The objects a job makes are collected as in a fresh process.
 """
 
 from __future__ import annotations
 
 import atexit
 import contextlib
+import gc
 import json
 import os
 import selectors
@@ -123,6 +129,7 @@ def serve(path: str) -> None:
     its exit status (128 + signal if a signal ended it) to its launcher. Each command line
     is logged to ``<path>.log``."""
     _preload()
+    gc.freeze()  # see the module's docstring
     listener = socket.socket(socket.AF_UNIX)
     listener.bind(path)
     listener.listen(16)
