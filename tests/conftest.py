@@ -19,6 +19,16 @@ from contactlab_forks import SOCKET_VARIABLE, write_launcher
 
 REPO = Path(__file__).resolve().parents[1]
 
+#: One BLAS/OpenMP thread in the test processes and the commands they start, as the solver
+#: rules give their jobs: xdist runs one worker per core, and each worker's BLAS threads
+#: spinning beside the other worker's cost ~10 % of a session's CPU.
+for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"):
+    os.environ.setdefault(_variable, "1")
+if "numpy" in sys.modules:  # a plugin loaded it first: BLAS has read the variables already
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(1)
+
 #: Tests run away from any Slurm cluster of the host (see the file's comment);
 #: tests/test_slurm.py lifts this for its own cluster.
 os.environ["SLURM_CONF"] = str(REPO / "tests" / "data" / "slurm-none.conf")
@@ -247,8 +257,14 @@ def _e2e_root(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     """The tests that read the end-to-end run last: it builds in the background meanwhile
-    (:func:`e2e_run_in_background`)."""
-    items.sort(key=lambda item: "e2e_run" in getattr(item, "fixturenames", ()))
+    (:func:`e2e_run_in_background`). Of them the Slurm run first: the longest (~45 s, most
+    of it waiting for the cluster), so the other worker's tests fill its waits and the
+    session does not end with one worker waiting for it."""
+    def order(item: pytest.Item) -> tuple[bool, bool]:
+        names = getattr(item, "fixturenames", ())
+        return "e2e_run" in names, "slurm_cluster" not in names
+
+    items.sort(key=order)
 
 
 @pytest.fixture(scope="session", autouse=True)
