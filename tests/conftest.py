@@ -255,14 +255,24 @@ def _e2e_root(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return root.parent if os.environ.get("PYTEST_XDIST_WORKER") else root
 
 
+#: Session and module fixtures that take seconds to build (the demo surfaces processed, a
+#: stiffness run from raw fields, a sweep through the CLI).
+SHARED_FIXTURES = ("processed", "raw_run", "small_sweep")
+
+
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """The tests that read the end-to-end run last: it builds in the background meanwhile
+    """The users of a :data:`SHARED_FIXTURES` fixture first, each fixture's together: xdist
+    hands each worker a first batch of ~100 consecutive tests, so they all run on one worker
+    and each fixture is built once (split between workers, each built it). The tests that
+    read the end-to-end run last: it builds in the background meanwhile
     (:func:`e2e_run_in_background`). Of them the Slurm run first: the longest (~45 s, most
     of it waiting for the cluster), so the other worker's tests fill its waits and the
     session does not end with one worker waiting for it."""
-    def order(item: pytest.Item) -> tuple[bool, bool]:
+    def order(item: pytest.Item) -> tuple[bool, bool, int]:
         names = getattr(item, "fixturenames", ())
-        return "e2e_run" in names, "slurm_cluster" not in names
+        shared = [i for i, name in enumerate(SHARED_FIXTURES) if name in names]
+        return ("e2e_run" in names, "slurm_cluster" not in names,
+                shared[0] if shared else len(SHARED_FIXTURES))
 
     items.sort(key=order)
 
