@@ -38,6 +38,8 @@ import sys
 import threading
 from pathlib import Path
 
+from fork_child import become, exit_status
+
 #: the environment variable that names the server's socket
 SOCKET_VARIABLE = "CONTACTLAB_TEST_FORKS"
 
@@ -82,18 +84,12 @@ def _child(request: dict, fds: list[int]) -> None:
     (threads joined, a process pool's workers stopped, exit handlers run). Never returns."""
     code = 1
     try:
-        for target, fd in enumerate(fds):
-            os.dup2(fd, target)
-            os.close(fd)
-        os.chdir(request["cwd"])
-        os.environ.clear()
-        os.environ.update(request["env"])
-        sys.argv = ["contactlab", *request["argv"]]
+        become(request["cwd"], request["env"], ["contactlab", *request["argv"]], fds)
         from contactlab.cli import main
 
         code = main(request["argv"])
     except SystemExit as exc:
-        code = exc.code if isinstance(exc.code, int) else 1 if exc.code else 0
+        code = exit_status(exc)
     except BaseException:
         import traceback
 

@@ -22,26 +22,24 @@ import sys
 import tempfile
 from typing import IO
 
+from fork_child import become, exit_status
+
 
 def _child(argv: list[str], cwd: str, env: dict[str, str], out: IO[bytes],
            err: IO[bytes]) -> None:
     """Run ``snakemake argv`` in ``cwd`` with ``env``, output to ``out``/``err``; never return."""
     code = 1
     try:
-        os.chdir(cwd)
-        os.environ.clear()
-        os.environ.update(env)
-        os.dup2(os.open(os.devnull, os.O_RDONLY), 0)  # the jobs must not read requests
-        os.dup2(out.fileno(), 1)
-        os.dup2(err.fileno(), 2)
+        # no standard input: the jobs must not read the server's requests
+        become(cwd, env, ["snakemake", *argv],
+               [os.open(os.devnull, os.O_RDONLY), out.fileno(), err.fileno()])
         sys.stdout = sys.__stdout__  # the server sends its own output to stderr
-        sys.argv = ["snakemake", *argv]
         from snakemake.cli import main
 
         main(argv)
         code = 0
     except SystemExit as exc:
-        code = exc.code if isinstance(exc.code, int) else 1
+        code = exit_status(exc)
     except BaseException:  # reported like the command line reports it
         import traceback
 
