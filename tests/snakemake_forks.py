@@ -9,7 +9,7 @@ request's folder and environment, so it costs its own parse, DAG and jobs (a dry
 the end-to-end study ~0.3 s) instead of a fresh interpreter's ~1.6 s. Two things differ
 from a fresh ``snakemake`` and change no answer: the loaded modules' objects are kept out of
 the children's garbage collections (:func:`gc.freeze`; a full collection walked them all,
-~15 % of a dry run), and YAML is parsed by libyaml (:func:`_yaml_in_c`). The tests start one
+~13 % of a dry run), and YAML is parsed by libyaml (:func:`_yaml_in_c`). The tests start one
 such process per pytest worker (``tests/conftest.py``).
 """
 
