@@ -14,8 +14,9 @@ of its own layer and of the layers below it, never above:
    figures, the page; it imports the ground floor only, no science;
 3. report builders: a branch's ``report`` module (or ``report_<part>``), e.g.
    ``stiffness.report_raw``, ``receding.gap.report``;
-4. command line: ``cli``, ``cliutil``, ``__main__``, every ``<branch>....cli`` and
-   ``report.cli``;
+4. command line: ``cli``, ``cliutil``, ``command``, ``__main__``, every
+   ``<branch>....cli`` (and ``receding.options``, the options the receding commands
+   share) and ``report.cli``;
 5. workflow: ``rulehelpers`` (imported by the rule files only).
 
 Every import counts, at the top of a module or inside a function.
@@ -53,8 +54,8 @@ def layer(module: str) -> int:
         return 0
     if module == "contactlab.rulehelpers":
         return 5
-    if module in ("contactlab.cli", "contactlab.cliutil", "contactlab.__main__") \
-            or parts[-1] == "cli":
+    if module in ("contactlab.cli", "contactlab.cliutil", "contactlab.command",
+                  "contactlab.__main__", "contactlab.receding.options") or parts[-1] == "cli":
         return 4
     if parts[1:2] == ["report"]:
         return 2

@@ -1,10 +1,11 @@
 """The ``contactlab`` command line: one sub-command per branch of the workflow.
 
-Each branch module exposes ``register(subparsers)``; listing it in
-:data:`COMMAND_MODULES` adds its commands. Snakemake rules call these commands,
-so a user can run any step by hand with the same code. Building the parser imports
-only the standard library (see :mod:`contactlab.cliutil`); each command imports the
-science it needs when it runs.
+Each branch module exposes its command group, ``GROUP`` (a
+:class:`contactlab.command.Group` of declared commands); listing it in
+:data:`COMMAND_MODULES` adds its commands. Snakemake rules call these commands (their
+arguments made by :meth:`contactlab.command.Command.words` from the same declarations), so
+a user can run any step by hand with the same code. Building the parser imports only the
+standard library; each command imports the science it needs when it runs.
 """
 
 from __future__ import annotations
@@ -15,7 +16,9 @@ import sys
 from collections.abc import Sequence
 
 from contactlab import __version__
+from contactlab.blas import one_thread_environment
 from contactlab.cliutil import Parser
+from contactlab.command import Command, Group
 from contactlab.progress import configure_logging
 
 COMMAND_MODULES: tuple[str, ...] = (
@@ -45,13 +48,36 @@ stderr, one line each: UTC time, level, module, message (a progress line at most
 USER_ERRORS = (ValueError, KeyError, FileNotFoundError, OSError)
 
 
+def groups() -> list[Group]:
+    """Every command group, in the order of :data:`COMMAND_MODULES`."""
+    found = []
+    for name in COMMAND_MODULES:
+        module = importlib.import_module(name)
+        if hasattr(module, "GROUP"):
+            found.append(module.GROUP)
+    return found
+
+
+def command(path: str) -> Command:
+    """The declaration of ``contactlab <path>``, e.g. ``command("receding gap-sweep")``."""
+    for group in groups():
+        for declared in group.commands:
+            if declared.path == path:
+                return declared
+    raise KeyError(f"no command 'contactlab {path}'")
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The top-level parser with every branch's sub-commands."""
     parser = Parser(prog="contactlab", description=DESCRIPTION, epilog=EPILOG)
     parser.add_argument("--version", action="version", version=f"contactlab {__version__}")
     subparsers = parser.add_subparsers(dest="command", required=True, metavar="GROUP")
     for name in COMMAND_MODULES:
-        importlib.import_module(name).register(subparsers)
+        module = importlib.import_module(name)
+        if hasattr(module, "GROUP"):
+            module.GROUP.add_to(subparsers)
+        else:
+            module.register(subparsers)
     return parser
 
 
@@ -59,7 +85,16 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the process exit status. Log records go to stderr in the
     package's one format (:func:`contactlab.progress.configure_logging`)."""
     configure_logging()
-    args = build_parser().parse_args(argv)
+    typed = list(sys.argv[1:] if argv is None else argv)
+    args = build_parser().parse_args(typed)
+    declaration = getattr(args, "command_declaration", None)
+    if declaration is not None:
+        problems = declaration.complete(args, typed)
+        if problems:
+            print(f"contactlab {declaration.path}: error: {'; '.join(problems)}",
+                  file=sys.stderr)
+            return 2
+    one_thread_environment()
     try:
         args.func(args)
     except USER_ERRORS as exc:

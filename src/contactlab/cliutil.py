@@ -13,6 +13,8 @@ import re
 from pathlib import Path
 from typing import Any
 
+from contactlab.command import Option
+
 #: Negative numbers in any notation (``-1``, ``-.5``, ``-1e-5``, ``-2.5E+3``, ``-inf``).
 NEGATIVE_NUMBER = re.compile(
     r"^-(\d+\.?\d*(e[-+]?\d+)?|\.\d+(e[-+]?\d+)?|inf|infinity)$", re.IGNORECASE)
@@ -31,10 +33,28 @@ class HelpFormatter(argparse.HelpFormatter):
 
     def _get_help_string(self, action: argparse.Action) -> str | None:
         text = action.help or ""
+        key = getattr(action, "config_key", None)
+        if key is not None:
+            return f"{text} (default: {config_default_text(key)})"
+        if getattr(action, "must_give", False):
+            return f"{text} (required)"
         if ("%(default)" in text or action.required or not action.option_strings
                 or action.default in (None, False, [], argparse.SUPPRESS)):
             return text
         return text + " (default: %(default)s)"
+
+
+def config_default_text(key: str | dict[str, str]) -> str:
+    """The schema default(s) of a config-fed option, as its help shows them."""
+    from contactlab.command import schema_default
+
+    if isinstance(key, str):
+        return f"{schema_default(key)!r}, config {key}"
+    by_key: dict[str, list[str]] = {}
+    for selected, name in key.items():
+        by_key.setdefault(name, []).append(selected)
+    return "; ".join(f"{schema_default(name)!r} for {'/'.join(sel)}, config {name}"
+                     for name, sel in by_key.items())
 
 
 class Parser(argparse.ArgumentParser):
@@ -107,6 +127,23 @@ def check_memory(option: str, value: object, nbytes: float) -> None:
         raise ValueError(
             f"{option} {value} needs about {nbytes / GIB:.1f} GiB of memory, more than the "
             f"{limit / GIB:.1f} GiB of this machine; use a smaller {option}")
+
+
+def out_option(help: str = "netCDF output") -> Option:
+    """The ``--out`` of a command that writes one result file."""
+    return Option("--out", help, Path)
+
+
+def section_outputs() -> tuple[Option, ...]:
+    """``--report-dir`` and ``--out`` of a command that writes a report section."""
+    return (Option("--report-dir", "report directory receiving tables/ and figures/", Path,
+                   default=Path("results/report")),
+            Option("--out", "section HTML fragment", Path))
+
+
+def chunks_option(what: str) -> Option:
+    """The chunk files a gather command joins (positional)."""
+    return Option("chunks", f"{what} chunk files", input_file, nargs="+")
 
 
 def add_output(parser: argparse.ArgumentParser, help: str = "netCDF output") -> None:

@@ -21,7 +21,15 @@ from typing import Any
 
 import pandas as pd
 
+from contactlab.cli import command
 from contactlab.published import PUBLISHED_TESTS
+
+
+def command_args(path: str, config: Mapping[str, Any], **values: Any) -> list[str]:
+    """The arguments a rule passes to ``contactlab <path>``: ``values`` and every option the
+    command takes from the config, read from the effective ``config`` (see
+    :meth:`contactlab.command.Command.words`)."""
+    return command(path).words(config, **values)
 
 # --------------------------------------------------------------------------- report files
 
@@ -112,6 +120,16 @@ def gap_profile_point(points: Sequence[Mapping[str, float]], name: str) -> Mappi
         if gap_profile_name(point) == name:
             return point
     raise ValueError(f"no receding.gap.profiles entry named {name!r}")
+
+
+def patch_shape(law: str, tables: Mapping[str, Mapping[str, Sequence[float]]]
+                ) -> dict[str, Any]:
+    """``problem`` (and the table's ``table_x``, ``table_p``) of ``receding patch-sweep``
+    for a patch law or a user's shape ``table_<name>`` of ``receding.patches.tables``."""
+    if law.startswith("table_"):
+        table = tables[law.removeprefix("table_")]
+        return {"problem": "table", "table_x": table["x"], "table_p": table["p"]}
+    return {"problem": law}
 
 
 def liftoff_profile_name(point: Mapping[str, float] | float, law: str = "line") -> str:

@@ -5,10 +5,12 @@
 
 from contactlab.rulehelpers import (
     chunk_values,
+    command_args,
     gap_profile_name,
     gap_profile_point,
     liftoff_profile_name,
     liftoff_profile_point,
+    patch_shape,
     pdf_files,
     sweep_values,
 )
@@ -21,7 +23,7 @@ RECEDING_PROFILES = [gap_profile_name(p) for p in RECEDING["profiles"]]
 RECEDING_COMPARE = [n for n in RECEDING["compare_n"] if n != RECEDING["n"]]
 
 
-rule receding_gap_chunk:
+rule receding_gap_sweep:
     """Transition points on (f, w/c) for one chunk of w/c at N points (f_stick/f_sep too)."""
     output:
         temp(result("receding/chunks/gap_N{n}_{chunk}.nc")),
@@ -29,28 +31,25 @@ rule receding_gap_chunk:
         chunk=r"\d+",
         n=r"\d+",
     params:
-        w=lambda wc: chunk_values(RECEDING_W, wc.chunk, len(RECEDING_CHUNKS)),
-        f=RECEDING_F,
-        # f_stick/f_sep only at the main N (the comparison sweeps show the zones)
-        thresholds=lambda wc: [] if int(wc.n) == RECEDING["n"] else ["--no-thresholds"],
-        stick_zone_limit=RECEDING["stick_zone_limit"],
-        # the comparison N (Fig. 5.5) shows that N as it is: no refinement there
-        refine_max_n=lambda wc: (
-            RECEDING["refine_max_n"] if int(wc.n) == RECEDING["n"] else int(wc.n)
+        args=lambda wc: command_args(
+            "receding gap-sweep",
+            config,
+            w_hat=chunk_values(RECEDING_W, wc.chunk, len(RECEDING_CHUNKS)),
+            f=RECEDING_F,
+            n=wc.n,
+            # f_stick/f_sep only at the main N (the comparison sweeps show the zones)
+            no_thresholds=int(wc.n) != RECEDING["n"],
+            # the comparison N (Fig. 5.5) shows that N as it is: no refinement there
+            refine_max_n=RECEDING["refine_max_n"] if int(wc.n) == RECEDING["n"] else wc.n,
         ),
-        continuation=["--continuation"] if RECEDING["continuation"] else ["--no-continuation"],
     # long jobs first, so that none of them starts last (greedy scheduler)
     priority: 10
     log:
         logs("receding/gap_N{n}_{chunk}.log"),
     benchmark:
-        logs("benchmarks/receding_gap_chunk_N{n}_{chunk}.tsv"),
+        logs("benchmarks/receding_gap_sweep_N{n}_{chunk}.tsv"),
     shell:
-        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
-        " contactlab receding gap-sweep --w-hat {params.w:q} --f {params.f:q}"
-        " --n {wildcards.n:q} {params.thresholds:q}"
-        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
-        " {params.continuation:q} --out {output:q} 2> {log:q}"
+        "contactlab receding gap-sweep {params.args:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_gap_gather:
@@ -104,25 +103,22 @@ rule receding_gap_profile:
     output:
         result("receding/profiles/gap_{point}.nc"),
     params:
-        w=lambda wc: gap_profile_point(RECEDING["profiles"], wc.point)["w"],
-        f=lambda wc: gap_profile_point(RECEDING["profiles"], wc.point)["f"],
-        n=RECEDING["profile_n"],
-        x_max=RECEDING["profile_x_max"],
-        stick_zone_limit=RECEDING["stick_zone_limit"],
-        refine_max_n=max(RECEDING["profile_n"], RECEDING["refine_max_n"]),
+        args=lambda wc: command_args(
+            "receding gap-profile",
+            config,
+            w_hat=gap_profile_point(RECEDING["profiles"], wc.point)["w"],
+            f=gap_profile_point(RECEDING["profiles"], wc.point)["f"],
+            refine_max_n=max(RECEDING["profile_n"], RECEDING["refine_max_n"]),
+        ),
     log:
         logs("receding/gap_profile_{point}.log"),
     benchmark:
         logs("benchmarks/receding_gap_profile_{point}.tsv"),
     shell:
-        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
-        " contactlab receding gap-profile --w-hat {params.w:q} --f {params.f:q}"
-        " --n {params.n:q} --x-max {params.x_max:q}"
-        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
-        " --out {output:q} 2> {log:q}"
+        "contactlab receding gap-profile {params.args:q} --out {output:q} 2> {log:q}"
 
 
-rule report_receding_gap:
+rule receding_report_gap:
     """Report section: Figs 5.4-5.8 and tables of the gap problem."""
     input:
         sweep=result("receding/gap.nc"),
@@ -173,7 +169,7 @@ rule report_receding_gap:
     log:
         logs("report/receding_gap.log"),
     benchmark:
-        logs("benchmarks/report_receding_gap.tsv"),
+        logs("benchmarks/receding_report_gap.tsv"),
     shell:
         "contactlab receding report-gap --sweep {input.sweep:q} --compare {input.compare:q}"
         " --regimes {input.regimes:q}"
@@ -204,35 +200,30 @@ PATCH_F = sweep_values(PATCHES["f"])
 PATCH_W = sweep_values(PATCHES["w"])
 PATCH_CHUNKS = list(range(min(PATCHES["chunks"], len(PATCH_F))))
 PATCH_PROFILES = [liftoff_profile_name(p) for p in PATCHES["profiles"]]
+PATCH_TABLES = PATCHES["tables"]
+# the named laws and the user's shapes (results/receding/table_<name>.nc), one rule for both
+PATCH_NAMES = [*PATCHES["laws"], *(f"table_{name}" for name in PATCH_TABLES)]
+PATCH_LAWS = "|".join(PATCH_NAMES)
 
 
-rule receding_line_chunk:
+rule receding_line_sweep:
     """a, b, K_T of the line load (and the Chaise model) for one chunk of f."""
     output:
         temp(result("receding/chunks/line_{chunk}.nc")),
     wildcard_constraints:
         chunk=r"\d+",
     params:
-        f=lambda wc: chunk_values(LINE_F, wc.chunk, len(LINE_CHUNKS)),
-        n=LINE["n"],
-        lam=LINE["lambda"],
-        e=LINE["e"],
-        chaise=["--chaise"] if LINE["chaise"] else ["--no-chaise"],
-        stick_zone_limit=LINE["stick_zone_limit"],
-        refine_max_n=LINE["refine_max_n"],
-        continuation=["--continuation"] if LINE["continuation"] else ["--no-continuation"],
+        args=lambda wc: command_args(
+            "receding line-sweep", config, f=chunk_values(LINE_F, wc.chunk, len(LINE_CHUNKS))
+        ),
     # long jobs first, so that none of them starts last (greedy scheduler)
     priority: 10
     log:
         logs("receding/line_{chunk}.log"),
     benchmark:
-        logs("benchmarks/receding_line_chunk_{chunk}.tsv"),
+        logs("benchmarks/receding_line_sweep_{chunk}.tsv"),
     shell:
-        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
-        " contactlab receding line-sweep --f {params.f:q} --n {params.n:q}"
-        " --lam {params.lam:q} --e {params.e:q} {params.chaise:q}"
-        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
-        " {params.continuation:q} --out {output:q} 2> {log:q}"
+        "contactlab receding line-sweep {params.args:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_line_gather:
@@ -246,105 +237,49 @@ rule receding_line_gather:
     benchmark:
         logs("benchmarks/receding_line_gather.tsv"),
     shell:
-        "contactlab receding liftoff-gather {input:q} --out {output:q} 2> {log:q}"
+        "contactlab receding line-gather {input:q} --out {output:q} 2> {log:q}"
 
 
-rule receding_patch_chunk:
-    """a, b, K_T of one pressure patch law over (f chunk, w/c)."""
+rule receding_patch_sweep:
+    """a, b, K_T of one pressure patch law, or a user-given shape (receding.patches.tables,
+    law table_<name>), over (f chunk, w/c)."""
     output:
         temp(result("receding/chunks/patch_{law}_{chunk}.nc")),
     wildcard_constraints:
-        law="uniform|hertz|punch",
+        law=PATCH_LAWS,
         chunk=r"\d+",
     params:
-        f=lambda wc: chunk_values(PATCH_F, wc.chunk, len(PATCH_CHUNKS)),
-        w=PATCH_W,
-        n=PATCHES["n"],
-        lam_b=PATCHES["lambda_b"],
-        e_minus_w=PATCHES["e_minus_w"],
-        stick_zone_limit=PATCHES["stick_zone_limit"],
-        refine_max_n=PATCHES["refine_max_n"],
-        continuation=["--continuation"] if PATCHES["continuation"] else ["--no-continuation"],
+        args=lambda wc: command_args(
+            "receding patch-sweep",
+            config,
+            **patch_shape(wc.law, PATCHES["tables"]),
+            f=chunk_values(PATCH_F, wc.chunk, len(PATCH_CHUNKS)),
+            w_hat=PATCH_W,
+        ),
     log:
         logs("receding/patch_{law}_{chunk}.log"),
     benchmark:
-        logs("benchmarks/receding_patch_chunk_{law}_{chunk}.tsv"),
+        logs("benchmarks/receding_patch_sweep_{law}_{chunk}.tsv"),
     shell:
-        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
-        " contactlab receding patch-sweep --problem {wildcards.law:q}"
-        " --f {params.f:q} --w-hat {params.w:q} --n {params.n:q} --lam-b {params.lam_b:q}"
-        " --e-minus-w {params.e_minus_w:q}"
-        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
-        " {params.continuation:q} --out {output:q} 2> {log:q}"
+        "contactlab receding patch-sweep {params.args:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_patch_gather:
-    """results/receding/<law>.nc: a pressure patch over (f, w/c) (Figs 7.5, 7.6, 7.9, 7.10)."""
+    """results/receding/<law>.nc: a pressure patch over (f, w/c) (Figs 7.5, 7.6, 7.9, 7.10),
+    or a user-given shape (table_<name>.nc)."""
     input:
         lambda wc: expand(result("receding/chunks/patch_{law}_{chunk}.nc"), law=wc.law,
                           chunk=PATCH_CHUNKS),
     output:
         result("receding/{law}.nc"),
     wildcard_constraints:
-        law="uniform|hertz|punch",
+        law=PATCH_LAWS,
     log:
         logs("receding/patch_gather_{law}.log"),
     benchmark:
         logs("benchmarks/receding_patch_gather_{law}.tsv"),
     shell:
-        "contactlab receding liftoff-gather {input:q} --out {output:q} 2> {log:q}"
-
-
-PATCH_TABLES = PATCHES["tables"]
-
-
-rule receding_table_chunk:
-    """a, b, K_T of a user-given pressure shape (receding.patches.tables) over (f chunk, w/c)."""
-    output:
-        temp(result("receding/chunks/table_{name}_{chunk}.nc")),
-    wildcard_constraints:
-        name="|".join(PATCH_TABLES) or "(?!)",
-        chunk=r"\d+",
-    params:
-        f=lambda wc: chunk_values(PATCH_F, wc.chunk, len(PATCH_CHUNKS)),
-        w=PATCH_W,
-        x=lambda wc: PATCH_TABLES[wc.name]["x"],
-        p=lambda wc: PATCH_TABLES[wc.name]["p"],
-        n=PATCHES["n"],
-        lam_b=PATCHES["lambda_b"],
-        e_minus_w=PATCHES["e_minus_w"],
-        stick_zone_limit=PATCHES["stick_zone_limit"],
-        refine_max_n=PATCHES["refine_max_n"],
-        continuation=["--continuation"] if PATCHES["continuation"] else ["--no-continuation"],
-    log:
-        logs("receding/table_{name}_{chunk}.log"),
-    benchmark:
-        logs("benchmarks/receding_table_chunk_{name}_{chunk}.tsv"),
-    shell:
-        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
-        " contactlab receding patch-sweep --problem table"
-        " --table-x {params.x:q} --table-p {params.p:q}"
-        " --f {params.f:q} --w-hat {params.w:q} --n {params.n:q} --lam-b {params.lam_b:q}"
-        " --e-minus-w {params.e_minus_w:q}"
-        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
-        " {params.continuation:q} --out {output:q} 2> {log:q}"
-
-
-rule receding_table_gather:
-    """results/receding/table_<name>.nc: a user-given pressure shape over (f, w/c)."""
-    input:
-        lambda wc: expand(result("receding/chunks/table_{name}_{chunk}.nc"), name=wc.name,
-                          chunk=PATCH_CHUNKS),
-    output:
-        result("receding/table_{name}.nc"),
-    wildcard_constraints:
-        name="|".join(PATCH_TABLES) or "(?!)",
-    log:
-        logs("receding/table_gather_{name}.log"),
-    benchmark:
-        logs("benchmarks/receding_table_gather_{name}.tsv"),
-    shell:
-        "contactlab receding liftoff-gather {input:q} --out {output:q} 2> {log:q}"
+        "contactlab receding patch-gather {input:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_line_profile:
@@ -352,24 +287,13 @@ rule receding_line_profile:
     output:
         result("receding/profiles/line_f{f}.nc"),
     params:
-        n=LINE["n"],
-        lam=LINE["lambda"],
-        e=LINE["e"],
-        chaise=["--chaise"] if LINE["chaise"] else ["--no-chaise"],
-        x_max=LINE["profile_x_max"],
-        stick_zone_limit=LINE["stick_zone_limit"],
-        refine_max_n=LINE["refine_max_n"],
+        args=lambda wc: command_args("receding line-profile", config, f=wc.f),
     log:
         logs("receding/line_profile_f{f}.log"),
     benchmark:
         logs("benchmarks/receding_line_profile_{f}.tsv"),
     shell:
-        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
-        " contactlab receding liftoff-profile --problem line --f {wildcards.f:q}"
-        " --n {params.n:q} --lam {params.lam:q} --e {params.e:q} {params.chaise:q}"
-        " --x-max {params.x_max:q}"
-        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
-        " --out {output:q} 2> {log:q}"
+        "contactlab receding line-profile {params.args:q} --out {output:q} 2> {log:q}"
 
 
 rule receding_patch_profile:
@@ -379,35 +303,27 @@ rule receding_patch_profile:
     wildcard_constraints:
         point=r"patch_[a-z]+_w[0-9.]+_f[0-9.]+",
     params:
-        law=lambda wc: liftoff_profile_point(PATCHES["profiles"], wc.point)["law"],
-        w=lambda wc: liftoff_profile_point(PATCHES["profiles"], wc.point)["w"],
-        f=lambda wc: liftoff_profile_point(PATCHES["profiles"], wc.point)["f"],
-        n=PATCHES["n"],
-        lam_b=PATCHES["lambda_b"],
-        e_minus_w=PATCHES["e_minus_w"],
-        x_max=PATCHES["profile_x_max"],
-        stick_zone_limit=PATCHES["stick_zone_limit"],
-        refine_max_n=PATCHES["refine_max_n"],
+        args=lambda wc: command_args(
+            "receding patch-profile",
+            config,
+            problem=liftoff_profile_point(PATCHES["profiles"], wc.point)["law"],
+            w_hat=liftoff_profile_point(PATCHES["profiles"], wc.point)["w"],
+            f=liftoff_profile_point(PATCHES["profiles"], wc.point)["f"],
+        ),
     log:
         logs("receding/{point}.log"),
     benchmark:
         logs("benchmarks/receding_patch_profile_{point}.tsv"),
     shell:
-        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
-        " contactlab receding liftoff-profile --problem {params.law:q}"
-        " --w-hat {params.w:q} --f {params.f:q} --n {params.n:q} --lam-b {params.lam_b:q}"
-        " --e-minus-w {params.e_minus_w:q} --no-chaise --x-max {params.x_max:q}"
-        " --stick-zone-limit {params.stick_zone_limit:q} --refine-max-n {params.refine_max_n:q}"
-        " --out {output:q} 2> {log:q}"
+        "contactlab receding patch-profile {params.args:q} --out {output:q} 2> {log:q}"
 
 
-rule report_receding_line_patch:
+rule receding_report_line_patch:
     """Report section: Figs 6.3-6.6 and 7.2-7.10 and tables of the lifting-off problems."""
     input:
         line=result("receding/line.nc"),
         patches=[
-            *expand(result("receding/{law}.nc"), law=PATCHES["laws"]),
-            *expand(result("receding/table_{name}.nc"), name=PATCH_TABLES),
+            *expand(result("receding/{law}.nc"), law=PATCH_NAMES),
         ],
         profiles=[
             *expand(result("receding/profiles/{p}.nc"), p=LINE_PROFILES),
@@ -495,9 +411,9 @@ rule report_receding_line_patch:
     log:
         logs("report/receding_line_patch.log"),
     benchmark:
-        logs("benchmarks/report_receding_line_patch.tsv"),
+        logs("benchmarks/receding_report_line_patch.tsv"),
     shell:
-        "contactlab receding report-liftoff --line {input.line:q} --patches {input.patches:q}"
+        "contactlab receding report-line-patch --line {input.line:q} --patches {input.patches:q}"
         " --profiles {input.profiles:q} --report-dir {params.report_dir:q} --out {output.section:q}"
         " 2> {log:q}"
 
@@ -505,8 +421,7 @@ rule report_receding_line_patch:
 ALL_TARGETS.extend(
     [
         result("receding/line.nc"),
-        *expand(result("receding/{law}.nc"), law=PATCHES["laws"]),
-        *expand(result("receding/table_{name}.nc"), name=PATCH_TABLES),
+        *expand(result("receding/{law}.nc"), law=PATCH_NAMES),
         *expand(result("receding/profiles/{p}.nc"), p=LINE_PROFILES),
         *expand(result("receding/profiles/{p}.nc"), p=PATCH_PROFILES),
     ]
@@ -521,10 +436,9 @@ localrules:
     receding_gap_gather_compare,
     receding_gap_regimes,
     receding_gap_profile,
-    report_receding_gap,
+    receding_report_gap,
     receding_line_gather,
     receding_patch_gather,
-    receding_table_gather,
     receding_line_profile,
     receding_patch_profile,
-    report_receding_line_patch,
+    receding_report_line_patch,

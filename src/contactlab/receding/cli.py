@@ -1,35 +1,43 @@
 """``contactlab receding ...``: frictional receding contacts (Part III) from the command line.
 
-The group, ``receding solve`` for any problem, and the sub-commands of the two problems:
-the gap problem of ch. 5 (:mod:`contactlab.receding.gap.cli`, ``gap-...``) and the
-lifting-off problems of chs 6-7 (:mod:`contactlab.receding.liftoff.cli`, ``line-...``,
-``patch-...``, ``liftoff-...``). Each ``report-<problem>`` writes the problem's section.
+The group, ``receding solve`` for any problem, and the commands of the two problems: the
+gap problem of ch. 5 (:mod:`contactlab.receding.gap.cli`, ``gap-...``) and the lifting-off
+problems of chs 6-7 (:mod:`contactlab.receding.liftoff.cli`, ``line-...``, ``patch-...``).
 """
 
 from __future__ import annotations
 
 import argparse
 
-from contactlab.cliutil import add_command, add_group
+from contactlab.command import Command, Group, Option
 from contactlab.receding.gap import cli as gap_cli
 from contactlab.receding.liftoff import cli as liftoff_cli
+from contactlab.receding.options import GAP, LINE, NAME, PATCHES, line_options, patch_options
 
 EXAMPLES = """\
-  contactlab receding solve --problem gap --f 0.5 --w-hat 2.5 --n 100 --json
-  contactlab receding gap-sweep --w-hat 1 2 --f 0.3 0.5 --n 100 --stick-zone-limit 1e-30 \\
-      --refine-max-n 400 --continuation --out chunk.nc
+  contactlab receding solve --problem gap --f 0.5 --w-hat 2.5
+  contactlab receding solve --problem line --f 0.5 --json
+  contactlab receding solve --problem hertz --f 0.3 --w-hat 1 --n 200
+  contactlab receding gap-sweep --w-hat 1 2 --f 0.3 0.5 --out chunk.nc
   contactlab receding gap-gather chunk*.nc --out gap.nc
   contactlab receding gap-regimes --sweep gap.nc --out gap_regimes.nc
-  contactlab receding gap-profile --w-hat 2.5 --f 0.5 --n 100 --x-max 6 \\
-      --stick-zone-limit 1e-30 --refine-max-n 400 --out profile.nc
-  contactlab receding line-sweep --f 0.5 0.3 --n 500 --lam 3.5 --e 5 --chaise \\
-      --stick-zone-limit 1e-4 --refine-max-n 1000 --continuation --out l.nc
-  contactlab receding liftoff-profile --problem uniform --f 0.3 --w-hat 1 --n 100 \\
-      --lam-b 2 --e-minus-w 5 --no-chaise --x-max 12 --stick-zone-limit 1e-4 \\
-      --refine-max-n 400 --out profile.nc
+  contactlab receding gap-profile --w-hat 2.5 --f 0.5 --out profile.nc
+  contactlab receding line-sweep --f 0.5 0.3 --out line.nc
+  contactlab receding patch-sweep --problem uniform --f 0.3 --w-hat 1 --out x.nc
+  contactlab receding patch-profile --problem uniform --f 0.3 --w-hat 1 --out p.nc
 Lengths are in units of the layer thickness c (w/c, x/c), tractions in units of the
-applied pressure or load; N is the number of Gauss-Chebyshev points.
+applied pressure or load; N is the number of Gauss-Chebyshev points. Options left out
+take the config schema's defaults (workflow/schemas/config.schema.yaml), shown in each
+command's --help.
 """
+
+#: Each problem's config section.
+SECTIONS = {"gap": GAP, "line": LINE, **{law: PATCHES for law in liftoff_cli.LAWS}}
+
+
+def _by_problem(name: str) -> dict[str, str]:
+    """The config key ``name`` of each problem's section."""
+    return {problem: f"{section}.{name}" for problem, section in SECTIONS.items()}
 
 
 def _solve(args: argparse.Namespace) -> None:
@@ -39,40 +47,32 @@ def _solve(args: argparse.Namespace) -> None:
         liftoff_cli.run_solve(args)
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
-    """Add the ``receding`` command group."""
-    commands = add_group(
-        subparsers, "receding", help="frictional receding contacts (Part III)",
-        description="Frictional receding contacts of an elastic layer on a half-plane by "
-                    "distributed dislocations (thesis chs 4-7): the gap problem (ch. 5), the "
-                    "line load (ch. 6) and pressure patches (ch. 7).",
-        examples=EXAMPLES)
-    solve = add_command(
-        commands, "solve", help="one solution (printed, --json for JSON)",
-        description="Solve one problem at one (f, w/c) and print the transition points, "
-                    "regime, residual and checks (--json: one JSON object).")
-    solve.add_argument("--problem", choices=["gap", *liftoff_cli.PROBLEMS], default="gap",
-                       help="gap: pressure on |x| >= w (ch. 5); line: line load (ch. 6); "
-                            "uniform/hertz/punch: pressure patch on |x| <= w (ch. 7)")
-    solve.add_argument("--w-hat", type=float, default=None,
-                       help="half-width w/c of the gap or patch (not for line)")
-    solve.add_argument("--f", type=float, required=True, help="friction coefficient f")
-    solve.add_argument("--n", type=int, required=True,
-                       help="Gauss-Chebyshev integration points N (even) (thesis: gap and "
-                            "patches 100, line 500)")
-    solve.add_argument("--lam", type=float, default=None,
-                       help="line: map scale lambda (sec. 6.4; thesis 3.5)")
-    solve.add_argument("--e", type=float, default=None,
-                       help="line: end e/c of the cubic part of A_y (eq. 6.9; thesis 5)")
-    solve.add_argument("--lam-b", type=float, default=None,
-                       help="patches: map scale lambda_b (sec. 7.4; thesis 2)")
-    solve.add_argument("--e-minus-w", type=float, default=None,
-                       help="patches: (e - w)/c, end of the cubic of A_y (thesis 5)")
-    solve.add_argument("--stick-zone-limit", type=float, default=None,
-                       help="stick zone (c) below which an unresolved one is solved in its "
-                            "limit of zero width; 0: never (default: the solver's, 1e-30 for "
-                            "the gap problem, 1e-4 for line and patches)")
-    solve.add_argument("--json", action="store_true", help="print one JSON object")
-    solve.set_defaults(func=_solve)
-    gap_cli.register(commands)
-    liftoff_cli.register(commands)
+SOLVE = Command(
+    NAME, "solve", "one solution (printed, --json for JSON)",
+    description="Solve one problem at one (f, w/c) and print the transition points, the "
+                "regime, the residual and the checks (--json: one JSON object).",
+    options=(
+        Option("--problem", "gap: pressure on |x| >= w (ch. 5); line: line load (ch. 6); "
+               "uniform/hertz/punch: pressure patch on |x| <= w (ch. 7)",
+               choices=tuple(SECTIONS), default="gap"),
+        Option("--f", "friction coefficient f", float),
+        Option("--w-hat", "half-width w/c of the gap or patch", float,
+               only=("gap", *liftoff_cli.LAWS)),
+        Option("--n", "Gauss-Chebyshev integration points N (even)", int, key=_by_problem("n")),
+        *(Option(o.flag, o.help, o.type, key={"line": o.key}, only=("line",))
+          for o in line_options()),
+        *(Option(o.flag, o.help, o.type, key=dict.fromkeys(liftoff_cli.LAWS, o.key),
+                 only=liftoff_cli.LAWS) for o in patch_options()),
+        Option("--stick-zone-limit", "stick zone (units of c) below which an unresolved one "
+               "is solved in its limit of zero width; 0: never", float,
+               key=_by_problem("stick_zone_limit")),
+        Option("--json", "print one JSON object", kind="flag", default=False),
+    ),
+    run=_solve, select="problem")
+
+GROUP = Group(
+    NAME, help="frictional receding contacts (Part III)",
+    description="Frictional receding contacts of an elastic layer on a half-plane by "
+                "distributed dislocations (thesis chs 4-7): the gap problem (ch. 5), the "
+                "line load (ch. 6) and pressure patches (ch. 7).",
+    examples=EXAMPLES, commands=(SOLVE, *gap_cli.COMMANDS, *liftoff_cli.COMMANDS))

@@ -1,9 +1,9 @@
-"""``contactlab receding gap-...``: the gap problem of ch. 5 from the command line.
+"""Commands of the gap problem (ch. 5): ``gap-sweep``, ``gap-gather``, ``gap-regimes``,
+``gap-profile``, ``report-gap``.
 
-Registered in the ``receding`` group by :mod:`contactlab.receding.cli`, which also owns
-``receding solve`` (:func:`run_solve` here for ``--problem gap``). The solves are small
-dense systems: set OPENBLAS_NUM_THREADS=1 (the workflow rules do) so that parallel jobs
-do not fight over BLAS threads.
+Declared here, grouped by :mod:`contactlab.receding.cli`, which also owns ``receding
+solve`` (:func:`run_solve` here for ``--problem gap``). Options fed from the config
+(``receding.gap``) take the schema's defaults when not given.
 """
 
 from __future__ import annotations
@@ -13,14 +13,9 @@ import json
 import time
 from typing import Any
 
-from contactlab.cliutil import (
-    add_command,
-    add_output,
-    add_robustness,
-    add_section_outputs,
-    check_memory,
-    input_file,
-)
+from contactlab.cliutil import check_memory, chunks_option, input_file, out_option, section_outputs
+from contactlab.command import Command, Option
+from contactlab.receding.options import GAP, NAME, robustness
 
 SOURCE = ("distributed dislocations, thesis ch. 5 (eqs 5.1-5.28, App. B.1); "
           "Gauss-Chebyshev quadrature, MINPACK root finding on the leftover equations")
@@ -45,25 +40,29 @@ def solution_summary(sol: Any, seconds: float, problem: str = "gap") -> dict:
     })
 
 
+#: The transition points of the gap problem as ``receding solve`` names them (Fig. 5.2).
+ZONE_WORDS = {"a1": "end of the central stick zone", "a2": "start of the outer stick zone",
+              "b": "separation point", "a3": "end of the outer slip zone"}
+
+
 def run_solve(args: argparse.Namespace) -> None:
     """``receding solve --problem gap``: one solution, printed or as JSON."""
-    if args.w_hat is None:
-        raise ValueError("problem gap needs --w-hat (gap half-width w/c)")
     check_memory("--n", args.n, gap_memory(args.n))
     from contactlab.receding.gap.solver import solve_gap
 
     start = time.perf_counter()
-    kwargs = {} if args.stick_zone_limit is None else {"stick_zone_limit": args.stick_zone_limit}
-    sol = solve_gap(args.w_hat, args.f, args.n, **kwargs)
+    sol = solve_gap(args.w_hat, args.f, args.n, stick_zone_limit=args.stick_zone_limit)
     summary = solution_summary(sol, time.perf_counter() - start, args.problem)
     if args.json:
         print(json.dumps(summary))
         return
-    zones = ", ".join(f"{k} = {summary[k]:.6g}" for k in ("a1", "a2", "b", "a3")
-                      if summary[k] is not None)
-    print(f"gap problem, w/c = {sol.w:g}, f = {sol.f:g}, N = {sol.n}: {sol.regime}"
-          f"{' (' + zones + ')' if zones else ''}; residual {sol.residual:.1e}, "
-          f"converged {sol.converged}, {summary['seconds']} s")
+    lines = [f"gap problem, gap half-width w/c = {sol.w:g}, f = {sol.f:g}, N = {sol.n}: "
+             f"{sol.regime}"]
+    lines += [f"  {ZONE_WORDS[k]:<38} {k}/c = {summary[k]:.6g}"
+              for k in ZONE_WORDS if summary[k] is not None]
+    lines.append(f"  largest residual {sol.residual:.1e}, converged {sol.converged}, "
+                 f"admissible {sol.admissible}, {summary['seconds']} s")
+    print("\n".join(lines))
 
 
 def _sweep(args: argparse.Namespace) -> None:
@@ -82,10 +81,7 @@ def _sweep(args: argparse.Namespace) -> None:
     log_summary(ds, f"gap sweep N = {args.n}", time.perf_counter() - start)
     stamp(ds, title=f"Gap problem (thesis ch. 5): transition points over (f, w/c), N = {args.n}",
           source=SOURCE,
-          history=f"contactlab receding gap-sweep --w-hat {' '.join(map(str, args.w_hat))} "
-                  f"--f {' '.join(map(str, args.f))} --n {args.n} --stick-zone-limit "
-                  f"{args.stick_zone_limit} --refine-max-n {args.refine_max_n} "
-                  f"--{'' if args.continuation else 'no-'}continuation")
+          history=args.history)
     write_netcdf(ds, args.out)
 
 
@@ -99,7 +95,7 @@ def _gather(args: argparse.Namespace) -> None:
     ds.attrs.update(summary_attrs(ds))
     stamp(ds, title=f"Gap problem (thesis ch. 5): transition points over (f, w/c), "
                     f"N = {ds.attrs.get('N')}",
-          source=SOURCE, history=f"contactlab receding gap-gather of {len(parts)} chunks")
+          source=SOURCE, history=args.history)
     write_netcdf(ds, args.out)
 
 
@@ -127,7 +123,7 @@ def _regimes(args: argparse.Namespace) -> None:
                      "the frictionless limit, Fourier solution)", "units": "1"})
     ds.attrs = {"f_min": sweep.attrs.get("f_min", np.nan), "N": sweep.attrs["N"]}
     stamp(ds, title="Gap problem (thesis ch. 5): solution regimes (Fig. 5.4)", source=SOURCE,
-          history=f"contactlab receding gap-regimes --sweep {args.sweep}")
+          history=args.history)
     write_netcdf(ds, args.out)
 
 
@@ -142,9 +138,7 @@ def _profile(args: argparse.Namespace) -> None:
                          refine_max_n=args.refine_max_n)
     stamp(ds, title=f"Gap problem (thesis ch. 5): interface profiles at w/c = {args.w_hat}, "
                     f"f = {args.f}", source=SOURCE,
-          history=f"contactlab receding gap-profile --w-hat {args.w_hat} --f {args.f} "
-                  f"--n {args.n} --stick-zone-limit {args.stick_zone_limit} "
-                  f"--refine-max-n {args.refine_max_n}")
+          history=args.history)
     write_netcdf(ds, args.out)
 
 
@@ -155,72 +149,51 @@ def _report(args: argparse.Namespace) -> None:
                   args.out)
 
 
-#: what --stick-zone-limit limits in the gap problem
-STICK_ZONE = ("stick zone (units of c) below which an unresolved one is solved in its limit "
-              "of zero width")
+N_HELP = "Gauss-Chebyshev integration points N (even)"
 
-
-def register(commands: argparse._SubParsersAction) -> None:
-    """Add the ch. 5 sub-commands (``gap-...``) to the ``receding`` group."""
-    n_help = "Gauss-Chebyshev integration points N (even)"
-
-    sweep = add_command(
-        commands, "gap-sweep", help="transition points over (f, w/c) at one N",
+COMMANDS = (
+    Command(
+        NAME, "gap-sweep", "transition points over (f, w/c) at one N",
         description="Transition points a1, a2, b, a3 and the regime of the gap problem on a "
-                    "grid of (f, w/c), with the thresholds f_stick and f_sep per w/c.")
-    sweep.add_argument("--w-hat", type=float, nargs="+", required=True,
-                       help="gap half-widths w/c")
-    sweep.add_argument("--f", type=float, nargs="+", required=True,
-                       help="friction coefficients f")
-    sweep.add_argument("--n", type=int, required=True, help=n_help)
-    sweep.add_argument("--no-thresholds", action="store_true",
-                       help="skip f_stick/f_sep per w/c")
-    add_robustness(sweep, "receding.gap", STICK_ZONE, continuation="retry unconverged "
-                   "points from solved neighbours in f and w/c")
-    add_output(sweep, "netCDF output (one chunk)")
-    sweep.set_defaults(func=_sweep)
-
-    gather = add_command(
-        commands, "gap-gather", help="join sweep chunks along w",
-        description="Join gap-sweep chunks (same N) along w/c into one sweep file.")
-    gather.add_argument("chunks", type=input_file, nargs="+", help="gap-sweep chunk files")
-    add_output(gather)
-    gather.set_defaults(func=_gather)
-
-    regimes = add_command(
-        commands, "gap-regimes", help="regime map (Fig. 5.4) from a sweep",
+                    "grid of (f, w/c), with the thresholds f_stick and f_sep per w/c.",
+        options=(Option("--w-hat", "gap half-widths w/c", float, nargs="+"),
+                 Option("--f", "friction coefficients f", float, nargs="+"),
+                 Option("--n", N_HELP, int, key=f"{GAP}.n"),
+                 Option("--no-thresholds", "skip f_stick/f_sep per w/c", kind="flag",
+                        default=False),
+                 *robustness(GAP), out_option("netCDF output (one chunk)")),
+        run=_sweep),
+    Command(
+        NAME, "gap-gather", "join gap-sweep chunks along w/c",
+        description="Join gap-sweep chunks (same N) along w/c into one sweep file.",
+        options=(chunks_option("gap-sweep"), out_option()), run=_gather),
+    Command(
+        NAME, "gap-regimes", "regime map (Fig. 5.4) from a sweep",
         description="Regime map of the gap problem (Fig. 5.4): f_stick(w), f_sep(w) and the "
-                    "w/c of separation onset, from a sweep with thresholds.")
-    regimes.add_argument("--sweep", type=input_file, required=True,
-                         help="gathered sweep (results/receding/gap.nc)")
-    add_output(regimes)
-    regimes.set_defaults(func=_regimes)
-
-    profile = add_command(
-        commands, "gap-profile", help="tractions, densities, displacements",
+                    "w/c of separation onset, from a sweep with thresholds.",
+        options=(Option("--sweep", "gathered sweep (results/receding/gap.nc)", input_file),
+                 out_option()),
+        run=_regimes),
+    Command(
+        NAME, "gap-profile", "tractions, densities, displacements at one (w/c, f)",
         description="Interface tractions, dislocation densities, slip and separation of the "
-                    "gap problem at one (w/c, f) (Figs 5.6-5.8).")
-    profile.add_argument("--w-hat", type=float, required=True, help="gap half-width w/c")
-    profile.add_argument("--f", type=float, required=True, help="friction coefficient f")
-    profile.add_argument("--n", type=int, required=True, help=n_help)
-    profile.add_argument("--x-max", type=float, required=True,
-                         help="profile on x/c in [-x_max, x_max] (config "
-                              "receding.gap.profile_x_max)")
-    profile.add_argument("--points", type=int, default=601, help="points of the profile")
-    add_robustness(profile, "receding.gap", STICK_ZONE)
-    add_output(profile)
-    profile.set_defaults(func=_profile)
-
-    report = add_command(
-        commands, "report-gap", help="report section of the gap problem",
-        description="HTML report fragment of the gap problem: Figs 5.4-5.8 and tables.")
-    report.add_argument("--sweep", type=input_file, required=True,
-                        help="gathered sweep at the main N (gap.nc)")
-    report.add_argument("--compare", type=input_file, nargs="*", default=[],
-                        help="sweeps at other N for Fig. 5.5")
-    report.add_argument("--regimes", type=input_file, required=True,
-                        help="regime map (gap_regimes.nc)")
-    report.add_argument("--profiles", type=input_file, nargs="+", required=True,
-                        help="gap-profile files")
-    add_section_outputs(report)
-    report.set_defaults(func=_report)
+                    "gap problem at one (w/c, f) (Figs 5.6-5.8).",
+        options=(Option("--w-hat", "gap half-width w/c", float),
+                 Option("--f", "friction coefficient f", float),
+                 Option("--n", N_HELP, int, key=f"{GAP}.profile_n"),
+                 Option("--x-max", "profile on x/c in [-x_max, x_max]", float,
+                        key=f"{GAP}.profile_x_max"),
+                 Option("--points", "points of the profile", int, default=601),
+                 *robustness(GAP, continuation=False), out_option()),
+        run=_profile),
+    Command(
+        NAME, "report-gap", "report section of the gap problem",
+        description="HTML report fragment of the gap problem: Figs 5.4-5.8 and tables.",
+        options=(Option("--sweep", "gathered sweep at the main N (gap.nc)", input_file),
+                 Option("--compare", "sweeps at other N for Fig. 5.5", input_file, nargs="*",
+                        default=[]),
+                 Option("--regimes", "regime map (gap_regimes.nc)", input_file),
+                 Option("--profiles", "gap-profile files", input_file, nargs="+"),
+                 *section_outputs()),
+        run=_report),
+)

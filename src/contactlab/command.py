@@ -1,0 +1,290 @@
+"""One declaration per command: each ``contactlab`` command's options, declared once.
+
+A :class:`Command` lists its :class:`Option` s. Everything else is made from that list:
+
+- the argparse parser (:meth:`Command.add_to`), whose help shows each option's unit and
+  default -- for an option fed from the config, the schema's default
+  (``workflow/schemas/config.schema.yaml``, read only when needed);
+- after parsing, the values the user left out: a config-fed option takes the schema's
+  default, and every missing or inapplicable option is reported in one message
+  (:meth:`Command.complete`);
+- the words a Snakemake rule passes (:meth:`Command.words`): the values a rule gives plus
+  every config-fed option from the effective config, in declaration order;
+- the result's ``history`` line (:meth:`Command.complete` sets ``args.history``): the
+  command as typed plus the schema defaults it was completed with.
+
+Standard library only: the parser is built for every call, even ``--help``; PyYAML is
+imported only to read the schema when a default is needed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import shlex
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass, field
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+#: The config schema, the one home of every default (``workflow/schemas/`` of the checkout).
+SCHEMA_PATH = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
+
+
+class _Required:
+    """Marker of an option without a default (the user or the rule must give it)."""
+
+    def __repr__(self) -> str:
+        return "REQUIRED"
+
+
+REQUIRED: Any = _Required()
+
+
+@cache
+def _schema() -> dict:
+    import yaml
+
+    if not SCHEMA_PATH.is_file():
+        raise FileNotFoundError(f"config schema {SCHEMA_PATH} not found: contactlab reads its "
+                                "defaults from the checkout it is installed from (pip install -e)")
+    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+    with SCHEMA_PATH.open(encoding="utf-8") as stream:
+        return yaml.load(stream, Loader=loader)
+
+
+def schema_node(key: str, schema: Mapping[str, Any] | None = None) -> Mapping[str, Any]:
+    """The schema node of the dotted config ``key`` (e.g. ``receding.line.lambda``)."""
+    node: Mapping[str, Any] = _schema() if schema is None else schema
+    for part in key.split("."):
+        props = node.get("properties", {})
+        if part not in props:
+            raise KeyError(f"config key {key!r} is not in the schema {SCHEMA_PATH.name}")
+        node = props[part]
+    return node
+
+
+def schema_default(key: str) -> Any:
+    """The schema's default of the dotted config ``key``."""
+    node = schema_node(key)
+    if "default" not in node:
+        raise KeyError(f"config key {key!r} has no default in the schema {SCHEMA_PATH.name}")
+    return node["default"]
+
+
+def config_value(config: Mapping[str, Any], key: str) -> Any:
+    """The value of the dotted ``key`` in an effective (validated) config."""
+    node: Any = config
+    for part in key.split("."):
+        if not isinstance(node, Mapping) or part not in node:
+            raise KeyError(f"config key {key!r} is not set")
+        node = node[part]
+    return node
+
+
+@dataclass(frozen=True)
+class Option:
+    """One option (``--name``) or positional argument (``name``) of a command.
+
+    Parameters
+    ----------
+    flag
+        ``--w-hat`` for an option, ``chunks`` for a positional argument.
+    help
+        What the value means (without unit or default: both are added).
+    type
+        Converter of one word (``float``, ``int``, :func:`contactlab.cliutil.input_file`, ...).
+    unit
+        Unit of the value, shown in the help (``um``, ``kN``; empty: none or dimensionless).
+    nargs, choices, metavar
+        As in argparse.
+    default
+        Default of an option outside the config; :data:`REQUIRED` if it must be given.
+    key
+        Dotted config key whose schema default the option takes when not given, and whose
+        value a rule passes. A mapping selects the key by the value of the command's
+        ``select`` option (e.g. ``{"line": "receding.line.n", ...}`` by ``--problem``).
+    kind
+        ``value`` (takes words), ``switch`` (``--x``/``--no-x``) or ``flag`` (``--x``).
+    only
+        Values of the command's ``select`` option for which the option applies; given for
+        another, it is refused.
+    """
+
+    flag: str
+    help: str
+    type: Callable[[str], Any] = str
+    unit: str = ""
+    nargs: int | str | None = None
+    choices: Sequence[Any] | None = None
+    metavar: str | None = None
+    default: Any = REQUIRED
+    key: str | Mapping[str, str] | None = None
+    kind: str = "value"
+    only: Sequence[str] | None = None
+
+    @property
+    def dest(self) -> str:
+        """The attribute of the parsed arguments (``--w-hat`` -> ``w_hat``)."""
+        return self.flag.lstrip("-").replace("-", "_")
+
+    @property
+    def positional(self) -> bool:
+        return not self.flag.startswith("-")
+
+    def key_for(self, selected: Any) -> str | None:
+        """The config key of this option when the command's ``select`` option is ``selected``."""
+        if isinstance(self.key, Mapping):
+            return self.key.get(selected)
+        return self.key
+
+    def keys(self) -> list[str]:
+        """Every config key the option may take its value from."""
+        if self.key is None:
+            return []
+        return list(dict.fromkeys(self.key.values())) if isinstance(self.key, Mapping) \
+            else [self.key]
+
+    def render(self, value: Any) -> list[str]:
+        """The words of this option with ``value`` on a command line (None: no words)."""
+        if value is None:
+            return []
+        if self.kind == "switch":
+            return [self.flag if value else "--no-" + self.flag[2:]]
+        if self.kind == "flag":
+            return [self.flag] if value else []
+        items = [str(v) for v in value] if isinstance(value, list | tuple) else [str(value)]
+        return items if self.positional else [self.flag, *items]
+
+    def add_to(self, parser: argparse.ArgumentParser) -> None:
+        """Add this option to ``parser``."""
+        text = self.help + (f" [{self.unit}]" if self.unit else "")
+        kwargs: dict[str, Any] = {"help": text}
+        if self.kind == "switch":
+            kwargs["action"] = argparse.BooleanOptionalAction
+        elif self.kind == "flag":
+            kwargs["action"] = "store_true"
+        else:
+            kwargs.update(type=self.type, nargs=self.nargs, choices=self.choices,
+                          metavar=self.metavar)
+        if self.positional:
+            parser.add_argument(self.flag, **kwargs)
+            return
+        # config-fed, required and problem-specific options are completed or reported
+        # after parsing (:meth:`Command.complete`), all problems in one message
+        plain = self.key is None and self.only is None and self.default is not REQUIRED
+        kwargs["default"] = self.default if plain else None
+        action = parser.add_argument(self.flag, **kwargs)
+        # shown by the help (contactlab.cliutil.HelpFormatter)
+        action.config_key = self.key  # type: ignore[attr-defined]
+        action.must_give = self.default is REQUIRED and self.key is None  # type: ignore[attr-defined]
+
+
+@dataclass(frozen=True)
+class Command:
+    """A ``contactlab <group> <name>`` command: its options and the function it runs.
+
+    ``run`` takes the parsed arguments (complete: every config-fed option has its value,
+    ``args.history`` is the command line to record). ``select`` names the option whose
+    value chooses the config keys and the applicable options (``problem``).
+    """
+
+    group: str
+    name: str
+    help: str
+    options: tuple[Option, ...]
+    run: Callable[[argparse.Namespace], None]
+    description: str = ""
+    select: str | None = None
+
+    @property
+    def path(self) -> str:
+        """``group name``, as on the command line."""
+        return f"{self.group} {self.name}"
+
+    def option(self, dest: str) -> Option:
+        """The option whose attribute is ``dest``."""
+        for opt in self.options:
+            if opt.dest == dest:
+                return opt
+        raise KeyError(f"contactlab {self.path} has no option {dest!r}")
+
+    def add_to(self, commands: argparse._SubParsersAction) -> argparse.ArgumentParser:
+        """Add the command to a group's sub-parsers."""
+        parser = commands.add_parser(self.name, help=self.help,
+                                     description=self.description or self.help)
+        for opt in self.options:
+            opt.add_to(parser)
+        parser.set_defaults(func=self.run, command_declaration=self)
+        return parser
+
+    def complete(self, args: argparse.Namespace, typed: Sequence[str]) -> list[str]:
+        """Fill the schema defaults into ``args`` and set ``args.history``.
+
+        ``typed`` is the argument list as given (after ``contactlab``). Returns the
+        problems: options that are missing or do not apply to the selected value, all at
+        once; the caller reports them.
+        """
+        selected = getattr(args, self.select) if self.select else None
+        problems: list[str] = []
+        filled: list[str] = []
+        for opt in self.options:
+            value = getattr(args, opt.dest)
+            given = value is not None and not (opt.kind == "flag" and value is False)
+            if opt.only is not None and selected not in opt.only:
+                if given:
+                    problems.append(f"{opt.flag} does not apply to --{self.select} {selected}")
+                continue
+            if given or opt.positional:
+                continue
+            key = opt.key_for(selected)
+            if key is not None:
+                value = schema_default(key)
+                setattr(args, opt.dest, value)
+                filled += opt.render(value)
+            elif opt.default is not REQUIRED:
+                setattr(args, opt.dest, opt.default)
+            else:
+                problems.append(f"{opt.flag} is required" + (
+                    f" for --{self.select} {selected}" if opt.only is not None else ""))
+        args.history = shlex.join(["contactlab", *typed, *filled])
+        return problems
+
+    def words(self, config: Mapping[str, Any] | None = None, **values: Any) -> list[str]:
+        """The arguments a rule passes: ``values`` (by attribute name) and, for every
+        config-fed option not among them, its value in the effective ``config``.
+
+        Options left out (files, which the rule names in its shell line) give no words.
+        """
+        unknown = set(values) - {opt.dest for opt in self.options}
+        if unknown:
+            raise KeyError(f"contactlab {self.path} has no option(s) {sorted(unknown)}")
+        selected = values.get(self.select) if self.select else None
+        words: list[str] = []
+        for opt in self.options:
+            if opt.only is not None and selected not in opt.only:
+                continue
+            if opt.dest in values:
+                words += opt.render(values[opt.dest])
+            elif config is not None and (key := opt.key_for(selected)) is not None:
+                words += opt.render(config_value(config, key))
+        return words
+
+
+@dataclass(frozen=True)
+class Group:
+    """A command group (``contactlab receding``): its help, examples and commands."""
+
+    name: str
+    help: str
+    description: str
+    examples: str
+    commands: tuple[Command, ...] = field(default_factory=tuple)
+
+    def add_to(self, subparsers: argparse._SubParsersAction) -> None:
+        parser = subparsers.add_parser(self.name, help=self.help, description=self.description,
+                                       epilog="examples:\n" + self.examples)
+        commands = parser.add_subparsers(dest=f"{self.name}_command", required=True,
+                                         metavar="COMMAND")
+        for command in self.commands:
+            command.add_to(commands)
