@@ -8,7 +8,8 @@ import xarray as xr
 
 from contactlab.stiffness.displacement import contact_displacement, contact_displacement_rows
 from contactlab.stiffness.fit import MIN_POINTS, adjusted_r2, fit_step, t_factor, varpro_fit
-from contactlab.stiffness.readers import Geometry, _normalise
+from contactlab.stiffness.readers import Geometry
+from contactlab.stiffness.readers.grid import normalise_fields as _normalise
 
 
 def field(uc: np.ndarray, vc_rows: np.ndarray, pad_low: bool = True,
