@@ -30,7 +30,8 @@ from contactlab.stiffness.readers import (
     read_load_log,
 )
 
-__all__ = ["flagged_steps", "load_inputs", "process_test", "step_tables"]
+__all__ = ["fit_load_step", "flagged_steps", "load_inputs", "process_test", "row_stiffness",
+           "step_tables"]
 
 _PER_UM = 1000.0  # kN/(um mm^2) -> kN/mm^3
 
@@ -82,170 +83,193 @@ def _attrs(long_name: str, units: str, **extra: object) -> dict[str, object]:
     return {"long_name": long_name, "units": units, **extra}
 
 
+#: The per-step variables of a result, in file order: (dims after ``step``, attributes).
+STEP_VARIABLES: dict[str, tuple[tuple[str, ...], dict[str, object]]] = {
+    "n_frames": ((), _attrs("frames fitted (N)", "1")),
+    "alpha": ((), _attrs("alpha_n (eq. 2.2) or alpha_t (eq. 2.3)", "kN")),
+    "beta": ((), _attrs("beta_n (eq. 2.2) or beta_t (eq. 2.3)", "1/um")),
+    "offset": ((), _attrs("P0 (eq. 2.2) or Qs (eq. 2.3)", "kN")),
+    "alpha_moe": ((), _attrs("95% margin of alpha (t-distribution)", "kN")),
+    "beta_moe": ((), _attrs("95% margin of beta (t-distribution)", "1/um")),
+    "offset_moe": ((), _attrs("95% margin of P0 or Qs (t-distribution)", "kN")),
+    "alpha_stderr": ((), _attrs("standard error of alpha", "kN")),
+    "beta_stderr": ((), _attrs("standard error of beta", "1/um")),
+    "offset_stderr": ((), _attrs("standard error of P0 or Qs", "kN")),
+    "covariance": (("parameter", "parameter_b"),
+                   _attrs("covariance of (alpha, beta, offset) estimates "
+                          "(units: products of the parameter units)", "1")),
+    "corr_beta_offset": ((), _attrs("correlation of the beta and P0/Qs estimates", "1")),
+    "gof": ((), _attrs("adjusted R-square goodness of fit", "1")),
+    "rmse": ((), _attrs("root-mean-square load residual", "kN")),
+    "converged": ((), _attrs("fit converged with a covariance estimate (1) or not (0)", "1")),
+    "fit_message": ((), {"long_name": "why a fit is flagged (empty when converged)"}),
+    "load_grid": (("grid",), _attrs("load on the grid: -Pn (normal) or Qt (tangential)",
+                                    "kN")),
+    "displacement_fit": (("grid",), _attrs("contact displacement of the fitted curve: uc or "
+                                           "vc", "um")),
+    "stiffness_An": (("grid",), _attrs("contact stiffness per nominal area Kn/An (eq. 2.4) "
+                                       "or Kt/An (eq. 2.5)", "kN/mm3")),
+    "stiffness_An_moe": (("grid",), _attrs("95% margin of the stiffness (eq. 2.8; Kt: "
+                                           "product rule, 1% load error)", "kN/mm3")),
+    "Kt0_An_row": (("row",), _attrs("Kt0/An of each pixel row (sec. 2.5.4); NaN for normal "
+                                    "steps", "kN/mm3")),
+    "Kt0_An_mean_row": ((), _attrs("mean-row Kt0/An (sec. 2.5.4)", "kN/mm3")),
+    "Kt0_An_mean_row_moe": ((), _attrs("Student-t margin of the mean-row Kt0/An", "kN/mm3")),
+    "Kt0_An_row_max": ((), _attrs("largest per-row Kt0/An", "kN/mm3")),
+    "Kt0_An_row_min": ((), _attrs("smallest per-row Kt0/An", "kN/mm3")),
+}
+
+
+def fit_load_step(kind: str, x: np.ndarray, y: np.ndarray, *, label: str, p_max: float,
+                  area: float, grid_points: int, error_model: ErrorModel
+                  ) -> tuple[dict[str, object], np.ndarray]:
+    """The fit of one loading or unloading step and its stiffness curve.
+
+    ``x``, ``y`` are the step's (-uc, -Pn) in (um, kN) for a normal step or (vc, Qt) for a
+    tangential one; eq. (2.2) or (2.3) is fitted (:func:`contactlab.stiffness.fit.fit_step`)
+    and the stiffness per nominal area ``area`` (mm^2) follows on ``grid_points`` loads
+    (eq. 2.4 with the margin of eq. 2.8 for Kn; eq. 2.5 with the product rule and the
+    relative tangential load error of ``error_model`` for Kt), from the step's smallest
+    load to its largest (normal steps: 0 to at least ``p_max``, kN). Returns the step's
+    record (the keys of :data:`STEP_VARIABLES` but the per-row ones) and the fitted load at
+    each of the step's frames (NaN where a frame has no displacement).
+    """
+    result = fit_step(x, y, kind, label=label)
+    names = PARAMETERS[kind]
+    pars = np.array([result.values[p] for p in names])
+    moe = np.array([result.moe[p] for p in names])
+    record: dict[str, object] = {
+        "n_frames": result.n,
+        **dict(zip(("alpha", "beta", "offset"), pars, strict=True)),
+        **dict(zip(("alpha_moe", "beta_moe", "offset_moe"), moe, strict=True)),
+        **{f"{p}_stderr": result.stderr[n]
+           for p, n in zip(("alpha", "beta", "offset"), names, strict=True)},
+        "covariance": result.covar,
+        "corr_beta_offset": result.correlation(names[1], names[2]),
+        "gof": result.gof, "rmse": result.rmse,
+        "converged": np.int8(result.converged), "fit_message": result.message,
+    }
+    curves = {name: np.full(grid_points, np.nan) for name in
+              ("load_grid", "displacement_fit", "stiffness_An", "stiffness_An_moe")}
+    fitted = np.full(len(x), np.nan)
+    ok = np.isfinite(x) & np.isfinite(y)
+    if np.all(np.isfinite(pars)):
+        fitted[ok] = model(x[ok], *pars)
+        alpha, beta, c = pars
+        lo, hi = float(np.min(y[ok])), float(np.max(y[ok]))
+        if kind == "normal":
+            lo, hi = max(lo, 0.0), max(hi, p_max)
+        load = np.linspace(lo, hi, grid_points)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            xg = np.log((load - c) / alpha) / beta
+        curves["load_grid"] = load
+        curves["displacement_fit"] = -xg if kind == "normal" else xg
+        if kind == "normal":
+            k, k_moe = kn_margin(beta, moe[1], c, moe[2], load, error_model)
+        else:
+            k = beta * (load - c)
+            d_load = add_margins(error_model.qs_rel_extra * np.abs(load), moe[2])
+            k_moe = np.abs(k) * np.hypot(moe[1] / abs(beta), d_load / np.abs(load - c))
+        curves["stiffness_An"] = k * _PER_UM / area
+        curves["stiffness_An_moe"] = k_moe * _PER_UM / area
+    return {**record, **curves}, fitted
+
+
+def row_stiffness(vc_rows: np.ndarray, load: np.ndarray, positive: bool | None, *,
+                  area: float, confidence: float) -> dict[str, object]:
+    """Kt0/An of each pixel row of one tangential step and their statistics (sec. 2.5.4).
+
+    ``vc_rows`` (rows, frames) are the rows' contact displacements (um), ``load`` the step's
+    Qt (kN); eq. (2.3) is fitted to every row at once (:func:`varpro_fit`, beta's sign as
+    the step's fit when ``positive`` is given) and Kt0 = -beta_t Qs (eq. 2.6).
+    """
+    _, b_r, c_r, _ = varpro_fit(vc_rows, np.broadcast_to(load, vc_rows.shape),
+                                positive=positive)
+    k0 = -b_r * c_r * _PER_UM / area
+    stats = mean_row_statistics(k0, confidence)
+    return {"Kt0_An_row": k0, **{name: stats[name] for name in (
+        "Kt0_An_mean_row", "Kt0_An_mean_row_moe", "Kt0_An_row_max", "Kt0_An_row_min")}}
+
+
+def _step_dataset(record: dict[str, object], n_rows: int) -> xr.Dataset:
+    """One step's record as a dataset of the :data:`STEP_VARIABLES` (NaN where missing)."""
+    data = {}
+    for name, (dims, _) in STEP_VARIABLES.items():
+        value = record.get(name)
+        if value is None:
+            value = np.full(n_rows, np.nan) if dims == ("row",) else np.nan
+        data[name] = (dims, value)
+    return xr.Dataset(data)
+
+
 def process_test(test: str, frames: pd.DataFrame, rows: xr.Dataset | None, *,
                  max_normal_load_kN: float, nominal_area_mm2: float,
                  grid_points: int, error_model: ErrorModel, confidence: float,
                  sources: dict[str, str] | None = None) -> xr.Dataset:
     """Fit every step of one test and build its CF-style result dataset.
 
-    ``confidence`` is that of the Student-t limits of the mean-row Kt0/An (sec. 2.5.4).
+    Each step (frames of one kind, direction and number, in time order) is fitted by
+    :func:`fit_load_step`; with per-row displacements, each tangential step's rows by
+    :func:`row_stiffness` (``confidence``: that of the Student-t limits of the mean-row
+    Kt0/An, sec. 2.5.4). The steps' records are joined along ``step`` with xarray.
 
     Raises ValueError naming the test and step when a step has too few frames; a fit
     that does not converge is kept with ``converged = 0`` and its reason in ``fit_message``.
     """
-    em = error_model
     key = frames["kind"] + "/" + frames["direction"] + "/" + frames["step"].astype(str)
     order = list(dict.fromkeys(key))
-    n_steps = len(order)
     step_of_frame = key.map({k: i for i, k in enumerate(order)}).to_numpy()
-    kinds = [k.split("/")[0] for k in order]
-    directions = [k.split("/")[1] for k in order]
-    numbers = [int(k.split("/")[2]) for k in order]
-    pars = np.full((n_steps, 3), np.nan)
-    stderr = np.full((n_steps, 3), np.nan)
-    moe = np.full((n_steps, 3), np.nan)
-    covar = np.full((n_steps, 3, 3), np.nan)
-    gof = np.full(n_steps, np.nan)
-    rmse = np.full(n_steps, np.nan)
-    corr = np.full(n_steps, np.nan)
-    n_points = np.zeros(n_steps, dtype=int)
-    converged = np.zeros(n_steps, dtype=np.int8)
-    messages = [""] * n_steps
-    fitted = np.full(len(frames), np.nan)
-    area = float(nominal_area_mm2)
-    p_max = float(max_normal_load_kN)
-    load_grid = np.full((n_steps, grid_points), np.nan)
-    disp_grid = np.full((n_steps, grid_points), np.nan)
-    k_grid = np.full((n_steps, grid_points), np.nan)
-    k_moe_grid = np.full((n_steps, grid_points), np.nan)
+    kinds, directions, numbers = zip(*(k.split("/") for k in order), strict=True)
+    numbers = tuple(int(n) for n in numbers)
+    area, p_max = float(nominal_area_mm2), float(max_normal_load_kN)
     n_rows = 0 if rows is None else rows.sizes["y"]
-    k0_rows = np.full((n_steps, max(n_rows, 1)), np.nan)
-    row_stats = np.full((n_steps, 4), np.nan)
-
-    for i in track(range(n_steps), f"test {test}: fitting the load steps", unit="steps"):
-        kind, direction, number = kinds[i], directions[i], numbers[i]
-        label = f"test {test}, {kind} {direction} step {number}"
+    fitted = np.full(len(frames), np.nan)
+    steps = []
+    for i in track(range(len(order)), f"test {test}: fitting the load steps", unit="steps"):
         sel = step_of_frame == i
-        x, y = _xy(kind, frames[sel])
-        result = fit_step(x, y, kind, label=label)
-        names = PARAMETERS[kind]
-        n_points[i] = result.n
-        converged[i] = int(result.converged)
-        messages[i] = result.message
-        gof[i], rmse[i] = result.gof, result.rmse
-        pars[i] = [result.values[p] for p in names]
-        stderr[i] = [result.stderr[p] for p in names]
-        moe[i] = [result.moe[p] for p in names]
-        covar[i] = result.covar
-        corr[i] = result.correlation(names[1], names[2])
-        ok = np.isfinite(x) & np.isfinite(y)
-        if np.all(np.isfinite(pars[i])):
-            fitted_sel = np.full(sel.sum(), np.nan)
-            fitted_sel[ok] = model(x[ok], *pars[i])
-            fitted[sel] = fitted_sel
-            alpha, beta, c = pars[i]
-            lo, hi = float(np.min(y[ok])), float(np.max(y[ok]))
-            if kind == "normal":
-                lo, hi = max(lo, 0.0), max(hi, p_max)
-            load = np.linspace(lo, hi, grid_points)
-            with np.errstate(invalid="ignore", divide="ignore"):
-                xg = np.log((load - c) / alpha) / beta
-            load_grid[i] = load
-            disp_grid[i] = -xg if kind == "normal" else xg
-            if kind == "normal":
-                kn, kn_moe = kn_margin(beta, moe[i, 1], c, moe[i, 2], load, em)
-                k_grid[i], k_moe_grid[i] = kn * _PER_UM / area, kn_moe * _PER_UM / area
-            else:
-                kt = beta * (load - c)
-                d_load = add_margins(em.qs_rel_extra * np.abs(load), moe[i, 2])
-                rel = np.hypot(moe[i, 1] / abs(beta), d_load / np.abs(load - c))
-                k_grid[i], k_moe_grid[i] = kt * _PER_UM / area, np.abs(kt) * rel * _PER_UM / area
-        if rows is not None and kind == "tangential":
-            xr_rows = rows["vc"].to_numpy()[sel].T  # (rows, frames of the step)
-            yr = np.broadcast_to(y, xr_rows.shape)
-            positive = bool(pars[i, 1] > 0) if np.isfinite(pars[i, 1]) else None
-            _, b_r, c_r, _ = varpro_fit(xr_rows, yr, positive=positive)
-            k0_rows[i, :n_rows] = -b_r * c_r * _PER_UM / area
-            stats = mean_row_statistics(k0_rows[i, :n_rows], confidence)
-            row_stats[i] = [stats["Kt0_An_mean_row"], stats["Kt0_An_mean_row_moe"],
-                            stats["Kt0_An_row_max"], stats["Kt0_An_row_min"]]
-
+        x, y = _xy(kinds[i], frames[sel])
+        record, fitted[sel] = fit_load_step(
+            kinds[i], x, y, label=f"test {test}, {kinds[i]} {directions[i]} step {numbers[i]}",
+            p_max=p_max, area=area, grid_points=grid_points, error_model=error_model)
+        if rows is not None and kinds[i] == "tangential":
+            beta = float(record["beta"])
+            record.update(row_stiffness(rows["vc"].to_numpy()[sel].T, y,
+                                        bool(beta > 0) if np.isfinite(beta) else None,
+                                        area=area, confidence=confidence))
+        steps.append(_step_dataset(record, max(n_rows, 1)))
+    joined = xr.concat(steps, dim="step")
+    per_step = {name: (("step", *dims), joined[name].to_numpy(), dict(attrs))
+                for name, (dims, attrs) in STEP_VARIABLES.items()}
+    per_step["n_frames"] = ("step", joined["n_frames"].to_numpy().astype(int),
+                            STEP_VARIABLES["n_frames"][1])
+    per_step["Kt0_An_mean_row_moe"][2].update(
+        long_name=f"{confidence * 100:g}% Student-t margin of the mean-row Kt0/An",
+        confidence=confidence)
+    per_frame = {
+        "Pn": ("frame", frames["Pn"].to_numpy(float),
+               _attrs("normal load (thesis sign, compression negative)", "kN")),
+        "Qt": ("frame", frames["Qt"].to_numpy(float), _attrs("tangential load", "kN")),
+        "uc": ("frame", frames["uc"].to_numpy(float),
+               _attrs("normal contact displacement (sec. 2.3.2)", "um")),
+        "vc": ("frame", frames["vc"].to_numpy(float),
+               _attrs("tangential contact displacement (sec. 2.3.2)", "um")),
+        "frame_step": ("frame", step_of_frame.astype(np.int32),
+                       _attrs("index of the frame's step along the step dimension", "1")),
+        "load_fitted": ("frame", fitted,
+                        _attrs("fitted -Pn (normal) or Qt (tangential) at the frame's contact "
+                               "displacement", "kN")),
+        "kind": ("step", np.array(kinds, dtype=object), {"long_name": "step kind"}),
+        "direction": ("step", np.array(directions, dtype=object),
+                      {"long_name": "loading or unloading"}),
+        "step_number": ("step", np.array(numbers, dtype=np.int32),
+                        _attrs("step number within its kind and direction", "1")),
+    }
     par_names = ["alpha", "beta", "offset"]
     ds = xr.Dataset(
-        {
-            "Pn": ("frame", frames["Pn"].to_numpy(float),
-                   _attrs("normal load (thesis sign, compression negative)", "kN")),
-            "Qt": ("frame", frames["Qt"].to_numpy(float), _attrs("tangential load", "kN")),
-            "uc": ("frame", frames["uc"].to_numpy(float),
-                   _attrs("normal contact displacement (sec. 2.3.2)", "um")),
-            "vc": ("frame", frames["vc"].to_numpy(float),
-                   _attrs("tangential contact displacement (sec. 2.3.2)", "um")),
-            "frame_step": ("frame", step_of_frame.astype(np.int32),
-                           _attrs("index of the frame's step along the step dimension", "1")),
-            "load_fitted": ("frame", fitted,
-                            _attrs("fitted -Pn (normal) or Qt (tangential) at the frame's "
-                                   "contact displacement", "kN")),
-            "kind": ("step", np.array(kinds, dtype=object), {"long_name": "step kind"}),
-            "direction": ("step", np.array(directions, dtype=object),
-                          {"long_name": "loading or unloading"}),
-            "step_number": ("step", np.array(numbers, dtype=np.int32),
-                            _attrs("step number within its kind and direction", "1")),
-            "n_frames": ("step", n_points, _attrs("frames fitted (N)", "1")),
-            "alpha": ("step", pars[:, 0], _attrs("alpha_n (eq. 2.2) or alpha_t (eq. 2.3)",
-                                                 "kN")),
-            "beta": ("step", pars[:, 1], _attrs("beta_n (eq. 2.2) or beta_t (eq. 2.3)",
-                                                "1/um")),
-            "offset": ("step", pars[:, 2], _attrs("P0 (eq. 2.2) or Qs (eq. 2.3)", "kN")),
-            "alpha_moe": ("step", moe[:, 0], _attrs("95% margin of alpha (t-distribution)",
-                                                    "kN")),
-            "beta_moe": ("step", moe[:, 1], _attrs("95% margin of beta (t-distribution)",
-                                                   "1/um")),
-            "offset_moe": ("step", moe[:, 2], _attrs("95% margin of P0 or Qs "
-                                                     "(t-distribution)", "kN")),
-            "alpha_stderr": ("step", stderr[:, 0], _attrs("standard error of alpha", "kN")),
-            "beta_stderr": ("step", stderr[:, 1], _attrs("standard error of beta", "1/um")),
-            "offset_stderr": ("step", stderr[:, 2], _attrs("standard error of P0 or Qs",
-                                                           "kN")),
-            "covariance": (("step", "parameter", "parameter_b"), covar,
-                           _attrs("covariance of (alpha, beta, offset) estimates "
-                                  "(units: products of the parameter units)", "1")),
-            "corr_beta_offset": ("step", corr,
-                                 _attrs("correlation of the beta and P0/Qs estimates", "1")),
-            "gof": ("step", gof, _attrs("adjusted R-square goodness of fit", "1")),
-            "rmse": ("step", rmse, _attrs("root-mean-square load residual", "kN")),
-            "converged": ("step", converged,
-                          _attrs("fit converged with a covariance estimate (1) or not (0)",
-                                 "1")),
-            "fit_message": ("step", np.array(messages, dtype=object),
-                            {"long_name": "why a fit is flagged (empty when converged)"}),
-            "load_grid": (("step", "grid"), load_grid,
-                          _attrs("load on the grid: -Pn (normal) or Qt (tangential)", "kN")),
-            "displacement_fit": (("step", "grid"), disp_grid,
-                                 _attrs("contact displacement of the fitted curve: uc or vc",
-                                        "um")),
-            "stiffness_An": (("step", "grid"), k_grid,
-                             _attrs("contact stiffness per nominal area Kn/An (eq. 2.4) or "
-                                    "Kt/An (eq. 2.5)", "kN/mm3")),
-            "stiffness_An_moe": (("step", "grid"), k_moe_grid,
-                                 _attrs("95% margin of the stiffness (eq. 2.8; Kt: product "
-                                        "rule, 1% load error)", "kN/mm3")),
-            "Kt0_An_row": (("step", "row"), k0_rows,
-                           _attrs("Kt0/An of each pixel row (sec. 2.5.4); NaN for normal "
-                                  "steps", "kN/mm3")),
-            "Kt0_An_mean_row": ("step", row_stats[:, 0],
-                                _attrs("mean-row Kt0/An (sec. 2.5.4)", "kN/mm3")),
-            "Kt0_An_mean_row_moe": ("step", row_stats[:, 1],
-                                    _attrs(f"{confidence * 100:g}% Student-t margin of the "
-                                           "mean-row Kt0/An", "kN/mm3",
-                                           confidence=confidence)),
-            "Kt0_An_row_max": ("step", row_stats[:, 2],
-                               _attrs("largest per-row Kt0/An", "kN/mm3")),
-            "Kt0_An_row_min": ("step", row_stats[:, 3],
-                               _attrs("smallest per-row Kt0/An", "kN/mm3")),
-        },
+        {**per_frame, **per_step},
         coords={
             "frame": ("frame", frames["frame"].to_numpy(int), _attrs("frame id", "1")),
-            "step": ("step", np.arange(n_steps, dtype=np.int32),
+            "step": ("step", np.arange(len(order), dtype=np.int32),
                      _attrs("step index in time order", "1")),
             "parameter": ("parameter", par_names),
             "parameter_b": ("parameter_b", par_names),
@@ -261,8 +285,7 @@ def process_test(test: str, frames: pd.DataFrame, rows: xr.Dataset | None, *,
         ds["vc_row"] = (("frame", "row"), rows["vc"].to_numpy(),
                         _attrs("tangential contact displacement per pixel row", "um"))
         ds = ds.assign_coords(y=("row", rows["y"].to_numpy(), _attrs("row position y", "um")))
-    flagged = [f"{kinds[i]} {directions[i]} step {numbers[i]}: {messages[i]}"
-               for i in range(n_steps) if not converged[i]]
+    flagged = _flag_lines(ds)
     stamp(ds, title=f"Contact stiffness of test {test} from raw data",
           source="; ".join(f"{k}: {v}" for k, v in (sources or {}).items()),
           history=f"contactlab stiffness process --test {test}")
@@ -317,11 +340,16 @@ def step_tables(ds: xr.Dataset) -> dict[str, pd.DataFrame]:
     return out
 
 
-def flagged_steps(ds: xr.Dataset) -> list[str]:
-    """Human-readable list of the steps whose fit is flagged (not converged)."""
-    return [f"test {ds.attrs['test']}, {k} {d} step {n}: {m}" for k, d, n, c, m in zip(
+def _flag_lines(ds: xr.Dataset) -> list[str]:
+    """``<kind> <direction> step <n>: <why>`` of each step whose fit is flagged."""
+    return [f"{k} {d} step {n}: {m}" for k, d, n, c, m in zip(
         ds["kind"].values, ds["direction"].values, ds["step_number"].values,
         ds["converged"].values, ds["fit_message"].values, strict=True) if not c]
+
+
+def flagged_steps(ds: xr.Dataset) -> list[str]:
+    """Human-readable list of the steps whose fit is flagged (not converged)."""
+    return [f"test {ds.attrs['test']}, {line}" for line in _flag_lines(ds)]
 
 
 
