@@ -62,6 +62,7 @@ from contactlab.receding.core.solve import (
 )
 from contactlab.receding.gap.limit import FLAG as LIMIT_FLAG
 from contactlab.receding.gap.limit import limit_system, solve_slip_limit
+from contactlab.receding.gap.seeds import separation_hint, separation_seeds
 
 REGIMES = ("stick", "slip", "slip_separation")
 
@@ -442,46 +443,17 @@ def _separation_intervals(b: float, a3: float, n: int) -> tuple[DensityInterval,
     return DensityInterval("climb", -b, b, n), DensityInterval("glide", -a3, a3, n)
 
 
-#: b and a3 - b of converged separation solutions (N = 100) on a (f, w_hat) grid, NaN
-#: where there is no separation; only to seed the root finder of a cold solve
-_SEP_GUESS_W = np.array([1.6, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5, 5.0])
-_SEP_GUESS_F = np.array([0.02, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0])
-_nan = np.nan
-_SEP_GUESS_B = np.array([
-    [0.304, 0.967, 1.581, 2.144, 2.686, 3.215, 3.738, 4.256],
-    [_nan, 0.803, 1.450, 2.026, 2.574, 3.109, 3.634, 4.155],
-    [_nan, 0.528, 1.253, 1.850, 2.411, 2.950, 3.482, 4.005],
-    [_nan, _nan, 1.033, 1.661, 2.234, 2.784, 3.318, 3.846],
-    [_nan, _nan, 0.785, 1.463, 2.054, 2.612, 3.155, 3.685],
-    [_nan, _nan, 0.476, 1.255, 1.872, 2.444, 2.993, 3.527],
-    [_nan, _nan, _nan, 1.032, 1.684, 2.270, 2.828, 3.373],
-    [_nan, _nan, _nan, 0.771, 1.488, 2.095, 2.667, 3.218],
-    [_nan, _nan, _nan, 0.427, 1.275, 1.914, 2.499, 3.057],
-    [_nan, _nan, _nan, _nan, 1.039, 1.724, 2.328, 2.901],
-    [_nan, _nan, _nan, _nan, 0.757, 1.523, 2.150, 2.739]])
-_SEP_GUESS_SLIP = np.array([
-    [10.053, 10.849, 11.888, 12.838, 13.704, 14.496, 15.227, 15.906],
-    [_nan, 4.056, 4.183, 4.347, 4.511, 4.666, 4.810, 4.944],
-    [_nan, 3.021, 2.914, 2.915, 2.939, 2.971, 3.004, 3.037],
-    [_nan, _nan, 2.545, 2.478, 2.456, 2.449, 2.451, 2.455],
-    [_nan, _nan, 2.444, 2.312, 2.258, 2.230, 2.214, 2.206],
-    [_nan, _nan, 2.508, 2.268, 2.182, 2.134, 2.107, 2.090],
-    [_nan, _nan, _nan, 2.298, 2.173, 2.109, 2.069, 2.040],
-    [_nan, _nan, _nan, 2.399, 2.209, 2.122, 2.067, 2.031],
-    [_nan, _nan, _nan, 2.606, 2.284, 2.165, 2.096, 2.052],
-    [_nan, _nan, _nan, _nan, 2.397, 2.232, 2.145, 2.085],
-    [_nan, _nan, _nan, _nan, 2.566, 2.321, 2.211, 2.136]])
-
-
 def separation_guess(w: float, f: float) -> tuple[float, float] | None:
     """(b, a3) at the tabulated point nearest (f, w_hat) with separation (b scaled by w
-    beyond the table), None when the table has no separation near there."""
-    i = int(np.argmin(np.abs(_SEP_GUESS_F - f)))
-    j = int(np.argmin(np.abs(_SEP_GUESS_W - w)))
-    if not np.isfinite(_SEP_GUESS_B[i, j]):
+    beyond the table; :func:`contactlab.receding.gap.seeds.separation_seeds`), None when
+    the table has no separation near there."""
+    f_grid, w_grid, b_table, slip_table = separation_seeds()
+    i = int(np.argmin(np.abs(f_grid - f)))
+    j = int(np.argmin(np.abs(w_grid - w)))
+    if not np.isfinite(b_table[i, j]):
         return None
-    b = float(_SEP_GUESS_B[i, j] * w / _SEP_GUESS_W[j])
-    return b, b + float(_SEP_GUESS_SLIP[i, j])
+    b = float(b_table[i, j] * w / w_grid[j])
+    return b, b + float(slip_table[i, j])
 
 
 def _sep_params(p: np.ndarray) -> tuple[float, float]:
@@ -549,14 +521,10 @@ def solve_stick(w: float, f: float, n: int = 100, p: float = 1.0) -> GapSolution
     return sol
 
 
-#: f_sep(w) computed with ``separation_friction`` (N = 100), used only to decide which
-#: regime a solve without a seed tries first; both regimes are still validated.
-_SEPARATION_HINT = np.array([[1.5, 0.0], [1.75, 0.149], [2.0, 0.288], [2.5, 0.569],
-                             [3.0, 0.851], [4.0, 1.408], [5.0, 1.946]])
-
-
 def _separation_likely(w: float, f: float) -> bool:
-    ws, fs = _SEPARATION_HINT.T
+    """Whether f is below f_sep(w) of :func:`contactlab.receding.gap.seeds.separation_hint`
+    (extrapolated linearly beyond its last w/c): which regime a cold solve tries first."""
+    ws, fs = separation_hint()
     if w <= ws[0]:
         return False
     hint = np.interp(w, ws, fs) if w <= ws[-1] else fs[-1] + 0.54 * (w - ws[-1])
