@@ -8,23 +8,29 @@ PY := $(VENV)/bin/python
 export PATH := $(abspath $(VENV))/bin:$(PATH)
 STAMP := $(VENV)/.installed
 JOBS ?= 2
-# the Snakefile is at the top level, so Snakemake does not find workflow/profiles/default
-SNAKEMAKE := $(VENV)/bin/snakemake --workflow-profile workflow/profiles/default
+# The default profile (scheduler, rerun-incomplete, latency-wait, shown commands and failed
+# logs). Snakemake looks for profiles/default/ only beside the Snakefile or the working
+# directory, so it would not find ours; it also takes --profile from $SNAKEMAKE_PROFILE,
+# which `activate` sets to this folder (HOOK below) unless it is set already, so that a
+# bare `snakemake` uses it while the environment is active, as the Makefile's runs do.
+PROFILE := $(abspath workflow/profiles/default)
+HOOK := $(VENV)/.profile-hook
+SNAKEMAKE := SNAKEMAKE_PROFILE="$${SNAKEMAKE_PROFILE:-$(PROFILE)}" $(VENV)/bin/snakemake
 
 # system packages for the config files each entry point runs (merged in order)
 SETUP_CHECK := $(PY) -m contactlab.setup_check
 
-.PHONY: all test env ccx slurm lint report lock rulegraph clean
+.PHONY: all test env ccx slurm-for-tests lint report lock rulegraph clean
 
-all: $(STAMP)
+all: $(HOOK)
 	$(SETUP_CHECK) --config config/config.yaml
 	$(SNAKEMAKE) -j$(JOBS) all
 
-test: $(STAMP) slurm
+test: $(HOOK) slurm-for-tests
 	$(SETUP_CHECK) --config config/config.yaml --config tests/e2e_config.yaml
 	$(PY) -m pytest -n $(JOBS) tests
 
-env: $(STAMP)
+env: $(HOOK)
 
 $(STAMP): environment.lock pyproject.toml
 	test -x $(PY) || python3.11 -m venv $(VENV) || python3 -m venv $(VENV)
@@ -32,15 +38,25 @@ $(STAMP): environment.lock pyproject.toml
 	$(PY) -m pip install --quiet --no-deps --no-build-isolation -e .
 	touch $(STAMP)
 
+# activate sets SNAKEMAKE_PROFILE to $(PROFILE) when it is unset, deactivate unsets it
+# again when it still names it (lines marked contactlab-profile, rewritten on each change
+# of this Makefile)
+$(HOOK): $(STAMP) Makefile
+	sed -i '/# contactlab-profile$$/d' $(VENV)/bin/activate
+	sed -i 's|^deactivate () {$$|&\n    if [ "$${SNAKEMAKE_PROFILE:-}" = "$(PROFILE)" ]; then unset SNAKEMAKE_PROFILE; fi  # contactlab-profile|' $(VENV)/bin/activate
+	echo 'if [ -z "$${SNAKEMAKE_PROFILE:-}" ]; then SNAKEMAKE_PROFILE="$(PROFILE)"; export SNAKEMAKE_PROFILE; fi  # contactlab-profile' >> $(VENV)/bin/activate
+	touch $(HOOK)
+
 # What the FE branch needs whatever the config says: CalculiX (Debian calculix-ccx) unless
 # ccx is on PATH or $CCX is set, and the gmsh wheel's libraries if gmsh does not import.
 ccx: $(STAMP)
 	$(SETUP_CHECK) --fe
 
-# Slurm and munge for the cluster test (tests/test_slurm.py starts them with .ci/slurm-local):
+# Not a cluster run (that is `snakemake --profile workflow/profiles/slurm all`, README):
+# Slurm and munge for the cluster test (tests/test_slurm.py starts them with .ci/slurm-local),
 # installed from Debian (slurm-wlm, munge) only when missing, and only as root; without
 # root that test skips locally and fails in CI.
-slurm:
+slurm-for-tests:
 	@if command -v slurmctld >/dev/null && command -v slurmd >/dev/null \
 	  && command -v munged >/dev/null; then :; \
 	elif [ "$$(id -u)" = 0 ]; then .ci/slurm-local install; \

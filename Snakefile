@@ -33,6 +33,13 @@ include: "workflow/rules/fe.smk"
 include: "workflow/rules/report.smk"
 
 
+# files the config names that neither exist nor are results of the rules above
+try:
+    check_files(config, _SOURCES, made=ALL_TARGETS)
+except ConfigError as exc:
+    raise WorkflowError(str(exc)) from None
+
+
 localrules:
     all,
 

@@ -32,6 +32,9 @@ if "numpy" in sys.modules:  # a plugin loaded it first: BLAS has read the variab
 #: Tests run away from any Slurm cluster of the host (see the file's comment);
 #: tests/test_slurm.py lifts this for its own cluster.
 os.environ["SLURM_CONF"] = str(REPO / "tests" / "data" / "slurm-none.conf")
+#: The tests' Snakemake runs take their options from their arguments, not from the default
+#: profile an activated environment names (tests/test_default_profile.py tests that one).
+os.environ.pop("SNAKEMAKE_PROFILE", None)
 
 
 @pytest.fixture(scope="session")

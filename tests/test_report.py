@@ -12,6 +12,7 @@ import pytest
 import contactlab
 from contactlab.report.index import build_date, build_index
 from contactlab.report.section import Section
+from contactlab.report.style import rebase_links
 
 
 def _section(report_dir: Path, anchor: str) -> Path:
@@ -31,7 +32,9 @@ def test_section_writes_table_figure_and_fragment(tmp_path: Path) -> None:
     out = _section(tmp_path, "alpha")
     text = out.read_text()
     assert "a &lt; b" in text
-    assert "src='figures/alpha.png'" in text and "href='tables/alpha.csv'" in text
+    # a page of its own: links relative to sections/, the report's styles
+    assert "src='../figures/alpha.png'" in text and "href='../tables/alpha.csv'" in text
+    assert text.startswith("<!DOCTYPE html>") and "<style>" in text
     assert (tmp_path / "tables" / "alpha.md").read_text().count("1.235") == 1
     assert (tmp_path / "figures" / "alpha.pdf").stat().st_size > 0
     assert pd.read_csv(tmp_path / "tables" / "alpha.csv")["value"].iloc[0] == 1.23456
@@ -98,3 +101,42 @@ def test_index_refuses_a_file_that_is_not_a_section(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match=r"bogus\.html: not a report section"):
         build_index([bogus], tmp_path / "index.html", "Report")
     assert not (tmp_path / "index.html").exists()
+
+
+def _links(page: str) -> list[str]:
+    """The relative file links of a page (images, PDFs, CSVs)."""
+    return [u for u in re.findall(r"(?:src|href)='([^'#][^']*)'", page) if ":" not in u]
+
+
+def test_section_page_works_alone_and_in_the_index(tmp_path: Path) -> None:
+    """A section opened on its own shows its figures and links its files (paths relative to
+    the section's folder); the stitched index, one folder up, reaches the same files."""
+    out = _section(tmp_path, "alpha")
+    text = out.read_text()
+    links = _links(text)
+    assert {"../figures/alpha.png", "../figures/alpha.pdf", "../tables/alpha.csv"} <= set(links)
+    for link in links:
+        assert (out.parent / link).is_file(), link
+    page = build_index([out], tmp_path / "index.html", "Report").read_text()
+    assert "src='figures/alpha.png'" in page
+    for link in _links(page):
+        assert (tmp_path / link).is_file(), link
+    assert page.count("<style>") == 1 and page.count("<html") == 1  # the section, not its page
+
+
+def test_tables_scroll_inside_their_box(tmp_path: Path) -> None:
+    """Every table of a section sits in the scrolling box the shared styles define."""
+    out = _section(tmp_path, "alpha")
+    text = out.read_text()
+    assert text.count("<table") == text.count("<div class='table-scroll'><table") == 1
+    assert re.search(r"\.table-scroll \{[^}]*overflow-x: auto", text)
+    page = build_index([out], tmp_path / "index.html", "Report").read_text()
+    assert "<div class='table-scroll'><table" in page
+
+
+def test_rebase_links_keeps_anchors_and_urls() -> None:
+    text = ("<a href='#x'>a</a><img src='figures/a.png'><a href='https://e.org/b'>b</a>"
+            "<a href='/abs/c.csv'>c</a>")
+    moved = rebase_links(text, "report", "report/sections")
+    assert moved == text.replace("figures/a.png", "../figures/a.png")
+    assert rebase_links(moved, "report/sections", "report") == text

@@ -3,11 +3,14 @@
 The schema (``workflow/schemas/config.schema.yaml``) says what each key may hold; these
 functions turn its findings into ``<source>: <key.path>: <value> - <what is allowed>`` lines,
 where the source is the config file or ``--config`` that set the key, and add the checks a
-JSON schema cannot express (empty sweep ranges, mesh levels that do not exist).
+JSON schema cannot express (empty sweep ranges, mesh levels that do not exist, files the
+config names that neither exist nor are made by the workflow). :func:`nearest_first` lists
+the names that exist for a name that does not, nearest first, for every such message.
 """
 
 from __future__ import annotations
 
+import difflib
 import json
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
@@ -56,6 +59,22 @@ def load_yaml_file(path: str | Path) -> dict[str, Any]:
         raise ConfigError(f"{path}: a config file maps keys to values at its top level, "
                           f"not a {type(data).__name__}")
     return data
+
+
+def nearest_first(value: str, names: Iterable[str], limit: int = 8) -> str:
+    """The ``names`` as text, the ones most like ``value`` first (difflib's similarity of
+    the lower-cased strings; equal ones in their given order), at most ``limit`` of them
+    with the count of the rest, e.g. ``RU1_pad, RU2_pad, RU3_pad, ... (12 in all)``."""
+    unique = list(dict.fromkeys(str(n) for n in names))
+    if not unique:
+        return "none"
+
+    def likeness(name: str) -> float:
+        return difflib.SequenceMatcher(None, value.lower(), name.lower()).ratio()
+
+    ranked = sorted(unique, key=likeness, reverse=True)  # stable: ties keep their order
+    shown = ", ".join(ranked[:limit])
+    return shown if len(ranked) <= limit else f"{shown}, ... ({len(ranked)} in all)"
 
 
 def _lookup(data: Mapping[str, Any], keys: Sequence[Any]) -> bool:
@@ -155,6 +174,58 @@ def semantic_problems(config: Mapping[str, Any], sources: Sequence[Source]) -> l
                                      f"{_short(level)} is not a mesh level; fe.levels defines "
                                      f"{', '.join(levels) or 'none'}")
     return lines
+
+
+def missing_file_problems(config: Mapping[str, Any], sources: Sequence[Source],
+                          made: Iterable[str], root: str | Path = ".") -> list[str]:
+    """Files the config names that neither exist (relative to ``root``, the working
+    directory) nor are among ``made`` (the files the workflow's rules make): the receding
+    results of ``fe.problems.<problem>.ddt_file``. One line each, naming the source, key,
+    value and the workflow's results of that kind nearest first."""
+    made = [str(m) for m in made]
+    lines = []
+    fe = config.get("fe", {})
+    if not fe.get("enabled"):
+        return lines
+    for problem, spec in fe.get("problems", {}).items():
+        path = spec.get("ddt_file", "") if isinstance(spec, Mapping) else ""
+        if not path or path in made or (Path(root) / path).is_file():
+            continue
+        keys = ["fe", "problems", problem, "ddt_file"]
+        results = [m for m in made if m.endswith(".nc") and "/receding/" in f"/{m}"]
+        lines.append(f"{source_of(keys, sources)}: {_dotted(keys)}: {_short(path)} is neither "
+                     "a file nor a result of this workflow; its receding results are "
+                     f"{nearest_first(path, results)}")
+    return lines
+
+
+def missing_table_problems(config: Mapping[str, Any], sources: Sequence[Source],
+                           tables: Iterable[str], root: str | Path = ".") -> list[str]:
+    """``published_dir`` that is not a folder, or lacks transcriptions the rules read
+    (``table_<number>.csv`` for each of ``tables``, e.g. ``"A.1"``). One line."""
+    directory = Path(root) / str(config.get("published_dir", ""))
+    keys = ["published_dir"]
+    where = f"{source_of(keys, sources)}: published_dir: {_short(config.get('published_dir'))}"
+    if not directory.is_dir():
+        return [f"{where} is not a folder (the transcribed thesis tables, "
+                "resources/published in the repository)"]
+    missing = [f"table_{t}.csv" for t in tables if not (directory / f"table_{t}.csv").is_file()]
+    if missing:
+        return [f"{where} lacks {', '.join(missing)} (the transcribed thesis tables the "
+                "rules read; resources/published in the repository has them all)"]
+    return []
+
+
+def check_files(config: Mapping[str, Any], sources: Sequence[Source], *,
+                tables: Iterable[str] = (), made: Iterable[str] | None = None,
+                root: str | Path = ".") -> None:
+    """Raise ConfigError listing :func:`missing_table_problems` for ``tables`` and, given
+    the workflow's files ``made``, :func:`missing_file_problems`, one line each."""
+    problems = missing_table_problems(config, sources, tables, root) if tables else []
+    if made is not None:
+        problems += missing_file_problems(config, sources, made, root)
+    if problems:
+        raise ConfigError("invalid configuration:\n  " + "\n  ".join(problems))
 
 
 def check_config(config: Mapping[str, Any], schema: Mapping[str, Any],

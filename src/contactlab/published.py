@@ -27,6 +27,7 @@ __all__ = [
     "mean_row_stiffness",
     "per_step_fits",
     "read_published",
+    "surfaces_of_tests",
 ]
 
 PUBLISHED_DIR: Path = Path(__file__).resolve().parents[2] / "resources" / "published"
@@ -153,3 +154,20 @@ def per_step_fits(directory: Path | None = None) -> pd.DataFrame:
 def mean_row_stiffness(directory: Path | None = None) -> pd.DataFrame:
     """All mean-row tangential stiffness tables (A.4, A.5, ..., A.39) with a ``table`` column."""
     return _concat(MEAN_ROW_TABLES, directory)
+
+
+#: Tables listing each measured surface with the tests that used it (``test``: ids joined
+#: by ``;``), its ``kind`` (specimen or pad) and ``side``.
+SURFACE_TABLES: tuple[str, ...] = ("A.1", "A.27")
+
+
+def surfaces_of_tests(directory: Path | None = None) -> dict[str, dict[str, list[str]]]:
+    """Test id -> kind (``specimen``, ``pad``) -> the surface ids of that test in Tables A.1
+    and A.27 (both sides of a pad, e.g. ``RU1_pad_A``, ``RU1_pad_B``), in table order."""
+    found: dict[str, dict[str, list[str]]] = {}
+    for table in SURFACE_TABLES:
+        for row in read_published(table, directory).itertuples():
+            for test in str(row.test).split(";"):
+                found.setdefault(test.strip(), {}).setdefault(str(row.kind), []).append(
+                    str(row.surface))
+    return found

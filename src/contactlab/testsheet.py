@@ -2,24 +2,31 @@
 
 Columns are described in ``workflow/schemas/tests.schema.yaml`` and the README.
 This module adds the checks a JSON schema cannot express: numbers parsed cell
-by cell (pandas reads a column with one bad cell as text), unique ids and
-existing data files, each error naming the sheet, the line in the file, the
-test id, the column and the value.
+by cell (pandas reads a column with one bad cell as text), unique ids,
+existing data files, and specimens and pads that name surfaces of the surface
+sheet (and, for the thesis's tests, of the published roughness tables), each
+error naming the sheet, the line in the file, the test id, the column, the
+value and, for a name, the names that exist, nearest first.
 """
 
 from __future__ import annotations
 
-from collections.abc import Collection
+import re
+from collections.abc import Collection, Mapping
 from pathlib import Path
 
 import pandas as pd
 
+from contactlab.config_check import nearest_first
 from contactlab.csvlines import numeric_cells, read_csv_lines
 
 #: Columns holding paths to a test's raw data (empty when a test has none).
 PATH_COLUMNS = ("load_log", "fields", "contact_displacement")
 #: Columns holding numbers (type ``number`` in the schema).
 NUMBER_COLUMNS = ("max_normal_load_kN", "nominal_area_mm2")
+#: The two surfaces of a test's interface: the column of each and of its side.
+ROLES = ("specimen", "pad")
+_SIDED = re.compile(r"^(?P<name>.+)_(?P<side>[A-Z])$")
 
 
 class TestSheetError(ValueError):
@@ -106,6 +113,90 @@ def check_data_files(sheet: pd.DataFrame, sheet_path: str | Path, root: str | Pa
                     f"column '{column}': "
                     f"file not found: {value}"
                 )
+
+
+def _side(value: object) -> str:
+    return "" if value is None or pd.isna(value) else str(value).strip()
+
+
+def _sides(surfaces: Collection[str]) -> dict[str, list[str]]:
+    """Name as the test sheet writes it -> its sides (``""``: none), from surface ids in
+    their order: ``RU1_pad_B`` is pad ``RU1_pad`` side ``B``, ``S1_specimen`` has no side."""
+    sides: dict[str, list[str]] = {}
+    for surface in surfaces:
+        match = _SIDED.match(surface)
+        name, side = (match["name"], match["side"]) if match else (surface, "")
+        sides.setdefault(name, []).append(side)
+    return sides
+
+
+def _name_problem(sheet_path: str | Path, line: object, test: str, role: str, name: str,
+                  side: str, surfaces: Collection[str], where: str) -> str | None:
+    """The error line for a specimen or pad whose surface (name + side) is not in
+    ``surfaces`` (listed in ``where``), else None; blames the side column when the name
+    exists with other sides."""
+    if surface_id(name, side) in surfaces:
+        return None
+    sides = _sides(list(surfaces))
+    head = f"{sheet_path}: line {line} (test {test})"
+    own = surface_id(name, side)
+    if name in sides:
+        listed = ", ".join(repr(s) for s in sorted(set(sides[name])) if s)
+        has = f"the side(s) {listed} there" if listed else "no side there (leave it empty)"
+        if listed and "" in sides[name]:
+            has += " or none"
+        value = repr(side) if side else "empty"
+        return (f"{head}, column '{role}_side': {value} makes surface {own!r}, which is not "
+                f"in {where}; {role} {name!r} has {has}")
+    side_text = f" with side {side!r}" if side else ""
+    return (f"{head}, column '{role}': {name!r}{side_text} (surface {own!r}) is not in "
+            f"{where}; the names there, nearest first: {nearest_first(name, sides)}")
+
+
+def check_surface_names(sheet: pd.DataFrame, sheet_path: str | Path,
+                        surfaces: Collection[str], surface_sheet: str | Path) -> None:
+    """Raise :class:`TestSheetError` for the first test (in sheet order) whose specimen or
+    pad with its side (:func:`surface_id`) is not a surface of the surface sheet.
+
+    ``surfaces`` are the sheet's surface ids (``config/surfaces.csv``, column ``surface``).
+    Seq (eq. 2.1) and the stiffness prediction of every test read both surfaces' scans, so
+    a name missing there would fail those jobs; the error names the test sheet, line, test,
+    column and value and the names the surface sheet has, nearest first.
+    """
+    lines = sheet.attrs.get("line", {})
+    surfaces = set(surfaces)
+    for test_id, row in sheet.iterrows():
+        for role in ROLES:
+            problem = _name_problem(sheet_path, lines.get(test_id, "?"), str(test_id), role,
+                                    str(row[role]).strip(), _side(row.get(f"{role}_side")),
+                                    surfaces, f"the surface sheet {surface_sheet}")
+            if problem:
+                raise TestSheetError(problem)
+
+
+def check_published_surfaces(sheet: pd.DataFrame, sheet_path: str | Path,
+                             published: Mapping[str, Mapping[str, Collection[str]]],
+                             tables: str) -> None:
+    """Raise :class:`TestSheetError` if a thesis test (an id ``published`` knows) names a
+    specimen or pad that is not one of its surfaces in the published roughness tables.
+
+    ``published``: test id -> ``specimen``/``pad`` -> surface ids
+    (:func:`contactlab.published.surfaces_of_tests`); ``tables`` names those tables in the
+    message. The published Seq and stiffness of a thesis test (Tables 2.1-2.10) belong to
+    its own pair of surfaces; tests of other ids are the user's and are not checked here.
+    """
+    lines = sheet.attrs.get("line", {})
+    for test_id, row in sheet.iterrows():
+        own = published.get(str(test_id))
+        if not own:
+            continue
+        for role in ROLES:
+            problem = _name_problem(sheet_path, lines.get(test_id, "?"), str(test_id), role,
+                                    str(row[role]).strip(), _side(row.get(f"{role}_side")),
+                                    set(own.get(role, ())),
+                                    f"the {role}s of thesis test {test_id} in {tables}")
+            if problem:
+                raise TestSheetError(problem)
 
 
 def surface_id(name: str, side: object) -> str:

@@ -1,5 +1,6 @@
 # Start-up: coerce and validate the config, place the study's files, validate the test
-# sheet, define the shared target lists. Every branch's rule file appends its final outputs
+# sheet and its names of surfaces (against the surface sheet and, for the thesis's tests,
+# the published tables), define the shared target lists. Every branch's rule file appends its final outputs
 # to ALL_TARGETS and its report fragment to REPORT_SECTIONS; `rule all` and the report
 # index take them from here. Every path a rule writes starts with RESULTS (or LOGS), so a
 # named study (config key `study`) lives under results/studies/<name>/ beside the others.
@@ -9,10 +10,30 @@ from pathlib import Path
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
-from contactlab.config_check import ConfigError, check_config, load_yaml_file, parse_yaml
+from contactlab.config_check import (
+    ConfigError,
+    check_config,
+    check_files,
+    load_yaml_file,
+    parse_yaml,
+)
+from contactlab.published import (
+    GROUP_TABLES,
+    SURFACE_TABLES,
+    TANGENTIAL_TABLES,
+    surfaces_of_tests,
+)
 from contactlab.rulehelpers import demo_data_files, table_files
 from contactlab.study import changes, coerce, export_provenance, logs_dir, results_dir
-from contactlab.testsheet import TestSheetError, check_data_files, check_rows, read_test_sheet
+from contactlab.surfaces.sheet import check_demo_scan_surfaces, read_surface_sheet
+from contactlab.testsheet import (
+    TestSheetError,
+    check_data_files,
+    check_published_surfaces,
+    check_rows,
+    check_surface_names,
+    read_test_sheet,
+)
 
 
 def _config_files():
@@ -69,11 +90,31 @@ if _SHARED:
 # the jobs inherit the study name, config hash and commit through the environment
 export_provenance(STUDY, config, workflow.basedir)
 
+# the transcribed thesis tables the rules read; fe.problems.*.ddt_file is checked in the
+# Snakefile once every rule file has added its results
+_PUBLISHED_TABLES = sorted({*SURFACE_TABLES, "A.26", "2.6", *TANGENTIAL_TABLES,
+                            *[t for group in GROUP_TABLES.values() for t in group]})
+try:
+    check_files(config, _SOURCES, tables=_PUBLISHED_TABLES)
+except ConfigError as exc:
+    raise WorkflowError(str(exc)) from None
+
+# the names the sheets share, before any job: a test's specimen and pad (with their sides)
+# are surfaces of the surface sheet, a thesis test's are its own in Tables A.1/A.27, and a
+# surface with a demo scan has published statistics to make it from
 try:
     TESTS = read_test_sheet(config["tests"])
     check_rows(TESTS, config["tests"], _load_yaml("workflow/schemas/tests.schema.yaml"))
+    _SURFACE_SPECS = read_surface_sheet(config["surfaces"]["sheet"])
+    check_demo_scan_surfaces(_SURFACE_SPECS, config["surfaces"]["sheet"],
+                             "results/surfaces/demo_scans", config["published_dir"])
+    check_surface_names(TESTS, config["tests"], [s.surface for s in _SURFACE_SPECS],
+                        config["surfaces"]["sheet"])
+    check_published_surfaces(
+        TESTS, config["tests"], surfaces_of_tests(Path(config["published_dir"])),
+        ", ".join(f"{config['published_dir']}/table_{t}.csv" for t in SURFACE_TABLES))
     check_data_files(TESTS, config["tests"], generated=demo_data_files())
-except TestSheetError as exc:
+except (TestSheetError, ValueError, FileNotFoundError) as exc:
     raise WorkflowError(str(exc)) from None
 
 TEST_IDS = list(TESTS["id"])

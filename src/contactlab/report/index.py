@@ -4,7 +4,8 @@ The page opens with the run's metadata (date, study, config hash, contactlab ver
 commit, what a named study changes) and an introduction saying what it holds, then a table
 of contents beside the sections: the parts of the thesis (from the sections' file-name
 numbers, docs/CONVENTIONS.md), each part's sections, and each section's sub-sections,
-figures and tables.
+figures and tables. A section file is a page of its own (:mod:`contactlab.report.section`);
+its ``<section>`` is taken with its links rebased from the section's folder to the page's.
 """
 
 from __future__ import annotations
@@ -19,33 +20,7 @@ from pathlib import Path
 
 from contactlab import __version__
 from contactlab.io import history_time, write_text
-
-_STYLE = """
-body { font-family: sans-serif; margin: 0; color: #222; }
-header, main, nav { box-sizing: border-box; }
-header { max-width: 80em; margin: 0 auto; padding: 1em 1.5em 0; }
-.layout { display: grid; grid-template-columns: 20em minmax(0, 1fr); gap: 2em;
-          max-width: 100em; margin: 0 auto; padding: 0 1.5em; }
-nav#contents { position: sticky; top: 0; align-self: start; max-height: 100vh;
-               overflow-y: auto; font-size: 0.9em; padding: 1em 0; }
-nav#contents ul { padding-left: 1.1em; margin: 0.2em 0; }
-nav#contents li { margin: 0.15em 0; }
-nav#contents details summary { cursor: pointer; color: #555; }
-nav#contents .part { font-weight: bold; margin-top: 0.6em; }
-nav#contents .part > ul { font-weight: normal; }
-main { min-width: 0; }
-table { border-collapse: collapse; font-size: 0.9em; }
-th, td { padding: 0.2em 0.6em; border-bottom: 1px solid #ccc; text-align: right; }
-table.run th, table.run td, table.changes td { text-align: left; }
-figure { margin: 1.5em 0; overflow-x: auto; } figure img { max-width: 100%; }
-figcaption { font-size: 0.9em; color: #333; margin-top: 0.4em; }
-.note { background: #fff4d6; padding: 0.5em; border-left: 4px solid #e0a800; }
-section { border-top: 2px solid #ddd; margin-top: 2em; }
-h2.part { margin-top: 2em; color: #444; }
-p.top { font-size: 0.85em; }
-@media (max-width: 60em) { .layout { display: block; } nav#contents { position: static;
-                                                                     max-height: none; } }
-"""
+from contactlab.report.style import STYLE, rebase_links
 
 #: The parts of the page by the tens of a section's file-name number (``NN_<name>.html``).
 PARTS = {
@@ -57,7 +32,7 @@ PARTS = {
 }
 OTHER_PART = "Other sections"
 
-_SECTION = re.compile(r"<section id='([^']+)'>\s*<h2>(.*?)</h2>", re.S)
+_SECTION = re.compile(r"<section id='([^']+)'>\s*<h2>(.*?)</h2>.*</section>", re.S)
 _ITEM = re.compile(r"<h3 id='([^']+)'>(.*?)</h3>|<figure(?: class='([^']*)')? id='([^']+)'>"
                    r".*?<figcaption>(.*?)</figcaption>", re.S)
 _TAGS = re.compile(r"<[^>]+>")
@@ -91,12 +66,13 @@ def part_of(path: Path) -> str:
 
 
 def read_fragment(path: str | os.PathLike[str]) -> Fragment:
-    """Parse a section fragment; ValueError naming the file if it is not one."""
+    """Parse a section file (its ``<section>``, links relative to the file's folder);
+    ValueError naming the file if it holds none."""
     path = Path(path)
-    text = path.read_text(encoding="utf-8")
-    match = _SECTION.search(text)
+    match = _SECTION.search(path.read_text(encoding="utf-8"))
     if match is None:
         raise ValueError(f"{path}: not a report section (no <section id=...><h2>)")
+    text = match.group(0) + "\n"
     fragment = Fragment(path, text, match.group(1), match.group(2), part_of(path))
     for item in _ITEM.finditer(text):
         heading_id, heading, kind, item_id, caption = item.groups()
@@ -196,11 +172,12 @@ def build_index(sections: list[str | os.PathLike[str]], out: str | os.PathLike[s
         if f.part != part:
             part = f.part
             body.append(f"<h2 class='part'>{html.escape(part)}</h2>")
-        body.append(f.text + "<p class='top'><a href='#contents'>back to the contents</a></p>")
+        body.append(rebase_links(f.text, f.path.parent, Path(out).parent)
+                    + "<p class='top'><a href='#contents'>back to the contents</a></p>")
     page = (
         "<!DOCTYPE html>\n<html lang='en'>\n<head>\n<meta charset='utf-8'>\n"
         "<meta name='viewport' content='width=device-width, initial-scale=1'>\n"
-        f"<title>{html.escape(title)}</title>\n<style>{_STYLE}</style>\n</head>\n<body>\n"
+        f"<title>{html.escape(title)}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n"
         f"<header>\n<h1>{html.escape(title)}</h1>\n"
         + run_header(provenance or {}, changes or {}, date)
         + introduction(fragments, intro)

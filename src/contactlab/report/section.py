@@ -2,9 +2,11 @@
 
 The report toolkit (this module and :mod:`contactlab.report.index`) knows no science: each
 branch's own report builder (``contactlab.<branch>.report``) fills a :class:`Section` and
-writes it to ``results/report/sections/``; :mod:`contactlab.report.index` stitches the
-fragments into ``index.html``. Tables are written by :func:`contactlab.io.write_table`.
-Paths inside a fragment are relative to ``results/report/``.
+writes it to ``results/report/sections/`` as a page of its own (the report's styles, links
+relative to the section's folder, so it opens alone); :mod:`contactlab.report.index`
+stitches the sections into ``index.html``. Tables are written by
+:func:`contactlab.io.write_table`. While a section is built, its links are relative to
+``report_dir``; :meth:`Section.write` rebases them to the folder it writes to.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ import matplotlib.pyplot as plt
 import pandas as pd
 
 from contactlab.io import atomic_path, write_table, write_text
+from contactlab.report.style import STYLE, rebase_links
 
 #: Metadata in saved figures is fixed so the same data give the same files.
 _PNG_METADATA = {"Software": None}
@@ -68,7 +71,8 @@ class Section:
         )
         link = self._relative(csv_path)
         self.blocks.append(
-            f"<figure class='table' id='tab-{Path(csv_path).stem}'>{body}"
+            f"<figure class='table' id='tab-{Path(csv_path).stem}'>"
+            f"<div class='table-scroll'>{body}</div>"
             f"<figcaption>{html.escape(caption)} "
             f"(<a href='{link}'>CSV</a>)</figcaption></figure>"
         )
@@ -95,13 +99,27 @@ class Section:
         self.blocks.append(f"<h3 id='{self.anchor}-{slug}'>{html.escape(text)}</h3>")
 
     def render(self) -> str:
-        """The fragment: a ``<section>`` with a heading and the blocks in order."""
+        """The fragment: a ``<section>`` with a heading and the blocks in order, its links
+        relative to ``report_dir``."""
         inner = "\n".join(self.blocks)
         return (
             f"<section id='{self.anchor}'>\n<h2>{html.escape(self.title)}</h2>\n{inner}\n"
             "</section>\n"
         )
 
+    def page(self, folder: str | os.PathLike[str]) -> str:
+        """The section as an HTML page of its own for a file in ``folder``: the report's
+        styles and the fragment with its links relative to ``folder``."""
+        return (
+            "<!DOCTYPE html>\n<html lang='en'>\n<head>\n<meta charset='utf-8'>\n"
+            "<meta name='viewport' content='width=device-width, initial-scale=1'>\n"
+            f"<title>{html.escape(self.title)}</title>\n<style>{STYLE}</style>\n</head>\n"
+            "<body>\n<main class='alone'>\n"
+            + rebase_links(self.render(), self.report_dir, folder)
+            + "</main>\n</body>\n</html>\n"
+        )
+
     def write(self, path: str | os.PathLike[str]) -> None:
-        """Write the fragment to ``path`` (atomically)."""
-        write_text(self.render(), path)
+        """Write the section page to ``path`` (atomically): it opens on its own, and
+        :func:`contactlab.report.index.build_index` stitches its ``<section>``."""
+        write_text(self.page(Path(path).parent), path)

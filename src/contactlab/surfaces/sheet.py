@@ -32,10 +32,12 @@ Columns:
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import pandas as pd
+
+from contactlab.config_check import nearest_first
 
 COLUMNS = ("surface", "objective", "areal_scan", "profile_scan", "profile_axis",
            "profile_direction", "profile_length_mm", "lambda_c_um", "sampling_length_um")
@@ -65,6 +67,7 @@ class SurfaceSpec:
     profile_length_um: float | None
     lambda_c_um: float
     sampling_length_um: float | None = None  # None: lambda_c (ISO 4288)
+    line: int | None = field(default=None, compare=False)  # the row's line in the sheet
 
     @property
     def scans(self) -> list[Path]:
@@ -157,6 +160,7 @@ def read_surface_sheet(path: str | Path) -> list[SurfaceSpec]:
             profile_length_um=length_um,
             lambda_c_um=lambda_c,
             sampling_length_um=sampling_um,
+            line=line,
         ))
     if not specs:
         raise ValueError(f"{path}: no surfaces")
@@ -207,3 +211,49 @@ def scan_paths(specs: list[SurfaceSpec]) -> list[Path]:
         paths.extend(path for path in spec.scans if path not in paths)
     return paths
 
+
+
+#: The published tables the SYNTHETIC demo scans take their statistics from, per scan kind
+#: (:func:`contactlab.surfaces.demo.published_targets`); 100x profiles: Table 2.6 by test.
+DEMO_TABLES = {"areal": ("A.1", "A.27"), "profile": ("A.1", "A.26", "2.6")}
+
+
+def published_surfaces(published_dir: str | Path | None = None) -> dict[str, list[str]]:
+    """Scan kind (``areal``, ``profile``) -> surface ids with published statistics to
+    synthesise a demo scan from, in table order (:data:`DEMO_TABLES`)."""
+    from contactlab.published import read_published
+
+    directory = Path(published_dir) if published_dir is not None else None
+    names: dict[str, list[str]] = {}
+    for kind, tables in DEMO_TABLES.items():
+        found = names.setdefault(kind, [])
+        for table in tables:
+            frame = read_published(table, directory)
+            if table == "2.6":  # the 100x profiles of the structured specimens, by test
+                found.extend(f"{test}_specimen_100x" for test in frame["test"])
+            else:
+                found.extend(frame["surface"])
+    return names
+
+
+def check_demo_scan_surfaces(specs: list[SurfaceSpec], sheet_path: str | Path,
+                             demo_dir: str | Path, published_dir: str | Path) -> None:
+    """Raise ValueError naming the sheet, line, surface and column of a row whose scan is a
+    SYNTHETIC demo scan (a file in ``demo_dir``, written by the workflow's demo rule from the
+    published statistics) of a surface the published tables do not have; the message lists
+    the ones they have, nearest first. Rows with scans of their own are not checked."""
+    known: dict[str, list[str]] | None = None
+    for spec in specs:
+        for kind, path in (("areal", spec.areal_scan), ("profile", spec.profile_scan)):
+            if path is None or Path(path).parent != Path(demo_dir):
+                continue
+            known = known if known is not None else published_surfaces(published_dir)
+            if spec.surface in known[kind]:
+                continue
+            tables = ", ".join(f"table_{t}.csv" for t in DEMO_TABLES[kind])
+            raise ValueError(
+                f"{sheet_path}: line {spec.line or '?'}, column 'surface': {spec.surface!r} has "
+                f"its {kind} scan in {demo_dir}/ (a SYNTHETIC demo scan made from the published "
+                f"statistics), but {Path(published_dir)}/{{{tables}}} have no surface "
+                f"{spec.surface!r}; give it a scan of your own, or use a published name, "
+                f"nearest first: {nearest_first(spec.surface, known[kind])}")
