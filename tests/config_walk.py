@@ -24,7 +24,7 @@ BRANCH_RULES = {
                  "prediction_", "report_prediction"),
     "stiffness": ("stiffness_", "report_stiffness", "prediction_summary", "report_prediction"),
     "prediction": ("prediction_", "report_prediction"),
-    "asperity": ("asperity_", "report_asperity", "fe_asperity"),
+    "asperity": ("asperity_", "fe_asperity"),
     # the FE cross-checks solve the line load and the patch with the receding settings
     "receding": ("receding_", "report_receding", "fe_compare", "report_fe"),
 }
