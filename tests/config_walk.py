@@ -26,7 +26,7 @@ BRANCH_RULES = {
     "prediction": ("prediction_", "report_prediction"),
     "asperity": ("asperity_", "fe_asperity"),
     # the FE cross-checks solve the line load and the patch with the receding settings
-    "receding": ("receding_", "report_receding", "fe_compare", "report_fe"),
+    "receding": ("receding_", "report_receding", "fe_compare", "fe_report"),
 }
 ALWAYS = ("report_index", "all")
 #: Leaves that name files or the shared demo inputs, not parameters of a computation.
