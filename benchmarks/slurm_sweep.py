@@ -54,7 +54,7 @@ def workflow_copy(dest: Path, n: int, chunks: int) -> Path:
 def solving_cpu(work: Path) -> float:
     """CPU seconds of the chunk jobs, from their benchmark files."""
     total = 0.0
-    for path in (work / "logs" / "benchmarks").glob("receding_gap_chunk_*.tsv"):
+    for path in (work / "logs" / "benchmarks").glob("receding_gap_sweep_*.tsv"):
         with path.open(newline="") as stream:
             total += float(list(csv.DictReader(stream, delimiter="\t"))[-1]["cpu_time"])
     return total

@@ -24,9 +24,9 @@ BRANCH_RULES = {
                  "prediction_", "report_prediction"),
     "stiffness": ("stiffness_", "report_stiffness", "prediction_summary", "report_prediction"),
     "prediction": ("prediction_", "report_prediction"),
-    "asperity": ("asperity_", "report_asperity", "fe_asperity"),
+    "asperity": ("asperity_", "fe_asperity"),
     # the FE cross-checks solve the line load and the patch with the receding settings
-    "receding": ("receding_", "report_receding", "fe_compare", "report_fe"),
+    "receding": ("receding_", "report_receding", "fe_compare", "fe_report"),
 }
 ALWAYS = ("report_index", "all")
 #: Leaves that name files or the shared demo inputs, not parameters of a computation.

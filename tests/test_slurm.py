@@ -33,9 +33,9 @@ TARGETS = [
     "results/surfaces/texture.nc",
 ]
 #: rules that must have been cluster jobs, and gathers that must have run locally
-REMOTE_RULES = {"receding_line_chunk", "receding_table_chunk", "asperity_bem", "fe_receding",
+REMOTE_RULES = {"receding_line_sweep", "receding_patch_sweep", "asperity_bem", "fe_receding",
                 "stiffness_process", "surfaces_texture"}
-LOCAL_RULES = {"receding_line_gather", "receding_table_gather"}
+LOCAL_RULES = {"receding_line_gather", "receding_patch_gather"}
 
 
 def _slurm_answers() -> bool:

@@ -20,6 +20,7 @@ imported only to read the schema when a default is needed.
 from __future__ import annotations
 
 import argparse
+import json
 import shlex
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -80,6 +81,12 @@ def config_value(config: Mapping[str, Any], key: str) -> Any:
             raise KeyError(f"config key {key!r} is not set")
         node = node[part]
     return node
+
+
+def _word(value: Any) -> str:
+    """One value as a command-line word: a mapping (e.g. ``asperity.multi.tables``) as JSON,
+    which its option's type parses back (:func:`contactlab.cliutil.json_value`)."""
+    return json.dumps(value) if isinstance(value, Mapping) else str(value)
 
 
 @dataclass(frozen=True)
@@ -153,7 +160,7 @@ class Option:
             return [self.flag if value else "--no-" + self.flag[2:]]
         if self.kind == "flag":
             return [self.flag] if value else []
-        items = [str(v) for v in value] if isinstance(value, list | tuple) else [str(value)]
+        items = [_word(v) for v in value] if isinstance(value, list | tuple) else [_word(value)]
         return items if self.positional else [self.flag, *items]
 
     def add_to(self, parser: argparse.ArgumentParser) -> None:

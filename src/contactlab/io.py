@@ -54,12 +54,17 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
 def command_line(fallback: str) -> str:
     """The running ``contactlab`` command with all its arguments, quoted as for a shell.
 
-    When the process is not the ``contactlab`` command (a library call, a test), the
-    caller's ``fallback`` description is returned instead.
+    A declared command passes its completed line as ``fallback``
+    (:meth:`contactlab.command.Command.complete`: the command as typed plus the schema
+    defaults it took), which is kept when it extends the running command. When the process
+    is not the ``contactlab`` command (a library call, a test), the caller's ``fallback``
+    description is returned instead.
     """
     program = Path(sys.argv[0]) if sys.argv and sys.argv[0] else Path()
     if program.name == "contactlab" or program.parts[-2:] == ("contactlab", "__main__.py"):
-        return shlex.join(["contactlab", *sys.argv[1:]])
+        running = shlex.join(["contactlab", *sys.argv[1:]])
+        completed = fallback == running or fallback.startswith(running + " ")
+        return fallback if completed else running
     return fallback
 
 

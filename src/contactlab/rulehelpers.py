@@ -8,9 +8,10 @@ one quoted argument each (``{params.x:q}``); ``results`` is the study's results 
 (``results/`` or ``results/studies/<name>/``). Nothing here reads files or imports
 Snakemake.
 
-Sections: the report files a rule declares; contact stiffness (which tests have raw data,
-their files); receding contacts (sweep values, chunks, profile names); finite elements
-(arguments, file lists).
+Sections: the arguments of a declared command (:func:`command_args`); the report files a
+rule declares; contact stiffness (which tests have raw data, their files); receding
+contacts (sweep values, chunks, profile names); finite elements (the values of a run that
+are not config values, file lists).
 """
 
 from __future__ import annotations
@@ -151,59 +152,21 @@ def liftoff_profile_point(points: Sequence[Mapping[str, float]], name: str
 # --------------------------------------------------------------------------- finite elements
 
 
-def receding_args(fe: dict, problem: str, level: str) -> list[str]:
-    """Arguments of ``contactlab fe receding`` for one problem on one mesh level."""
-    spec = fe["problems"][problem]
-    options = {
-        "problem": problem,
-        "f": spec["f"],
-        "w-hat": spec.get("w_hat", 0.0),
-        "h": fe["levels"][level],
-        "length": spec["length"],
-        "depth": spec["depth"],
-        "x-fine": spec["x_fine"],
-        "edges": spec["edges"],
-        "young": spec["young"],
-        "increments": fe["increments"],
-        "level": level,
-    }
-    return [*(word for key, value in options.items() for word in (f"--{key}", str(value))),
-            *_farfield_args(fe, spec["edges"])]
-
-
-def _farfield_args(fe: dict, edges: str) -> list[str]:
-    """``--farfield-passes N`` for far-field edges only (other models do not depend on it)."""
-    return ["--farfield-passes", str(fe["farfield_passes"])] if edges == "farfield" else []
-
-
 def comparison_run(fe: dict, problem: str, results: str = "results/") -> str:
     """The FE run compared with the DDT solution: the problem's ``level``."""
     return f"{results}fe/runs/{problem}_{fe['problems'][problem]['level']}.nc"
 
 
-def ddt_file_arg(fe: dict, problem: str) -> list[str]:
-    """``--ddt-file PATH`` when the problem names a receding results file, else nothing."""
-    path = fe["problems"][problem].get("ddt_file", "")
-    return ["--ddt-file", path] if path else []
+def ddt_file(fe: dict, problem: str) -> str | None:
+    """The receding results file ``fe compare`` reads when the solve fails
+    (``fe.problems.<problem>.ddt_file``), or None (the option is left out)."""
+    return fe["problems"][problem].get("ddt_file") or None
 
 
 def ddt_inputs(fe: dict, problem: str, targets: list[str]) -> list[str]:
     """The receding results file as an input only when some rule makes it."""
     path = fe["problems"][problem].get("ddt_file", "")
     return [path] if path and path in targets else []
-
-
-def ddt_args(config: dict, problem: str) -> list[str]:
-    """The reference's discretisation beyond N for ``contactlab fe compare``: lambda and
-    e of the line load (config ``receding.line``), lambda_b and (e - w)/c of the patch
-    (config ``receding.patches``), nothing for the gap problem."""
-    if problem == "line":
-        line = config["receding"]["line"]
-        return ["--lam", str(line["lambda"]), "--e", str(line["e"])]
-    if problem == "uniform":
-        patches = config["receding"]["patches"]
-        return ["--lam-b", str(patches["lambda_b"]), "--e-minus-w", str(patches["e_minus_w"])]
-    return []
 
 
 #: The module of the receding solver each FE problem is checked against (the functions
@@ -270,9 +233,10 @@ def study_files(fe: dict, results: str = "results/") -> list[str]:
     return [f"{results}fe/study_{p}.nc" for p in study["problems"]]
 
 
-def study_receding_args(fe: dict, problem: str, edges: str, h: str, scale: str) -> list[str]:
-    """Arguments of ``contactlab fe receding`` for one run of the study: the problem's
-    configuration with h/c = ``h`` and strip length and block depth times ``scale``."""
+def study_run(fe: dict, problem: str, edges: str, h: str, scale: str) -> dict[str, Any]:
+    """The values of one run of the study that ``contactlab fe receding`` does not take from
+    the config: the problem, its block ``edges``, h/c = ``h``, strip length and block depth
+    of ``fe.problems.<problem>`` times ``scale``, and the level name ``h<h>_s<scale>``."""
     study = fe["study"]
     hs = {f"{float(v):g}": float(v) for v in [*study["h"], study["h_ref"]]}
     scales = {f"{float(v):g}": float(v) for v in study["scale"]}
@@ -285,27 +249,9 @@ def study_receding_args(fe: dict, problem: str, edges: str, h: str, scale: str) 
     if not spec["x_fine"] < length:
         raise ValueError(f"fe.study.scale {scale} makes the {problem} strip ({length:g} c) "
                          f"shorter than fe.problems.{problem}.x_fine ({spec['x_fine']:g} c)")
-    options = {
-        "problem": problem, "f": spec["f"], "w-hat": spec.get("w_hat", 0.0), "h": hs[h],
-        "length": f"{length:g}", "depth": f"{spec['depth'] * scales[scale]:g}",
-        "x-fine": spec["x_fine"], "edges": edges, "young": spec["young"],
-        "increments": fe["increments"], "level": f"h{h}_s{scale}",
-    }
-    return [*(word for key, value in options.items() for word in (f"--{key}", str(value))),
-            *_farfield_args(fe, edges)]
-
-
-def study_args(config: dict, problem: str) -> list[str]:
-    """Arguments of ``contactlab fe study`` beyond the runs: the series' definitions and the
-    DDT reference (N, its convergence check, lambda and e or lambda_b and e - w)."""
-    fe = config["fe"]
-    study = fe["study"]
-    spec = fe["problems"][problem]
-    return [
-        "--h-ref", f"{float(study['h_ref']):g}", "--length", f"{float(spec['length']):g}",
-        "--ddt-n", str(fe["ddt_n"]), "--ddt-n-check", *[str(n) for n in study["ddt_n"]],
-        *ddt_args(config, problem),
-    ]
+    return {"problem": problem, "h": hs[h], "length": f"{length:g}",
+            "depth": f"{spec['depth'] * scales[scale]:g}", "edges": edges,
+            "level": f"h{h}_s{scale}"}
 
 
 def asperity_runs(fe: dict, results: str = "results/") -> list[str]:
@@ -314,10 +260,3 @@ def asperity_runs(fe: dict, results: str = "results/") -> list[str]:
     if not (fe.get("enabled", False) and spec.get("enabled", False)):
         return []
     return [f"{results}fe/asperity/sy{sy:g}.nc" for sy in [0, *spec["yield_stress"]]]
-
-
-def asperity_args(fe: dict) -> list[str]:
-    """Mesh, material and loading arguments of ``contactlab fe asperity``."""
-    return [word for key, value in fe["asperity"].items()
-            if key not in ("enabled", "yield_stress")
-            for word in (f"--{key.replace('_', '-')}", str(value))]

@@ -6,15 +6,13 @@ import xarray as xr
 
 from contactlab.cli import main
 
-# the options the rules take from config/config.yaml (asperity section), at small sizes
-BEM = ["--f", "1", "--nu", "0.3", "--q-points", "11"]
-SINGLE = ["--nu", "0.3", "--q-points", "11", "--youngs-modulus", "2e6", "--sphere-radius",
-          "100", "--approach-fig-3-6", "0.01", "--approach-fig-3-8", "0.015",
-          "--yield-stress", "5000", "4000", "--shear-limit-stress", "4000", "5000"]
-MULTI = ["--m", "10", "--pt-over-pm", "10", "--s-max", "2", "--points", "11", "--tables", "{}"]
-GRID = ["--pt-over-pd", "0.00125", "0.025", "--load-min", "1e-5", "--load-max", "0.05",
-        "--load-points", "4", "--area-min", "0.01", "--area-points", "4"]
-TRANSVERSE = ["--f", "1", "--tau-max", "0.86", "--nu", "0.3", "--tol", "1e-6"]
+# small sizes; every other option takes the schema's default (config section asperity)
+BEM = ["--q-points", "11"]
+SINGLE = ["--q-points", "11", "--yield-stress", "5000", "4000",
+          "--shear-limit-stress", "4000", "5000"]
+MULTI = ["--m", "10", "--pt-over-pm", "10", "--s-max", "2", "--points", "11"]
+GRID = ["--load-points", "4", "--area-points", "4"]
+TRANSVERSE = ["--tol", "1e-6"]
 
 
 def _run(argv, capsys):
@@ -30,13 +28,37 @@ def _run(argv, capsys):
     (["bem", *BEM, "--law", "shear_limit", "--tau-max", "0", "--cells", "8"], "tau_max"),
     (["bem", *BEM, "--law", "combined", "--tau-max", "-0.5", "--cells", "8"], "tau_max"),
     (["grid-bem", "--N", "2", "--area-ratio", "0.2", "--cells-per-spacing", "8"], "odd"),
+    (["bem", "--law", "coulomb", "--tau-max", "0.8"], "--tau-max does not apply to --law coulomb"),
+    (["bem", "--law", "shear_limit", "--f", "0.5"], "--f does not apply to --law shear_limit"),
+    (["grid-bem", "--area-ratio", "0.2"], "--N is required"),
 ])
 def test_bad_parameters_exit_2(tmp_path, capsys, argv, message):
     code, err = _run(["asperity", *argv, "--out", str(tmp_path / "x.nc")], capsys)
     assert code == 2
     last = err.splitlines()[-1]  # after the log lines of the work begun, if any
-    assert last.startswith("contactlab: error:") and message in last
+    assert last.startswith(("contactlab: error:", "contactlab asperity")) and message in last
     assert not (tmp_path / "x.nc").exists()
+
+
+def test_rules_pass_each_law_its_options_and_the_tables_as_json():
+    """The words a rule passes: the config's values, the options of the law only."""
+    from contactlab.cli import command
+    from contactlab.command import schema_default
+
+    config = {"asperity": {"nu": 0.25, "q_ratio_points": 21,
+                           "bem": {"cells": 16, "friction": 0.5, "tau_max": [0.7]}}}
+    words = {law: command("asperity bem").words(config, law=law)
+             for law in ("coulomb", "shear_limit", "combined")}
+    assert words["coulomb"] == ["--law", "coulomb", "--f", "0.5", "--nu", "0.25",
+                                "--cells", "16", "--q-points", "21"]
+    assert words["shear_limit"][:4] == ["--law", "shear_limit", "--tau-max", "0.7"]
+    assert "--f" not in words["shear_limit"] and "--f" in words["combined"]
+    multi = {key: schema_default(f"asperity.multi.{key}") for key in
+             ("m", "Pt_over_Pm", "laws", "scaled_displacement_max", "points")}
+    tables = {"t": {"P_over_Pm": [0.5, 1.0], "n": [2, 1]}}
+    words = command("asperity multi").words({"asperity": {"multi": {**multi,
+                                                                    "tables": tables}}})
+    assert words[words.index("--tables") + 1] == '{"t": {"P_over_Pm": [0.5, 1.0], "n": [2, 1]}}'
 
 
 def _check_cf(path):

@@ -25,8 +25,8 @@ def test_receding_compare_convergence_report(tmp_path: Path) -> None:
         # the patch load p w is carried by the interface
         assert abs(float(ds["equilibrium_error"])) < 1e-2
     result = tmp_path / "uniform.nc"
-    assert main(["fe", "compare", "--run", str(run), "--ddt-n", "20", "--lam-b", "2",
-                 "--e-minus-w", "5", "--out", str(result)]) == 0
+    assert main(["fe", "compare", "--problem", "uniform", "--run", str(run), "--ddt-n", "20",
+                 "--lam-b", "2", "--e-minus-w", "5", "--out", str(result)]) == 0
     with xr.open_dataset(result) as ds:
         for name in ("b_fe", "b_ddt", "a_fe", "a_ddt"):
             assert ds[name].dims == () and "long_name" in ds[name].attrs

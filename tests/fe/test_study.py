@@ -10,7 +10,7 @@ import pytest
 import xarray as xr
 
 from contactlab import rulehelpers
-from contactlab.cli import main
+from contactlab.cli import command, main
 from contactlab.fe import extrapolate as ex
 from contactlab.fe.deck import RecedingModel, receding_deck
 from contactlab.fe.farfield import flamant_displacements, halfplane_displacements
@@ -107,11 +107,17 @@ def test_farfield_deck_imposes_displacements_in_the_step() -> None:
         RecedingModel("gap", edges="farfield").check()
 
 
-def test_farfield_run_needs_its_passes(tmp_path: Path, capsys) -> None:
-    code = main(["fe", "receding", "--problem", "line", "--f", "0.5", "--w-hat", "0", "--h",
-                 "0.2", "--length", "5", "--depth", "5", "--x-fine", "2", "--edges", "farfield",
-                 "--young", "20000", "--increments", "1", "--out", str(tmp_path / "r.nc")])
-    assert code != 0 and "--farfield-passes" in capsys.readouterr().err
+def test_farfield_passes_and_w_hat_apply_to_their_problems(tmp_path: Path, capsys) -> None:
+    """--farfield-passes (line, uniform) takes fe.farfield_passes' default when not given;
+    given for the gap problem, or --w-hat for the line load, it is refused before any run."""
+    declared = command("fe receding")
+    assert "--farfield-passes" in declared.words(_config(), problem="line", h=0.1)
+    assert "--farfield-passes" not in declared.words(_config(), problem="gap", h=0.1)
+    assert "--w-hat" not in declared.words(_config(), problem="line", h=0.1)
+    for argv in (["--problem", "gap", "--farfield-passes", "2"],
+                 ["--problem", "line", "--w-hat", "0"]):
+        code = main(["fe", "receding", *argv, "--h", "0.2", "--out", str(tmp_path / "r.nc")])
+        assert code == 2 and "does not apply to --problem" in capsys.readouterr().err
     assert not (tmp_path / "r.nc").exists()
 
 
@@ -145,6 +151,11 @@ def _fe(study: dict) -> dict:
             "problems": problems, "study": study}
 
 
+def _config(study: dict | None = None) -> dict:
+    """An effective config with the FE section of :func:`_fe` and the line load's reference."""
+    return {"fe": _fe(study or {}), "receding": {"line": {"lambda": 3.5, "e": 5.0}}}
+
+
 def test_study_rule_helpers() -> None:
     study = {"enabled": True, "problems": ["line", "gap"], "edges": ["encastre", "farfield"],
              "h": [0.2, 0.1, 0.05], "scale": [0.5, 1.0, 2.0], "h_ref": 0.1, "ddt_n": [20, 40]}
@@ -152,16 +163,16 @@ def test_study_rule_helpers() -> None:
     runs = rulehelpers.study_runs(fe, "line", "r/")
     assert len(runs) == 10 and "r/fe/study/line_farfield_h0.1_s2.nc" in runs
     assert rulehelpers.study_runs(fe, "gap")[0].endswith("gap_roller_h0.2_s1.nc")
-    args = rulehelpers.study_receding_args(fe, "line", "farfield", "0.1", "2")
+    values = rulehelpers.study_run(fe, "line", "farfield", "0.1", "2")
+    args = rulehelpers.command_args("fe receding", _config(study), **values)
     opts = dict(zip(args[::2], args[1::2], strict=True))
     assert opts["--length"] == "12" and opts["--depth"] == "12" and opts["--h"] == "0.1"
     assert opts["--edges"] == "farfield" and opts["--farfield-passes"] == "2"
-    assert "--farfield-passes" not in rulehelpers.study_receding_args(
-        fe, "line", "encastre", "0.1", "1")
+    assert opts["--level"] == "h0.1_s2" and opts["--f"] == "0.5" and "--w-hat" not in opts
     with pytest.raises(ValueError, match=r"not in fe\.study"):
-        rulehelpers.study_receding_args(fe, "line", "farfield", "0.3", "1")
+        rulehelpers.study_run(fe, "line", "farfield", "0.3", "1")
     with pytest.raises(ValueError, match="x_fine"):
-        rulehelpers.study_receding_args(
+        rulehelpers.study_run(
             _fe(dict(study, scale=[0.25, 1.0, 2.0])), "line", "encastre", "0.1", "0.25")
     assert rulehelpers.study_files(fe, "r/") == ["r/fe/study_line.nc", "r/fe/study_gap.nc"]
     assert rulehelpers.study_files(_fe(dict(study, enabled=False))) == []
@@ -173,16 +184,17 @@ def test_coarse_study_end_to_end(tmp_path: Path) -> None:
     study = {"enabled": True, "problems": ["line"], "edges": ["farfield"],
              "h": [0.2, 0.1, 0.05], "scale": [0.5, 1.0, 2.0], "h_ref": 0.1, "ddt_n": [20, 40]}
     fe = _fe(study)
-    config = {"fe": fe, "receding": {"line": {"lambda": 3.5, "e": 5.0}}}
+    config = _config(study)
     runs = rulehelpers.study_runs(fe, "line", f"{tmp_path}/")
     for path in runs:
         stem = Path(path).stem
         _, edges, h, scale = stem.split("_")
-        args = rulehelpers.study_receding_args(fe, "line", edges, h[1:], scale[1:])
+        values = rulehelpers.study_run(fe, "line", edges, h[1:], scale[1:])
+        args = rulehelpers.command_args("fe receding", config, **values)
         assert main(["fe", "receding", *args, "--out", path]) == 0
     out = tmp_path / "study_line.nc"
-    assert main(["fe", "study", *runs, *rulehelpers.study_args(config, "line"),
-                 "--out", str(out)]) == 0
+    assert main(["fe", "study", *rulehelpers.command_args("fe study", config, problem="line"),
+                 *runs, "--out", str(out)]) == 0
     with xr.open_dataset(out) as ds:
         assert ds.sizes["h"] == 3 and ds.sizes["length"] == 3 and ds.sizes["ddt_n"] == 2
         assert list(ds["quantity"].values) == ["b", "b_sep", "a", "a_slip", "K_T"]
@@ -200,8 +212,8 @@ def test_coarse_study_end_to_end(tmp_path: Path) -> None:
     conv = tmp_path / "conv.nc"
     assert main(["fe", "convergence", runs[0], "--out", str(conv)]) == 0
     cmp_ = tmp_path / "line.nc"
-    assert main(["fe", "compare", "--run", runs[0], "--ddt-n", "20", "--lam", "3.5", "--e",
-                 "5", "--out", str(cmp_)]) == 0
+    assert main(["fe", "compare", "--problem", "line", "--run", runs[0], "--ddt-n", "20",
+                 "--out", str(cmp_)]) == 0
     assert main(["fe", "report", "--results", str(cmp_), "--study-results", str(out),
                  "--report-dir", str(tmp_path / "report"), "--out", str(section)]) == 0
     assert "fe_study.csv" in section.read_text()

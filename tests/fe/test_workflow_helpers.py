@@ -31,10 +31,13 @@ def test_configs_validate_and_name_existing_levels(repo: Path) -> None:
 
 
 def test_arguments_and_file_lists(repo: Path) -> None:
-    fe = _config(repo, "config/config.yaml")["fe"]
-    args = fe_wf.receding_args(fe, "gap", "coarse")
+    config = _config(repo, "config/config.yaml")
+    fe = config["fe"]
+    args = fe_wf.command_args("fe receding", config, problem="gap",
+                              h=fe["levels"]["coarse"], level="coarse")
     assert " --problem gap " in f" {' '.join(args)} "
     assert f" --h {fe['levels']['coarse']} " in f" {' '.join(args)} "
+    assert f" --young {fe['problems']['gap']['young']} " in f" {' '.join(args)} "
     assert fe_wf.comparison_run(fe, "line").startswith("results/fe/runs/line_")
     assert fe_wf.comparison_run(fe, "line", "results/studies/x/").startswith(
         "results/studies/x/fe/runs/line_")
@@ -42,17 +45,22 @@ def test_arguments_and_file_lists(repo: Path) -> None:
     with_file = {**fe, "problems": {"line": {**fe["problems"]["line"], "ddt_file": path}}}
     assert fe_wf.ddt_inputs(with_file, "line", []) == []  # no rule makes it: not an input
     assert fe_wf.ddt_inputs(with_file, "line", [path]) == [path]
-    assert fe_wf.ddt_file_arg(with_file, "line") == ["--ddt-file", path]
+    assert fe_wf.ddt_file(with_file, "line") == path and fe_wf.ddt_file(fe, "line") is None
     assert fe_wf.ddt_sources("gap", str(repo)) == ["src/contactlab/receding/gap/solver.py"]
-    config = _config(repo, "config/config.yaml")
+    # the reference's discretisation beyond N: the line load's or the patch's, none for gap
     line = config["receding"]["line"]
-    assert fe_wf.ddt_args(config, "line") == ["--lam", str(line["lambda"]), "--e", str(line["e"])]
-    assert fe_wf.ddt_args(config, "uniform")[::2] == ["--lam-b", "--e-minus-w"]
-    assert fe_wf.ddt_args(config, "gap") == []
+    compare = {p: fe_wf.command_args("fe compare", config, problem=p, ddt_file=None)
+               for p in ("gap", "line", "uniform")}
+    assert compare["line"] == ["--problem", "line", "--ddt-n", str(fe["ddt_n"]),
+                               "--lam", str(line["lambda"]), "--e", str(line["e"])]
+    assert compare["uniform"][4::2] == ["--lam-b", "--e-minus-w"]
+    assert compare["gap"] == ["--problem", "gap", "--ddt-n", str(fe["ddt_n"])]
     assert fe_wf.asperity_runs({**fe, "asperity": {**fe["asperity"], "enabled": False}}) == []
     runs = fe_wf.asperity_runs({**fe, "asperity": {**fe["asperity"], "enabled": True}})
     assert runs[0] == "results/fe/asperity/sy0.nc" and len(runs) == 5
-    assert "--h-contact" in fe_wf.asperity_args(fe) and "enabled" not in fe_wf.asperity_args(fe)
+    args = fe_wf.command_args("fe asperity", config, yield_stress=3000)
+    assert args[:2] == ["--yield-stress", "3000"]
+    assert args[args.index("--h-contact") + 1] == str(fe["asperity"]["h_contact"])
     assert fe_wf.convergence_files({"enabled": False}) == []
 
 

@@ -1,18 +1,15 @@
 # Asperity branch (thesis ch. 3): single-asperity curves with a tangential BEM (one job per
 # interface law), distributed asperity loads, Hertz grid models and their BEM check (one job
-# per grid size N), and three report sections (report_asperity_*). One BLAS thread per job:
-# the dense and FFT solves are small, Snakemake runs the jobs side by side.
+# per grid size N), and three report sections (asperity_report_*). Rule asperity_<step>
+# runs `contactlab asperity <step>`; its options come from the command's declaration
+# (command_args). Small dense and FFT solves: one BLAS thread per job (the command line
+# sets it), Snakemake runs the jobs side by side.
 
-import json
-
-from contactlab.rulehelpers import pdf_files
+from contactlab.rulehelpers import command_args, pdf_files
 
 ASPERITY = config["asperity"]
 ASPERITY_BEM_LAWS = ASPERITY["bem"]["laws"]
 ASPERITY_GRID_BEM_N = ASPERITY["grid_bem"]["N"]
-
-
-ASPERITY_TAUS = ["--tau-max", *map(str, ASPERITY["bem"]["tau_max"])]
 
 
 rule asperity_bem:
@@ -22,20 +19,13 @@ rule asperity_bem:
     wildcard_constraints:
         law="coulomb|shear_limit|combined",
     params:
-        taus=lambda wildcards: [] if wildcards.law == "coulomb" else ASPERITY_TAUS,
-        f=ASPERITY["bem"]["friction"],
-        nu=ASPERITY["nu"],
-        cells=ASPERITY["bem"]["cells"],
-        q_points=ASPERITY["q_ratio_points"],
+        args=lambda wc: command_args("asperity bem", config, law=wc.law),
     log:
         logs("asperity/bem_{law}.log"),
     benchmark:
         logs("benchmarks/asperity_bem_{law}.tsv"),
     shell:
-        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
-        " contactlab asperity bem --law {wildcards.law:q} {params.taus:q}"
-        " --f {params.f:q} --nu {params.nu:q} --cells {params.cells:q}"
-        " --q-points {params.q_points:q} --out {output:q} 2> {log:q}"
+        "contactlab asperity bem {params.args:q} --out {output:q} 2> {log:q}"
 
 
 rule asperity_transverse:
@@ -43,22 +33,13 @@ rule asperity_transverse:
     output:
         result("asperity/bem/transverse.nc"),
     params:
-        fractions=ASPERITY["transverse"]["fractions"],
-        tau=ASPERITY["transverse"]["tau_max"],
-        cells=ASPERITY["transverse"]["cells"],
-        tol=ASPERITY["transverse"]["tol"],
-        f=ASPERITY["bem"]["friction"],
-        nu=ASPERITY["nu"],
+        args=command_args("asperity transverse", config),
     log:
         logs("asperity/transverse.log"),
     benchmark:
         logs("benchmarks/asperity_transverse.tsv"),
     shell:
-        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
-        " contactlab asperity transverse --fractions {params.fractions:q}"
-        " --cells {params.cells:q} --tol {params.tol:q} --f {params.f:q} --tau-max {params.tau:q}"
-        " --nu {params.nu:q}"
-        " --out {output:q} 2> {log:q}"
+        "contactlab asperity transverse {params.args:q} --out {output:q} 2> {log:q}"
 
 
 rule asperity_single:
@@ -68,24 +49,14 @@ rule asperity_single:
     output:
         result("asperity/single.nc"),
     params:
-        nu=ASPERITY["nu"],
-        q_points=ASPERITY["q_ratio_points"],
-        e=ASPERITY["fe_models"]["youngs_modulus"],
-        radius=ASPERITY["fe_models"]["sphere_radius"],
-        a36=ASPERITY["fe_models"]["approach_fig_3_6"],
-        a38=ASPERITY["fe_models"]["approach_fig_3_8"],
-        yields=ASPERITY["fe_models"]["yield_stress"],
-        limits=ASPERITY["fe_models"]["shear_limit_stress"],
+        args=command_args("asperity single", config),
     log:
         logs("asperity/single.log"),
     benchmark:
         logs("benchmarks/asperity_single.tsv"),
     shell:
-        "contactlab asperity single --bem {input:q} --nu {params.nu:q}"
-        " --q-points {params.q_points:q} --youngs-modulus {params.e:q}"
-        " --sphere-radius {params.radius:q} --approach-fig-3-6 {params.a36:q}"
-        " --approach-fig-3-8 {params.a38:q} --yield-stress {params.yields:q}"
-        " --shear-limit-stress {params.limits:q} --out {output:q} 2> {log:q}"
+        "contactlab asperity single {params.args:q} --bem {input:q} --out {output:q}"
+        " 2> {log:q}"
 
 
 rule asperity_multi:
@@ -93,20 +64,13 @@ rule asperity_multi:
     output:
         result("asperity/multi.nc"),
     params:
-        laws=ASPERITY["multi"]["laws"],
-        m=ASPERITY["multi"]["m"],
-        ptpm=ASPERITY["multi"]["Pt_over_Pm"],
-        tables=json.dumps(ASPERITY["multi"]["tables"]),
-        s_max=ASPERITY["multi"]["scaled_displacement_max"],
-        points=ASPERITY["multi"]["points"],
+        args=command_args("asperity multi", config),
     log:
         logs("asperity/multi.log"),
     benchmark:
         logs("benchmarks/asperity_multi.tsv"),
     shell:
-        "contactlab asperity multi --laws {params.laws:q} --m {params.m:q}"
-        " --pt-over-pm {params.ptpm:q} --tables {params.tables:q} --s-max {params.s_max:q}"
-        " --points {params.points:q} --out {output:q} 2> {log:q}"
+        "contactlab asperity multi {params.args:q} --out {output:q} 2> {log:q}"
 
 
 rule asperity_grid:
@@ -114,21 +78,13 @@ rule asperity_grid:
     output:
         result("asperity/grid.nc"),
     params:
-        n=ASPERITY["grid"]["N"],
-        pt=ASPERITY["grid"]["Pt_over_Pd"],
-        lmin=ASPERITY["grid"]["load_min"],
-        lmax=ASPERITY["grid"]["load_max"],
-        lpts=ASPERITY["grid"]["load_points"],
-        amin=ASPERITY["grid"]["area_ratio_min"],
-        apts=ASPERITY["grid"]["area_ratio_points"],
+        args=command_args("asperity grid", config),
     log:
         logs("asperity/grid.log"),
     benchmark:
         logs("benchmarks/asperity_grid.tsv"),
     shell:
-        "contactlab asperity grid --N {params.n:q} --pt-over-pd {params.pt:q}"
-        " --load-min {params.lmin:q} --load-max {params.lmax:q} --load-points {params.lpts:q}"
-        " --area-min {params.amin:q} --area-points {params.apts:q} --out {output:q} 2> {log:q}"
+        "contactlab asperity grid {params.args:q} --out {output:q} 2> {log:q}"
 
 
 rule asperity_grid_bem:
@@ -138,21 +94,18 @@ rule asperity_grid_bem:
     wildcard_constraints:
         n=r"\d+",
     params:
-        area=ASPERITY["grid_bem"]["area_ratio"],
-        cells=ASPERITY["grid_bem"]["cells_per_spacing"],
-        equal=lambda wildcards: (
-            ["--equal-loads"]
-            if int(wildcards.n) in ASPERITY["grid_bem"]["equal_loads_N"]
-            else []
+        args=lambda wc: command_args(
+            "asperity grid-bem",
+            config,
+            N=wc.n,
+            equal_loads=int(wc.n) in ASPERITY["grid_bem"]["equal_loads_N"],
         ),
     log:
         logs("asperity/grid_bem_N{n}.log"),
     benchmark:
         logs("benchmarks/asperity_grid_bem_N{n}.tsv"),
     shell:
-        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
-        " contactlab asperity grid-bem --N {wildcards.n:q} --area-ratio {params.area:q}"
-        " --cells-per-spacing {params.cells:q} {params.equal:q} --out {output:q} 2> {log:q}"
+        "contactlab asperity grid-bem {params.args:q} --out {output:q} 2> {log:q}"
 
 
 rule asperity_grid_bem_gather:
@@ -162,14 +115,14 @@ rule asperity_grid_bem_gather:
     output:
         result("asperity/grid_bem.nc"),
     log:
-        logs("asperity/grid_bem_merge.log"),
+        logs("asperity/grid_bem_gather.log"),
     benchmark:
         logs("benchmarks/asperity_grid_bem_gather.tsv"),
     shell:
         "contactlab asperity grid-bem-gather {input:q} --out {output:q} 2> {log:q}"
 
 
-rule report_asperity_single:
+rule asperity_report_single:
     """Report section: Figs 3.6 and 3.8 equivalents, BEM checks, transverse traction."""
     input:
         single=result("asperity/single.nc"),
@@ -202,13 +155,13 @@ rule report_asperity_single:
     log:
         logs("report/asperity_single.log"),
     benchmark:
-        logs("benchmarks/report_asperity_single.tsv"),
+        logs("benchmarks/asperity_report_single.tsv"),
     shell:
         "contactlab asperity report single {input.single:q} {input.transverse:q}"
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
 
 
-rule report_asperity_multi:
+rule asperity_report_multi:
     """Report section: Fig. 3.10 equivalent and the initial slopes S(n)."""
     input:
         result("asperity/multi.nc"),
@@ -226,13 +179,13 @@ rule report_asperity_multi:
     log:
         logs("report/asperity_multi.log"),
     benchmark:
-        logs("benchmarks/report_asperity_multi.tsv"),
+        logs("benchmarks/asperity_report_multi.tsv"),
     shell:
         "contactlab asperity report multi {input:q}"
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
 
 
-rule report_asperity_grid:
+rule asperity_report_grid:
     """Report section: Figs 3.12-3.16 equivalents and the BEM grids."""
     input:
         grid=result("asperity/grid.nc"),
@@ -276,7 +229,7 @@ rule report_asperity_grid:
     log:
         logs("report/asperity_grid.log"),
     benchmark:
-        logs("benchmarks/report_asperity_grid.tsv"),
+        logs("benchmarks/asperity_report_grid.tsv"),
     shell:
         "contactlab asperity report grid {input.grid:q} {input.bem:q}"
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
@@ -307,6 +260,6 @@ localrules:
     asperity_multi,
     asperity_grid,
     asperity_grid_bem_gather,
-    report_asperity_single,
-    report_asperity_multi,
-    report_asperity_grid,
+    asperity_report_single,
+    asperity_report_multi,
+    asperity_report_grid,

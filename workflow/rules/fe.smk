@@ -2,9 +2,11 @@
 # receding-contact models against the distributed-dislocation solutions, their mesh
 # convergence, and the elastic-perfectly plastic stuck asperity (opt-in). One ccx job per
 # model and mesh, so `-j N` runs N of them at once. `fe: {enabled: false}` drops the branch.
+# Rule fe_<step> runs `contactlab fe <step>` (fe_receding_study: `fe receding` for a run of
+# the h and L study); its options come from the command's declaration (command_args).
 
 from contactlab import rulehelpers
-from contactlab.rulehelpers import pdf_files
+from contactlab.rulehelpers import command_args, pdf_files
 
 FE = config["fe"]
 FE_ON = FE["enabled"]
@@ -27,7 +29,9 @@ rule fe_receding:
         problem="gap|line|uniform",
         level=r"[A-Za-z0-9]+",
     params:
-        args=lambda wc: rulehelpers.receding_args(FE, wc.problem, wc.level),
+        args=lambda wc: command_args(
+            "fe receding", config, problem=wc.problem, h=FE["levels"][wc.level], level=wc.level
+        ),
     # long jobs first, so that none of them starts last (greedy scheduler)
     priority: 10
     log:
@@ -36,9 +40,8 @@ rule fe_receding:
         logs("benchmarks/fe_receding_{problem}_{level}.tsv"),
     threads: 1
     shell:
-        "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1"
-        " contactlab fe receding {params.args:q} --threads {threads:q}"
-        " --out {output:q} 2> {log:q}"
+        "contactlab fe receding {params.args:q} --threads {threads:q} --out {output:q}"
+        " 2> {log:q}"
 
 
 rule fe_compare:
@@ -52,17 +55,18 @@ rule fe_compare:
     wildcard_constraints:
         problem="gap|line|uniform",
     params:
-        n=FE["ddt_n"],
-        reference=lambda wc: rulehelpers.ddt_args(config, wc.problem),
-        ddt=lambda wc: rulehelpers.ddt_file_arg(FE, wc.problem),
+        args=lambda wc: command_args(
+            "fe compare",
+            config,
+            problem=wc.problem,
+            ddt_file=rulehelpers.ddt_file(FE, wc.problem),
+        ),
     log:
         logs("fe/compare_{problem}.log"),
     benchmark:
         logs("benchmarks/fe_compare_{problem}.tsv"),
     shell:
-        "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1"
-        " contactlab fe compare --run {input.run:q} --ddt-n {params.n:q}"
-        " {params.reference:q} {params.ddt:q} --out {output:q} 2> {log:q}"
+        "contactlab fe compare {params.args:q} --run {input.run:q} --out {output:q} 2> {log:q}"
 
 
 rule fe_convergence:
@@ -81,7 +85,7 @@ rule fe_convergence:
         "contactlab fe convergence {input:q} --out {output:q} 2> {log:q}"
 
 
-rule fe_study_receding:
+rule fe_receding_study:
     """One run of the h and L study (issue 18): a problem with given block edges, h/c and
     domain scale (strip length and block depth times the scale)."""
     output:
@@ -92,18 +96,19 @@ rule fe_study_receding:
         h=r"[0-9.e-]+",
         scale=r"[0-9.]+",
     params:
-        args=lambda wc: rulehelpers.study_receding_args(
-            FE, wc.problem, wc.edges, wc.h, wc.scale
+        args=lambda wc: command_args(
+            "fe receding",
+            config,
+            **rulehelpers.study_run(FE, wc.problem, wc.edges, wc.h, wc.scale),
         ),
     log:
         logs("fe/study/{problem}_{edges}_h{h}_s{scale}.log"),
     benchmark:
-        logs("benchmarks/fe_study_receding_{problem}_{edges}_h{h}_s{scale}.tsv"),
+        logs("benchmarks/fe_receding_study_{problem}_{edges}_h{h}_s{scale}.tsv"),
     threads: 1
     shell:
-        "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1"
-        " contactlab fe receding {params.args:q} --threads {threads:q}"
-        " --out {output:q} 2> {log:q}"
+        "contactlab fe receding {params.args:q} --threads {threads:q} --out {output:q}"
+        " 2> {log:q}"
 
 
 rule fe_study:
@@ -117,14 +122,13 @@ rule fe_study:
     wildcard_constraints:
         problem="gap|line|uniform",
     params:
-        args=lambda wc: rulehelpers.study_args(config, wc.problem),
+        args=lambda wc: command_args("fe study", config, problem=wc.problem),
     log:
         logs("fe/study_{problem}.log"),
     benchmark:
         logs("benchmarks/fe_study_{problem}.tsv"),
     shell:
-        "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1"
-        " contactlab fe study {input.runs:q} {params.args:q} --out {output:q} 2> {log:q}"
+        "contactlab fe study {params.args:q} {input.runs:q} --out {output:q} 2> {log:q}"
 
 
 rule fe_asperity:
@@ -134,16 +138,15 @@ rule fe_asperity:
     wildcard_constraints:
         sy=r"[0-9.]+",
     params:
-        args=lambda wc: rulehelpers.asperity_args(FE),
+        args=lambda wc: command_args("fe asperity", config, yield_stress=wc.sy),
     log:
         logs("fe/asperity_sy{sy}.log"),
     benchmark:
         logs("benchmarks/fe_asperity_sy{sy}.tsv"),
     threads: 1
     shell:
-        "OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1"
-        " contactlab fe asperity --yield-stress {wildcards.sy:q} {params.args:q}"
-        " --threads {threads:q} --out {output:q} 2> {log:q}"
+        "contactlab fe asperity {params.args:q} --threads {threads:q} --out {output:q}"
+        " 2> {log:q}"
 
 
 rule fe_asperity_gather:
@@ -164,7 +167,7 @@ rule fe_asperity_gather:
         " 2> {log:q}"
 
 
-rule report_fe:
+rule fe_report:
     """Report section: FE against DDT (Figs 8.3-8.19), agreement and convergence, Fig. 3.8."""
     input:
         results=expand(result("fe/{problem}.nc"), problem=FE_PROBLEMS),
@@ -196,7 +199,7 @@ rule report_fe:
     log:
         logs("report/fe.log"),
     benchmark:
-        logs("benchmarks/report_fe.tsv"),
+        logs("benchmarks/fe_report.tsv"),
     shell:
         "contactlab fe report --results {input.results:q} {params.convergence:q}"
         " {params.asperity:q} {params.study:q}"
@@ -218,4 +221,4 @@ localrules:
     fe_convergence,
     fe_study,
     fe_asperity_gather,
-    report_fe,
+    fe_report,

@@ -1,20 +1,32 @@
-"""``contactlab fe ...``: finite element cross-checks with CalculiX (thesis ch. 8, sec. 3.2.2)."""
+"""``contactlab fe ...``: finite element cross-checks with CalculiX (thesis ch. 8, sec. 3.2.2).
+
+Each command is declared once (:data:`COMMANDS`, grouped as :data:`GROUP`); options fed
+from the config (``fe.*``, the problem's ``fe.problems.<problem>.*`` and, for the
+distributed-dislocation references, ``receding.line`` or ``receding.patches``) take the
+schema's defaults when not given.
+"""
 
 from __future__ import annotations
 
 import argparse
 from pathlib import Path
 
-from contactlab.cliutil import add_command, add_group, add_output, add_section_outputs, input_file
+from contactlab.cliutil import input_file, out_option, section_outputs
+from contactlab.command import Command, Group, Option, schema_default
+from contactlab.receding.options import line_options, patch_options
 
 EXAMPLES = """\
-  contactlab fe receding --problem uniform --f 0.3 --w-hat 2.5 --h 0.1 --length 12.5 \\
-      --depth 25 --x-fine 6 --edges encastre --young 20000 --increments 1 --out run.nc
-  contactlab fe compare --run run.nc --ddt-n 100 --lam-b 2 --e-minus-w 5 \\
-      --out results/fe/uniform.nc
+  contactlab fe receding --problem gap --h 0.1 --out gap.nc
+  contactlab fe receding --problem uniform --level coarse --edges encastre --out run.nc
+  contactlab fe compare --problem uniform --run run.nc --ddt-n 50 --out uniform.nc
+  contactlab fe convergence gap_coarse.nc gap_medium.nc --out convergence_gap.nc
+  contactlab fe study --problem line line_*.nc --out study_line.nc
   contactlab fe asperity --yield-stress 3000 --out results/fe/asperity/sy3000.nc
+  contactlab fe asperity-gather sy0.nc sy3000.nc --bem single.nc --out asperity_plastic.nc
 Needs CalculiX `ccx` (Debian package calculix-ccx). Receding-contact lengths are in units
-of the strip thickness c; the asperity model is in mm and N/mm^2.
+of the strip thickness c; the asperity model is in mm and N/mm^2. Options left out take
+the config schema's defaults (workflow/schemas/config.schema.yaml, section fe; each
+problem's own in fe.problems), shown in each command's --help.
 """
 
 
@@ -23,30 +35,40 @@ def _layer_rows(h: float, rows: int | None) -> int:
     return rows if rows else max(8, round(0.4 / h))
 
 
+def _element_size(h: float | None, level: str) -> float:
+    """h/c: as given, else that of the mesh ``level`` in the schema's ``fe.levels``."""
+    if h is not None:
+        return h
+    levels = schema_default("fe.levels")
+    if level not in levels:
+        raise ValueError(f"--level {level!r} is not a mesh level of fe.levels "
+                         f"({', '.join(levels)}); give --h")
+    return float(levels[level])
+
+
 def _receding(args: argparse.Namespace) -> None:
     from contactlab.fe.deck import RecedingModel
     from contactlab.fe.mesh2d import StripBlockGeometry
     from contactlab.fe.receding import run_receding
     from contactlab.io import stamp, write_netcdf
 
-    if args.edges == "farfield" and args.farfield_passes is None:
-        raise ValueError("--edges farfield needs --farfield-passes (config "
-                         "fe.farfield_passes)")
+    h = _element_size(args.h, args.level)
+    # the line load has no patch edge w, and only far-field edges use the passes
     model = RecedingModel(
         problem=args.problem, w=args.w_hat, f=args.f, young=args.young, poisson=args.poisson,
         edges=args.edges, increments=args.increments,
         **({"farfield_passes": args.farfield_passes} if args.farfield_passes else {}),
     )
     geom = StripBlockGeometry(
-        length=args.length, thickness=1.0, depth=args.depth, h=args.h, x_fine=args.x_fine,
-        layer_rows=_layer_rows(args.h, args.layer_rows), growth=args.growth,
+        length=args.length, thickness=1.0, depth=args.depth, h=h, x_fine=args.x_fine,
+        layer_rows=_layer_rows(h, args.layer_rows), growth=args.growth,
     )
     ds = run_receding(model, geom, level=args.level, threads=args.threads, keep=args.keep)
     stamp(
         ds,
         title=f"FE solution (CalculiX) of the receding contact problem '{args.problem}'",
         source="plane-strain strip on block, gmsh mesh, CalculiX ccx, thesis sec. 8.2",
-        history=f"contactlab fe receding --problem {args.problem} --h {args.h}",
+        history=args.history,
     )
     write_netcdf(ds, args.out)
 
@@ -61,6 +83,9 @@ def _compare(args: argparse.Namespace) -> None:
     with xr.open_dataset(args.run) as fe:
         fe = fe.load()
     problem = fe.attrs["problem"]
+    if problem != args.problem:
+        raise ValueError(f"{args.run}: a run of the {problem} problem, not --problem "
+                         f"{args.problem}")
     w = float(fe.attrs.get("w_hat", 0.0))
     ref = reference(problem, float(fe.attrs["f"]), w, args.ddt_n, fe["x"].values,
                     args.ddt_file, lam=args.lam, e=args.e, lam_b=args.lam_b,
@@ -70,7 +95,7 @@ def _compare(args: argparse.Namespace) -> None:
         ds,
         title=f"FE against distributed dislocations: {problem} problem (thesis ch. 8)",
         source=f"FE: {fe.attrs.get('solver', 'ccx')}; DDT: {ds.attrs['ddt_source']}",
-        history=f"contactlab fe compare --run {args.run}",
+        history=args.history,
     )
     write_netcdf(ds, args.out)
 
@@ -86,7 +111,7 @@ def _convergence(args: argparse.Namespace) -> None:
         out,
         title=f"Mesh convergence of the FE model '{out.attrs['problem']}' (thesis sec. 8.3)",
         source="contactlab fe receding runs on successively refined meshes",
-        history="contactlab fe convergence " + " ".join(str(p) for p in args.runs),
+        history=args.history,
         inputs=runs,
     )
     write_netcdf(out, args.out)
@@ -97,6 +122,10 @@ def _study(args: argparse.Namespace) -> None:
     from contactlab.io import load_datasets, stamp, write_netcdf
 
     runs = load_datasets(args.runs, "FE run")
+    others = sorted({str(r.attrs.get("problem")) for r in runs} - {args.problem})
+    if others:
+        raise ValueError(f"fe study --problem {args.problem}: runs of the {', '.join(others)} "
+                         "problem among the runs")
     out = study(runs, args.h_ref, args.length, args.ddt_n, args.ddt_n_check, lam=args.lam,
                 e=args.e, lam_b=args.lam_b, e_minus_w=args.e_minus_w)
     stamp(
@@ -105,7 +134,7 @@ def _study(args: argparse.Namespace) -> None:
               "(thesis ch. 8, issue 18)",
         source="contactlab fe receding runs on mesh and domain series; extrapolation to "
                "h -> 0 and L -> infinity; DDT from the receding branch's solvers",
-        history="contactlab fe study " + " ".join(str(p) for p in args.runs),
+        history=args.history,
         inputs=runs,
     )
     write_netcdf(out, args.out)
@@ -127,7 +156,7 @@ def _asperity(args: argparse.Namespace) -> None:
         ds,
         title="Elastic-perfectly plastic stuck asperity, FE (CalculiX), thesis sec. 3.2.2",
         source="3D half model of a sphere on a block, gmsh tetrahedra C3D10, CalculiX ccx",
-        history=f"contactlab fe asperity --yield-stress {args.yield_stress}",
+        history=args.history,
     )
     write_netcdf(ds, args.out)
 
@@ -143,7 +172,7 @@ def _asperity_gather(args: argparse.Namespace) -> None:
         out,
         title="Elastic-perfectly plastic stuck asperity: Delta_x/Delta_n against Q/Q_n (Fig. 3.8)",
         source="contactlab fe asperity runs; elastic stuck and Cattaneo-Mindlin (eq. 3.5); BEM",
-        history="contactlab fe asperity-gather " + " ".join(str(p) for p in args.runs),
+        history=args.history,
         inputs=runs,
     )
     write_netcdf(out, args.out)
@@ -156,157 +185,172 @@ def _report(args: argparse.Namespace) -> None:
                   study=args.study_results)
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
-    """Add the ``fe`` command group."""
-    commands = add_group(
-        subparsers, "fe", help="finite element cross-checks (CalculiX)",
-        description="Finite element cross-checks with CalculiX: plane-strain strip-on-block "
-                    "receding contacts against the distributed-dislocation solutions "
-                    "(ch. 8) and the elastic-perfectly plastic stuck asperity (sec. 3.2.2).",
-        examples=EXAMPLES)
+# --------------------------------------------------------------------------- declarations
 
-    rec = add_command(
-        commands, "receding", help="run one plane-strain receding-contact model",
+NAME = "fe"
+PROBLEMS = ("gap", "line", "uniform")
+PATCH_PROBLEMS = ("gap", "uniform")
+FARFIELD_PROBLEMS = ("line", "uniform")
+
+
+def _by_problem(name: str, problems: tuple[str, ...] = PROBLEMS) -> dict[str, str]:
+    """The config key ``fe.problems.<problem>.<name>`` of each problem."""
+    return {problem: f"fe.problems.{problem}.{name}" for problem in problems}
+
+
+def _problem(help: str) -> Option:
+    return Option("--problem", help, choices=PROBLEMS)
+
+
+def _ddt_n() -> Option:
+    return Option("--ddt-n", "Gauss-Chebyshev points N of the distributed-dislocation "
+                  "reference", int, key="fe.ddt_n")
+
+
+def _reference() -> tuple[Option, ...]:
+    """The reference's discretisation beyond N: the line load's lambda and e (config
+    receding.line), the uniform patch's lambda_b and (e - w)/c (receding.patches)."""
+    return (*(Option(o.flag, f"reference: {o.help}", o.type, key={"line": o.key},
+                     only=("line",)) for o in line_options()),
+            *(Option(o.flag, f"reference: {o.help}", o.type, key={"uniform": o.key},
+                     only=("uniform",)) for o in patch_options()))
+
+
+def _ccx() -> tuple[Option, ...]:
+    return (Option("--threads", "ccx threads", int, default=1),
+            Option("--keep", "keep the ccx work directory here", default=None))
+
+
+COMMANDS = (
+    Command(
+        NAME, "receding", "run one plane-strain receding-contact model",
         description="Mesh (gmsh), solve (ccx) and post-process one plane-strain receding "
-                    "contact model (sec. 8.2): interface tractions, separation and slip.")
-    rec.add_argument("--problem", choices=("gap", "line", "uniform"), required=True,
-                     help="gap (Fig. 8.1), line load (Fig. 8.7) or uniform patch (Fig. 8.13)")
-    rec.add_argument("--f", type=float, required=True, help="friction coefficient")
-    rec.add_argument("--w-hat", type=float, required=True,
-                     help="patch edge w/c (gap, uniform; ignored for line)")
-    rec.add_argument("--h", type=float, required=True, help="interface element size h/c")
-    rec.add_argument("--length", type=float, required=True,
-                     help="strip length of the half model over c (the full strip is twice "
-                          "as long)")
-    rec.add_argument("--depth", type=float, required=True, help="block depth over c")
-    rec.add_argument("--x-fine", type=float, required=True,
-                     help="end of the uniform interface mesh over c")
-    rec.add_argument("--edges", choices=("roller", "encastre", "farfield"), required=True,
-                     help="block far edge free on rollers (Fig. 8.1), encastre, or displaced "
-                          "as the half-plane under the net load (farfield; line, uniform)")
-    rec.add_argument("--young", type=float, required=True,
-                     help="Young's modulus E, N/mm^2 (results are normalised)")
-    rec.add_argument("--poisson", type=float, default=0.3, help="Poisson's ratio")
-    rec.add_argument("--layer-rows", type=int, default=None,
-                     help="element rows through the strip (default: about 0.4 c/h, >= 8)")
-    rec.add_argument("--growth", type=float, default=1.15,
-                     help="element growth ratio away from the fine mesh")
-    rec.add_argument("--increments", type=int, required=True,
-                     help="load increments (config fe.increments)")
-    rec.add_argument("--farfield-passes", type=int, default=None,
-                     help="farfield edges (required with them): 1 = Flamant's field of the "
-                          "net load; each further pass imposes the half-plane's field of the "
-                          "previous pass's interface tractions (config fe.farfield_passes)")
-    rec.add_argument("--level", default="", help="name of the mesh level (metadata)")
-    rec.add_argument("--threads", type=int, default=1, help="ccx threads")
-    rec.add_argument("--keep", default=None, help="keep the ccx work directory here")
-    add_output(rec)
-    rec.set_defaults(func=_receding)
-
-    cmp_ = add_command(
-        commands, "compare", help="FE against the distributed-dislocation solution",
+                    "contact model (sec. 8.2): interface tractions, separation and slip.",
+        options=(
+            _problem("gap (Fig. 8.1), line load (Fig. 8.7) or uniform patch (Fig. 8.13)"),
+            Option("--f", "friction coefficient f", float, key=_by_problem("f")),
+            Option("--w-hat", "gap or patch half-width w/c", float,
+                   key=_by_problem("w_hat", PATCH_PROBLEMS), only=PATCH_PROBLEMS),
+            Option("--h", "interface element size h/c (default: that of --level in "
+                   "fe.levels)", float, default=None),
+            Option("--length", "strip length of the half model over c (the full strip is "
+                   "twice as long)", float, key=_by_problem("length")),
+            Option("--depth", "block depth over c", float, key=_by_problem("depth")),
+            Option("--x-fine", "end of the uniform interface mesh over c", float,
+                   key=_by_problem("x_fine")),
+            Option("--edges", "block far edge free on rollers (Fig. 8.1), encastre, or "
+                   "displaced as the half-plane under the net load (farfield; line, uniform)",
+                   choices=("roller", "encastre", "farfield"), key=_by_problem("edges")),
+            Option("--young", "Young's modulus E (results are normalised)", float,
+                   unit="N/mm^2", key=_by_problem("young")),
+            Option("--poisson", "Poisson's ratio", float, default=0.3),
+            Option("--layer-rows", "element rows through the strip (default: about 0.4 c/h, "
+                   ">= 8)", int, default=None),
+            Option("--growth", "element growth ratio away from the fine mesh", float,
+                   default=1.15),
+            Option("--increments", "load increments", int, key="fe.increments"),
+            Option("--level", "mesh level: a name of fe.levels, whose h/c the run takes "
+                   "unless --h is given; recorded with the result", key=_by_problem("level")),
+            Option("--farfield-passes", "solves with farfield edges: 1 = Flamant's field of "
+                   "the net load; each further pass imposes the half-plane's field of the "
+                   "previous pass's interface tractions", int,
+                   key=dict.fromkeys(FARFIELD_PROBLEMS, "fe.farfield_passes"),
+                   only=FARFIELD_PROBLEMS),
+            *_ccx(), out_option()),
+        run=_receding, select="problem"),
+    Command(
+        NAME, "compare", "FE against the distributed-dislocation solution",
         description="Transition points and interface profiles of an FE run beside the "
                     "distributed-dislocation solution of the same problem, with agreement "
-                    "measures.")
-    cmp_.add_argument("--run", type=input_file, required=True, help="output of `fe receding`")
-    cmp_.add_argument("--ddt-n", type=int, required=True,
-                      help="Gauss-Chebyshev points N of the reference (config fe.ddt_n)")
-    cmp_.add_argument("--lam", type=float, default=None,
-                      help="line load: map scale lambda of the reference (config "
-                           "receding.line.lambda)")
-    cmp_.add_argument("--e", type=float, default=None,
-                      help="line load: end e/c of the cubic part of A_y (config "
-                           "receding.line.e)")
-    cmp_.add_argument("--lam-b", type=float, default=None,
-                      help="patch: map scale lambda_b (config receding.patches.lambda_b)")
-    cmp_.add_argument("--e-minus-w", type=float, default=None,
-                      help="patch: (e - w)/c (config receding.patches.e_minus_w)")
-    cmp_.add_argument("--ddt-file", type=Path, default=None,
-                      help="receding results file to use when the solve fails")
-    add_output(cmp_)
-    cmp_.set_defaults(func=_compare)
-
-    conv = add_command(
-        commands, "convergence", help="stack runs on refined meshes (sec. 8.3)",
+                    "measures.",
+        options=(_problem("the run's problem (checked against the run)"),
+                 Option("--run", "output of `fe receding`", input_file), _ddt_n(),
+                 *_reference(),
+                 Option("--ddt-file", "receding results file read when the solve fails "
+                        "(config fe.problems.<problem>.ddt_file)", Path, default=None),
+                 out_option()),
+        run=_compare, select="problem"),
+    Command(
+        NAME, "convergence", "stack runs on refined meshes (sec. 8.3)",
         description="Transition points of runs of one problem on successively refined "
-                    "meshes, stacked along h (mesh convergence, sec. 8.3).")
-    conv.add_argument("runs", nargs="+", type=input_file, help="outputs of `fe receding`")
-    add_output(conv)
-    conv.set_defaults(func=_convergence)
-
-    stu = add_command(
-        commands, "study", help="extrapolate an h and L study to h -> 0, L -> inf (issue 18)",
+                    "meshes, stacked along h (mesh convergence, sec. 8.3).",
+        options=(Option("runs", "outputs of `fe receding`", input_file, nargs="+"),
+                 out_option()),
+        run=_convergence),
+    Command(
+        NAME, "study", "extrapolate an h and L study to h -> 0, L -> inf",
         description="Transition points and remote slope of one problem on a mesh series "
                     "and a domain series, extrapolated to h -> 0 (Richardson) and L -> "
                     "infinity (1/L or 1/L^2), per block boundary condition, beside the DDT "
-                    "solution and its N-convergence.")
-    stu.add_argument("runs", nargs="+", type=input_file, help="outputs of `fe receding`")
-    stu.add_argument("--h-ref", type=float, required=True,
-                     help="h/c of the domain series (config fe.study.h_ref)")
-    stu.add_argument("--length", type=float, required=True,
-                     help="strip length / c of the mesh series (config fe.problems.<p>.length)")
-    stu.add_argument("--ddt-n", type=int, required=True,
-                     help="reference Gauss-Chebyshev points N (config fe.ddt_n)")
-    stu.add_argument("--ddt-n-check", type=int, nargs="+", required=True,
-                     help="N of the DDT convergence check (config fe.study.ddt_n)")
-    stu.add_argument("--lam", type=float, default=None, help="line load: lambda (receding.line)")
-    stu.add_argument("--e", type=float, default=None, help="line load: e/c (receding.line)")
-    stu.add_argument("--lam-b", type=float, default=None,
-                     help="patch: lambda_b (receding.patches)")
-    stu.add_argument("--e-minus-w", type=float, default=None,
-                     help="patch: (e - w)/c (receding.patches)")
-    stu.add_argument("--out", type=Path, required=True, help="netCDF output")
-    stu.set_defaults(func=_study)
-
-    asp = add_command(
-        commands, "asperity", help="elastic-plastic stuck asperity (sec. 3.2.2)",
+                    "solution and its N-convergence.",
+        options=(_problem("the runs' problem (checked against the runs)"),
+                 Option("runs", "outputs of `fe receding`", input_file, nargs="+"),
+                 Option("--h-ref", "h/c of the domain series", float, key="fe.study.h_ref"),
+                 Option("--length", "strip length / c of the mesh series", float,
+                        key=_by_problem("length")),
+                 _ddt_n(),
+                 Option("--ddt-n-check", "N of the DDT convergence check", int, nargs="+",
+                        key="fe.study.ddt_n"),
+                 *_reference(), out_option()),
+        run=_study, select="problem"),
+    Command(
+        NAME, "asperity", "elastic-plastic stuck asperity (sec. 3.2.2)",
         description="3D half model of a sphere on a block (C3D10), elastic-perfectly "
-                    "plastic, pressed and then sheared while stuck (Fig. 3.8).")
-    asp.add_argument("--yield-stress", type=float, required=True,
-                     help="von Mises yield stress, N/mm^2; 0 for the elastic model")
-    asp.add_argument("--young", type=float, default=2.0e6, help="Young's modulus, N/mm^2")
-    asp.add_argument("--poisson", type=float, default=0.3, help="Poisson's ratio")
-    asp.add_argument("--radius", type=float, default=100.0, help="sphere radius, mm")
-    asp.add_argument("--approach", type=float, default=0.015, help="normal displacement, mm")
-    asp.add_argument("--tangential", type=float, default=0.01,
-                     help="tangential displacement of the top, mm")
-    asp.add_argument("--half-width", type=float, default=10.0, help="model half-width, mm")
-    asp.add_argument("--height", type=float, default=10.0, help="height of each body, mm")
-    asp.add_argument("--h-contact", type=float, default=0.25,
-                     help="element size at the contact, mm")
-    asp.add_argument("--h-far", type=float, default=3.0, help="element size far away, mm")
-    asp.add_argument("--friction", type=float, default=5.0,
-                     help="friction coefficient standing for a stuck interface")
-    asp.add_argument("--normal-increments", type=int, default=4,
-                     help="increments of the normal load step")
-    asp.add_argument("--tangential-increments", type=int, default=10,
-                     help="increments of the tangential load step")
-    asp.add_argument("--threads", type=int, default=1, help="ccx threads")
-    asp.add_argument("--keep", default=None, help="keep the ccx work directory here")
-    add_output(asp)
-    asp.set_defaults(func=_asperity)
-
-    gat = add_command(
-        commands, "asperity-gather", help="join asperity runs (Fig. 3.8)",
+                    "plastic, pressed and then sheared while stuck (Fig. 3.8).",
+        options=(
+            Option("--yield-stress", "von Mises yield stress; 0 for the elastic model", float,
+                   unit="N/mm^2"),
+            Option("--young", "Young's modulus", float, unit="N/mm^2", key="fe.asperity.young"),
+            Option("--poisson", "Poisson's ratio", float, default=0.3),
+            Option("--radius", "sphere radius", float, unit="mm", key="fe.asperity.radius"),
+            Option("--approach", "normal displacement", float, unit="mm",
+                   key="fe.asperity.approach"),
+            Option("--tangential", "tangential displacement of the top", float, unit="mm",
+                   key="fe.asperity.tangential"),
+            Option("--half-width", "model half-width", float, unit="mm",
+                   key="fe.asperity.half_width"),
+            Option("--height", "height of each body", float, unit="mm",
+                   key="fe.asperity.height"),
+            Option("--h-contact", "element size at the contact", float, unit="mm",
+                   key="fe.asperity.h_contact"),
+            Option("--h-far", "element size far away", float, unit="mm",
+                   key="fe.asperity.h_far"),
+            Option("--friction", "friction coefficient standing for a stuck interface", float,
+                   default=5.0),
+            Option("--normal-increments", "increments of the normal load step", int,
+                   key="fe.asperity.normal_increments"),
+            Option("--tangential-increments", "increments of the tangential load step", int,
+                   key="fe.asperity.tangential_increments"),
+            *_ccx(), out_option()),
+        run=_asperity),
+    Command(
+        NAME, "asperity-gather", "join asperity runs (Fig. 3.8)",
         description="Delta_x/Delta_n against Q/Q_n of the asperity runs beside the elastic "
-                    "stuck, Cattaneo-Mindlin (eq. 3.5) and BEM curves (Fig. 3.8).")
-    gat.add_argument("runs", nargs="+", type=input_file, help="outputs of `fe asperity`")
-    gat.add_argument("--bem", type=input_file, default=None,
-                     help="results/asperity/single.nc (BEM curves)")
-    add_output(gat)
-    gat.set_defaults(func=_asperity_gather)
-
-    rep = add_command(
-        commands, "report", help="the report section of the FE cross-checks",
+                    "stuck, Cattaneo-Mindlin (eq. 3.5) and BEM curves (Fig. 3.8).",
+        options=(Option("runs", "outputs of `fe asperity`", input_file, nargs="+"),
+                 Option("--bem", "results/asperity/single.nc (BEM curves)", input_file,
+                        default=None),
+                 out_option()),
+        run=_asperity_gather),
+    Command(
+        NAME, "report", "the report section of the FE cross-checks",
         description="HTML report fragment: FE against DDT (Figs 8.3-8.19), agreement, "
-                    "convergence and, when given, Fig. 3.8.")
-    rep.add_argument("--results", nargs="+", type=input_file, required=True,
-                     help="results/fe/{gap,line,uniform}.nc")
-    rep.add_argument("--convergence", nargs="*", type=input_file, default=[],
-                     help="results/fe/convergence_<problem>.nc")
-    rep.add_argument("--study-results", nargs="*", type=input_file, default=[],
-                     help="results/fe/study_<problem>.nc (issue 18)")
-    rep.add_argument("--asperity", type=input_file, default=None,
-                     help="results/fe/asperity_plastic.nc")
-    add_section_outputs(rep)
-    rep.set_defaults(func=_report)
+                    "convergence, the h and L study and, when given, Fig. 3.8.",
+        options=(Option("--results", "results/fe/{gap,line,uniform}.nc", input_file,
+                        nargs="+"),
+                 Option("--convergence", "results/fe/convergence_<problem>.nc", input_file,
+                        nargs="*", default=[]),
+                 Option("--study-results", "results/fe/study_<problem>.nc", input_file,
+                        nargs="*", default=[]),
+                 Option("--asperity", "results/fe/asperity_plastic.nc", input_file,
+                        default=None),
+                 *section_outputs()),
+        run=_report),
+)
+
+GROUP = Group(
+    NAME, help="finite element cross-checks (CalculiX)",
+    description="Finite element cross-checks with CalculiX: plane-strain strip-on-block "
+                "receding contacts against the distributed-dislocation solutions (ch. 8) "
+                "and the elastic-perfectly plastic stuck asperity (sec. 3.2.2).",
+    examples=EXAMPLES, commands=COMMANDS)
