@@ -85,10 +85,12 @@ def _attrs(long_name: str, units: str, **extra: object) -> dict[str, object]:
 def process_test(test: str, frames: pd.DataFrame, rows: xr.Dataset | None, *,
                  max_normal_load_kN: float, nominal_area_mm2: float,
                  grid_points: int, error_model: ErrorModel, confidence: float,
-                 sources: dict[str, str] | None = None) -> xr.Dataset:
+                 sources: dict[str, str] | None = None,
+                 history: str | None = None) -> xr.Dataset:
     """Fit every step of one test and build its CF-style result dataset.
 
-    ``confidence`` is that of the Student-t limits of the mean-row Kt0/An (sec. 2.5.4).
+    ``confidence`` is that of the Student-t limits of the mean-row Kt0/An (sec. 2.5.4);
+    ``history`` the command line the result records (default: a description of the call).
 
     Raises ValueError naming the test and step when a step has too few frames; a fit
     that does not converge is kept with ``converged = 0`` and its reason in ``fit_message``.
@@ -265,7 +267,7 @@ def process_test(test: str, frames: pd.DataFrame, rows: xr.Dataset | None, *,
                for i in range(n_steps) if not converged[i]]
     stamp(ds, title=f"Contact stiffness of test {test} from raw data",
           source="; ".join(f"{k}: {v}" for k, v in (sources or {}).items()),
-          history=f"contactlab stiffness process --test {test}")
+          history=history or f"contactlab stiffness process --test {test}")
     ds.attrs.update(test=test, max_normal_load_kN=p_max, nominal_area_mm2=area,
                     reconstructed=int("data" in (sources or {})),
                     steps_flagged=len(flagged), flags="; ".join(flagged) or "none",
