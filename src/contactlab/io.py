@@ -54,12 +54,18 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
 def command_line(fallback: str) -> str:
     """The running ``contactlab`` command with all its arguments, quoted as for a shell.
 
-    When the process is not the ``contactlab`` command (a library call, a test), the
-    caller's ``fallback`` description is returned instead.
+    A declared command passes its completed line as ``fallback`` (``args.history``: the
+    words as typed followed by the schema defaults it was completed with,
+    :meth:`contactlab.command.Command.complete`); that line, which begins with the
+    running command's words, is kept so the defaults are recorded too. When the process
+    is not the ``contactlab`` command (a library call, a test), ``fallback`` is returned
+    as it is.
     """
     program = Path(sys.argv[0]) if sys.argv and sys.argv[0] else Path()
     if program.name == "contactlab" or program.parts[-2:] == ("contactlab", "__main__.py"):
-        return shlex.join(["contactlab", *sys.argv[1:]])
+        typed = shlex.join(["contactlab", *sys.argv[1:]])
+        completed = fallback == typed or fallback.startswith(typed + " ")
+        return fallback if completed else typed
     return fallback
 
 
