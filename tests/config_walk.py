@@ -20,13 +20,12 @@ from typing import Any
 
 #: Rules a parameter of each branch may rerun (prefixes), besides the report page.
 BRANCH_RULES = {
-    "surfaces": ("surfaces_", "report_surfaces", "stiffness_summary", "report_stiffness",
-                 "prediction_", "report_prediction"),
-    "stiffness": ("stiffness_", "report_stiffness", "prediction_summary", "report_prediction"),
-    "prediction": ("prediction_", "report_prediction"),
+    "surfaces": ("surfaces_", "stiffness_summarize", "stiffness_report", "prediction_"),
+    "stiffness": ("stiffness_", "prediction_summarize", "prediction_report"),
+    "prediction": ("prediction_",),
     "asperity": ("asperity_", "fe_asperity"),
     # the FE cross-checks solve the line load and the patch with the receding settings
-    "receding": ("receding_", "report_receding", "fe_compare", "fe_report"),
+    "receding": ("receding_", "fe_compare", "fe_report"),
 }
 ALWAYS = ("report_index", "all")
 #: Leaves that name files or the shared demo inputs, not parameters of a computation.

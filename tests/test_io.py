@@ -82,3 +82,26 @@ def test_history_has_the_full_command_and_gathers_keep_the_chunks(
     monkeypatch.setenv("SOURCE_DATE_EPOCH", "yesterday")
     with pytest.raises(ValueError, match=r"SOURCE_DATE_EPOCH.*'yesterday'"):
         stamp(joined, title="gather", source="test", history="again")
+
+
+def test_history_of_a_declared_command_records_the_defaults_it_was_completed_with(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """Run by hand with the schema's defaults, the file records those values too; a
+    description that is not the running command's completed line gives that line."""
+    from contactlab.cli import build_parser
+    from contactlab.io import stamp
+
+    typed = ["stiffness", "summarize-published", "--tests", "config/tests.csv",
+             "--out", "x.nc"]
+    monkeypatch.setattr("sys.argv", ["/venv/bin/contactlab", *typed])
+    monkeypatch.delenv("SOURCE_DATE_EPOCH", raising=False)
+    args = build_parser().parse_args(typed)
+    assert args.command_declaration.complete(args, typed) == []
+    ds = xr.Dataset()
+    stamp(ds, title="summary", source="test", history=args.history)
+    assert ds.attrs["history"].startswith(
+        "contactlab stiffness summarize-published --tests config/tests.csv --out x.nc "
+        "--kt0-threshold 0.5 --piston-area-cm2 6.5")
+    assert ds.attrs["history"] == args.history
+    stamp(ds, title="summary", source="test", history="contactlab stiffness summarize")
+    assert ds.attrs["history"].splitlines()[-1] == "contactlab " + " ".join(typed)

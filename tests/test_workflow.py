@@ -107,8 +107,8 @@ def test_an_edited_published_table_reruns_the_reports_that_compare_with_it(
     edited.write_text(edited.read_text() + "\n")
     touched = snakemake(work, "-n", "all")
     # Table 2.3 is also compared in the stiffness-from-published-steps section
-    assert planned_rules(touched) == {"report_surfaces", "report_stiffness_published",
-                                      "report_stiffness_raw", "report_index", "all"}
+    assert planned_rules(touched) == {"surfaces_report", "stiffness_report_published",
+                                      "stiffness_report_raw", "report_index", "all"}
 
 
 def check_every_file_is_declared(work: Path, snakemake) -> None:

@@ -146,6 +146,13 @@ def chunks_option(what: str) -> Option:
     return Option("chunks", f"{what} chunk files", input_file, nargs="+")
 
 
+def published_dir_option(help: str = "directory of the transcribed thesis tables") -> Option:
+    """``--published-dir``: the thesis tables (config ``published_dir``; the workflow gives
+    it, by hand the packaged copy is read)."""
+    return Option("--published-dir", f"{help} (default: the packaged copy)", input_dir,
+                  default=None)
+
+
 def add_output(parser: argparse.ArgumentParser, help: str = "netCDF output") -> None:
     """The required ``--out`` of a command that writes one result file."""
     parser.add_argument("--out", type=Path, required=True, help=help)

@@ -59,11 +59,8 @@ def test_cli_refuses_a_missing_scan_naming_option_and_path(tmp_path: Path) -> No
         [sys.executable, "-m", "contactlab", "prediction", "pair", "--test", "T1",
          "--specimen-scan", str(missing), "--pad-scan", str(missing),
          "--specimen-lambda-c-um", "800", "--pad-lambda-c-um", "800",
-         "--max-undefined-fraction", "0", "--max-normal-load-kN", "4",
-         "--nominal-area-mm2", "20", "--grid-points", "32", "--load-min-fraction", "0.1",
-         "--load-points", "5", "--youngs-modulus-GPa", "113.8", "--poissons-ratio", "0.31",
-         "--hardness-GPa", "3.42", "--plastic-cap", "on", "--slip-points", "4",
-         "--tol", "1e-6", "--out", str(tmp_path / "out.nc")],
+         "--max-normal-load-kN", "4", "--nominal-area-mm2", "20",
+         "--out", str(tmp_path / "out.nc")],
         capture_output=True, text=True, check=False)
     assert run.returncode == 2
     assert "--specimen-scan" in run.stderr and "gone.x3p" in run.stderr

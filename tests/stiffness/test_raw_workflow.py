@@ -61,10 +61,10 @@ def test_tenth_test_reruns_only_its_jobs_and_the_summaries(workflow_copy: Path,
     assert plan.returncode == 0, plan.stderr[-3000:]
     jobs = _jobs(plan)
     assert jobs.get("stiffness_process") == 1, jobs
-    assert jobs.get("report_stiffness_raw") == 1, jobs  # draws T10's figures too
+    assert jobs.get("stiffness_report_raw") == 1, jobs  # draws T10's figures too
     assert "stiffness_demo" not in jobs
     assert "results/stiffness/T10.nc" in plan.stdout
     # the test sheet feeds Seq, so Seq and everything summarising all tests reruns too
-    assert set(jobs) <= {"stiffness_process", "stiffness_summary",
-                         "stiffness_summary_from_published_steps", "report_stiffness_raw",
+    assert set(jobs) <= {"stiffness_process", "stiffness_summarize",
+                         "stiffness_summarize_published", "stiffness_report_raw",
                          "surfaces_seq"}, jobs

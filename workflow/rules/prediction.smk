@@ -7,9 +7,8 @@ import re
 
 from contactlab.prediction.pairs import pair_lookup
 from contactlab.published import PUBLISHED_TESTS
-from contactlab.rulehelpers import pdf_files
+from contactlab.rulehelpers import command_args, pdf_files
 
-_PRED = config["prediction"]
 PREDICTION_TESTS = list(TEST_IDS)
 # the summary from the published steps exists only for a sheet with a thesis test: a
 # study of a user's own tests compares with the values from its raw data alone
@@ -33,40 +32,25 @@ rule prediction_pair:
     wildcard_constraints:
         test=_PAIR_PATTERN,
     params:
-        specimen_lambda_c=lambda wc: _pair(wc.test).specimen.lambda_c_um,
-        pad_lambda_c=lambda wc: _pair(wc.test).pad.lambda_c_um,
-        max_undefined=config["surfaces"]["max_undefined_fraction"],
-        load=lambda wc: float(TESTS.loc[wc.test, "max_normal_load_kN"]),
-        area=lambda wc: float(TESTS.loc[wc.test, "nominal_area_mm2"]),
-        grid=_PRED["grid_points"],
-        load_min=_PRED["load_min_fraction"],
-        load_points=_PRED["load_points"],
-        young=_PRED["youngs_modulus_GPa"],
-        nu=_PRED["poissons_ratio"],
-        hardness=_PRED["hardness_GPa"],
-        plastic="on" if _PRED["plastic_cap"] else "off",
-        slip=_PRED["slip_points"],
-        tol=_PRED["solver_tol"],
+        args=lambda wc: command_args(
+            "prediction pair",
+            config,
+            test=wc.test,
+            specimen_lambda_c_um=_pair(wc.test).specimen.lambda_c_um,
+            pad_lambda_c_um=_pair(wc.test).pad.lambda_c_um,
+            max_normal_load_kN=float(TESTS.loc[wc.test, "max_normal_load_kN"]),
+            nominal_area_mm2=float(TESTS.loc[wc.test, "nominal_area_mm2"]),
+        ),
     log:
         logs("prediction/{test}.log"),
     benchmark:
         logs("benchmarks/prediction_pair_{test}.tsv"),
     shell:
-        "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1"
-        " contactlab prediction pair --test {wildcards.test:q}"
-        " --specimen-scan {input.specimen:q} --pad-scan {input.pad:q}"
-        " --specimen-lambda-c-um {params.specimen_lambda_c:q}"
-        " --pad-lambda-c-um {params.pad_lambda_c:q}"
-        " --max-undefined-fraction {params.max_undefined:q}"
-        " --max-normal-load-kN {params.load:q} --nominal-area-mm2 {params.area:q}"
-        " --grid-points {params.grid:q} --load-min-fraction {params.load_min:q}"
-        " --load-points {params.load_points:q} --youngs-modulus-GPa {params.young:q}"
-        " --poissons-ratio {params.nu:q} --hardness-GPa {params.hardness:q}"
-        " --plastic-cap {params.plastic:q} --slip-points {params.slip:q} --tol {params.tol:q}"
-        " --out {output:q} > {log:q} 2>&1"
+        "contactlab prediction pair {params.args:q} --specimen-scan {input.specimen:q}"
+        " --pad-scan {input.pad:q} --out {output:q} 2> {log:q}"
 
 
-rule prediction_summary:
+rule prediction_summarize:
     """Predicted beside measured (raw data and published steps), partial slip at the
     measured f in the tests' reversed cycles."""
     input:
@@ -76,19 +60,18 @@ rule prediction_summary:
     output:
         result("prediction/summary.nc"),
     params:
+        args=lambda wc: command_args("prediction summarize", config),
         published=[w for path in _PUBLISHED_SUMMARY for w in ("--published-summary", path)],
-        ratio=_PRED["tangential_ratio"],
     log:
         logs("prediction/summary.log"),
     benchmark:
-        logs("benchmarks/prediction_summary.tsv"),
+        logs("benchmarks/prediction_summarize.tsv"),
     shell:
-        "contactlab prediction summarize {input.predictions:q} --raw-summary {input.raw:q}"
-        " {params.published:q} --tangential-ratio {params.ratio:q}"
-        " --out {output:q} 2> {log:q}"
+        "contactlab prediction summarize {params.args:q} {input.predictions:q}"
+        " --raw-summary {input.raw:q} {params.published:q} --out {output:q} 2> {log:q}"
 
 
-rule report_prediction:
+rule prediction_report:
     """Report section: predicted beside measured Kn/An, beta_n, beta_n Seq, Kt0/An, Cc."""
     input:
         summary=result("prediction/summary.nc"),
@@ -121,7 +104,7 @@ rule report_prediction:
     log:
         logs("report/prediction.log"),
     benchmark:
-        logs("benchmarks/report_prediction.tsv"),
+        logs("benchmarks/prediction_report.tsv"),
     shell:
         "contactlab prediction report {input.predictions:q} --summary {input.summary:q}"
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
@@ -134,5 +117,5 @@ REPORT_SECTIONS.append(result("report/sections/25_prediction.html"))
 
 # Seconds-long gathers and reports: on a cluster they run in the Snakemake process itself.
 localrules:
-    prediction_summary,
-    report_prediction,
+    prediction_summarize,
+    prediction_report,

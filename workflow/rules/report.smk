@@ -3,6 +3,8 @@
 
 import json
 
+from contactlab.rulehelpers import command_args
+
 
 rule report_index:
     """results/report/index.html from the section fragments, in file-name order."""
@@ -11,15 +13,15 @@ rule report_index:
     output:
         result("report/index.html"),
     params:
-        title=config["report"]["title"],
-        changes=json.dumps(STUDY_CHANGES, sort_keys=True),
+        args=lambda wc: command_args(
+            "report index", config, changes=json.dumps(STUDY_CHANGES, sort_keys=True)
+        ),
     log:
         logs("report/index.log"),
     benchmark:
         logs("benchmarks/report_index.tsv"),
     shell:
-        "contactlab report index {input:q} --title {params.title:q}"
-        " --changes {params.changes:q} --out {output:q} 2> {log:q}"
+        "contactlab report index {params.args:q} {input:q} --out {output:q} 2> {log:q}"
 
 
 # Seconds-long gathers, light solves and reports: on a cluster they run in the

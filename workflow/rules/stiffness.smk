@@ -5,22 +5,7 @@
 import re
 
 from contactlab.published import GROUP_TABLES, PUBLISHED_TESTS, TANGENTIAL_TABLES
-from contactlab.rulehelpers import pdf_files, raw_data_option, raw_inputs, raw_tests
-
-_RAW = config["stiffness"]["raw"]
-_ERR = config["stiffness"]["errors"]
-# the sec. 2.5.2 error model, shared with the published-steps aggregation
-_ERROR_OPTIONS = [
-    word
-    for key, flag in (
-        ("piston_area_cm2", "piston-area-cm2"),
-        ("pressure_uncertainty_MPa", "pressure-uncertainty-MPa"),
-        ("piston_area_rel_uncertainty", "piston-area-rel-uncertainty"),
-        ("tangential_pressure_rel_extra", "tangential-pressure-rel-extra"),
-        ("qs_rel_extra", "qs-rel-extra"),
-    )
-    for word in (f"--{flag}", str(_ERR[key]))
-] + ["--tangential-pressure", _RAW["tangential_pressure"]]
+from contactlab.rulehelpers import command_args, pdf_files, raw_data_option, raw_inputs, raw_tests
 
 
 RAW_TESTS = raw_tests(TESTS)
@@ -41,8 +26,7 @@ rule stiffness_demo:
         fields=expand("results/demo/{test}/fields.nc", test=PUBLISHED_TESTS),
         designs=expand("results/demo/{test}/design.csv", test=PUBLISHED_TESTS),
     params:
-        tests=PUBLISHED_TESTS,
-        seed=_RAW["demo_seed"],
+        args=lambda wc: command_args("stiffness demo", config, test=PUBLISHED_TESTS),
         published=PUBLISHED,
         out_dir=lambda wildcards, output: Path(output.load_logs[0]).parent.parent,
     log:
@@ -50,7 +34,7 @@ rule stiffness_demo:
     benchmark:
         "logs/benchmarks/stiffness_demo.tsv",
     shell:
-        "contactlab stiffness demo --test {params.tests:q} --seed {params.seed:q}"
+        "contactlab stiffness demo {params.args:q}"
         " --published-dir {params.published:q} --out-dir {params.out_dir:q} 2> {log:q}"
 
 
@@ -63,24 +47,24 @@ rule stiffness_process:
     wildcard_constraints:
         test=_RAW_TEST_PATTERN,
     params:
+        args=lambda wc: command_args(
+            "stiffness process",
+            config,
+            test=wc.test,
+            max_normal_load_kN=float(TESTS.loc[wc.test, "max_normal_load_kN"]),
+            nominal_area_mm2=float(TESTS.loc[wc.test, "nominal_area_mm2"]),
+        ),
         data=raw_data_option,
-        load=lambda wc: float(TESTS.loc[wc.test, "max_normal_load_kN"]),
-        area=lambda wc: float(TESTS.loc[wc.test, "nominal_area_mm2"]),
-        grid=_RAW["grid_points"],
-        errors=_ERROR_OPTIONS,
-        confidence=_ERR["confidence"],
     log:
         logs("stiffness/process_{test}.log"),
     benchmark:
         logs("benchmarks/stiffness_process_{test}.tsv"),
     shell:
-        "contactlab stiffness process --test {wildcards.test:q} --load-log {input.load_log:q}"
-        " {params.data:q} --max-normal-load-kN {params.load:q}"
-        " --nominal-area-mm2 {params.area:q} --grid-points {params.grid:q} {params.errors:q}"
-        " --confidence {params.confidence:q} --out {output:q} 2> {log:q}"
+        "contactlab stiffness process {params.args:q} --load-log {input.load_log:q}"
+        " {params.data:q} --out {output:q} 2> {log:q}"
 
 
-rule stiffness_summary:
+rule stiffness_summarize:
     """summary.nc and the thesis tables recomputed from the raw results of every test."""
     input:
         results=expand(result("stiffness/{test}.nc"), test=RAW_TESTS),
@@ -90,22 +74,20 @@ rule stiffness_summary:
         summary=result("stiffness/summary.nc"),
         tables=report_tables("Contact stiffness", *RAW_TABLES),
     params:
-        threshold=_RAW["kt0_margin_threshold"],
-        errors=_ERROR_OPTIONS,
+        args=lambda wc: command_args("stiffness summarize", config),
         published=PUBLISHED,
         tables_dir=lambda wildcards, output: Path(output.tables[0]).parent,
     log:
         logs("stiffness/summary.log"),
     benchmark:
-        logs("benchmarks/stiffness_summary.tsv"),
+        logs("benchmarks/stiffness_summarize.tsv"),
     shell:
-        "contactlab stiffness summarize {input.results:q} --tests {input.tests:q}"
-        " --seq {input.seq:q} --kt0-threshold {params.threshold:q} {params.errors:q}"
-        " --published-dir {params.published:q}"
+        "contactlab stiffness summarize {params.args:q} {input.results:q}"
+        " --tests {input.tests:q} --seq {input.seq:q} --published-dir {params.published:q}"
         " --tables-dir {params.tables_dir:q} --out {output.summary:q} 2> {log:q}"
 
 
-rule report_stiffness_raw:
+rule stiffness_report_raw:
     """Report section: every number of Tables 2.1-2.4, 2.7-2.10 from raw vs published, and
     the figures of each test (like Figs 2.8-2.17, published values overlaid)."""
     input:
@@ -165,7 +147,7 @@ rule report_stiffness_raw:
     log:
         logs("report/stiffness_raw.log"),
     benchmark:
-        logs("benchmarks/report_stiffness_raw.tsv"),
+        logs("benchmarks/stiffness_report_raw.tsv"),
     shell:
         "contactlab stiffness report-raw {input.results:q} --summary {input.summary:q}"
         " --published-dir {params.published:q}"
@@ -182,5 +164,5 @@ REPORT_SECTIONS.append(result("report/sections/21_stiffness_raw.html"))
 # Seconds-long gathers, light solves and reports: on a cluster they run in the
 # Snakemake process itself instead of queueing as jobs of their own.
 localrules:
-    stiffness_summary,
-    report_stiffness_raw,
+    stiffness_summarize,
+    stiffness_report_raw,

@@ -3,15 +3,13 @@
 # printed ones. Outputs carry the suffix _from_published_steps.
 
 from contactlab.published import MEAN_ROW_TABLES, PER_STEP_FIT_TABLES
-from contactlab.rulehelpers import pdf_files
+from contactlab.rulehelpers import command_args, pdf_files
 
 STIFFNESS_PUBLISHED_NUMBERS = ["2.1", "2.2", "2.3", "2.4", "2.7", "2.8", "2.9", "2.10"]
 STIFFNESS_PUBLISHED_TABLES = expand(
     result("report/tables/table_{n}_from_published_steps.csv"), n=STIFFNESS_PUBLISHED_NUMBERS
 )
 STIFFNESS_PUBLISHED_FIGURES = ["fig_2_40", "fig_2_41", "fig_2_42", "fig_2_60", "fig_2_61", "mean_row"]
-_SP_ERRORS = config["stiffness"]["errors"]
-_SP = config["stiffness"]["published_steps"]
 
 # inputs: per-step fit and mean-row tables (A.2-A.39) and the normal fits (2.1, 2.7)
 STIFFNESS_PUBLISHED_INPUTS = [
@@ -20,7 +18,7 @@ STIFFNESS_PUBLISHED_INPUTS = [
 ]
 
 
-rule stiffness_summary_from_published_steps:
+rule stiffness_summarize_published:
     """Tables 2.1-2.4, 2.7-2.10 and a summary netCDF from the published per-step values."""
     input:
         tests=config["tests"],
@@ -30,30 +28,20 @@ rule stiffness_summary_from_published_steps:
         summary=result("stiffness/summary_from_published_steps.nc"),
         tables=report_tables("Contact stiffness", *STIFFNESS_PUBLISHED_TABLES),
     params:
+        args=lambda wc: command_args("stiffness summarize-published", config),
         published=PUBLISHED,
         tables_dir=lambda wildcards, output: Path(output.tables[0]).parent,
-        threshold=_SP["kt0_margin_threshold"],
-        pressure=_SP["tangential_pressure"],
-        area=_SP_ERRORS["piston_area_cm2"],
-        dp=_SP_ERRORS["pressure_uncertainty_MPa"],
-        u_area=_SP_ERRORS["piston_area_rel_uncertainty"],
-        u_tan=_SP_ERRORS["tangential_pressure_rel_extra"],
-        u_qs=_SP_ERRORS["qs_rel_extra"],
     log:
         logs("stiffness/summary_from_published_steps.log"),
     benchmark:
-        logs("benchmarks/stiffness_summary_from_published_steps.tsv"),
+        logs("benchmarks/stiffness_summarize_published.tsv"),
     shell:
-        "contactlab stiffness summarize-published --tests {input.tests:q} --seq {input.seq:q}"
-        " --published-dir {params.published:q} --tables-dir {params.tables_dir:q}"
-        " --kt0-threshold {params.threshold:q} --tangential-pressure {params.pressure:q}"
-        " --piston-area-cm2 {params.area:q} --pressure-uncertainty-MPa {params.dp:q}"
-        " --piston-area-rel-uncertainty {params.u_area:q}"
-        " --tangential-pressure-rel-extra {params.u_tan:q} --qs-rel-extra {params.u_qs:q}"
-        " --out {output.summary:q} 2> {log:q}"
+        "contactlab stiffness summarize-published {params.args:q} --tests {input.tests:q}"
+        " --seq {input.seq:q} --published-dir {params.published:q}"
+        " --tables-dir {params.tables_dir:q} --out {output.summary:q} 2> {log:q}"
 
 
-rule report_stiffness_published:
+rule stiffness_report_published:
     """Report section: every number of Tables 2.1-2.4, 2.7-2.10, published vs recomputed."""
     input:
         summary=result("stiffness/summary_from_published_steps.nc"),
@@ -89,7 +77,7 @@ rule report_stiffness_published:
     log:
         logs("report/stiffness_published.log"),
     benchmark:
-        logs("benchmarks/report_stiffness_published.tsv"),
+        logs("benchmarks/stiffness_report_published.tsv"),
     shell:
         "contactlab stiffness report-published --summary {input.summary:q}"
         " --tables-dir {params.tables_dir:q} --published-dir {params.published:q}"
@@ -105,5 +93,5 @@ REPORT_SECTIONS.append(result("report/sections/20_stiffness_published.html"))
 # Seconds-long gathers, light solves and reports: on a cluster they run in the
 # Snakemake process itself instead of queueing as jobs of their own.
 localrules:
-    stiffness_summary_from_published_steps,
-    report_stiffness_published,
+    stiffness_summarize_published,
+    stiffness_report_published,

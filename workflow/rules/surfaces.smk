@@ -1,7 +1,7 @@
 # Surfaces branch (thesis sec. 2.3.4): texture parameters of every surface from its scans,
 # and Seq of each test's interface from the computed and from the published Sq.
 
-from contactlab.rulehelpers import pdf_files
+from contactlab.rulehelpers import command_args, pdf_files
 from contactlab.surfaces.sheet import check_scan_files, read_surface_sheet, scan_paths
 
 SURFACES_CONFIG = config["surfaces"]
@@ -28,7 +28,7 @@ if DEMO_SCANS:
         output:
             DEMO_SCANS,
         params:
-            seed=SURFACES_CONFIG["demo_seed"],
+            args=lambda wc: command_args("surfaces demo-scans", config),
             out_dir=lambda wildcards, output: Path(output[0]).parent,
             published=PUBLISHED,
         log:
@@ -36,8 +36,8 @@ if DEMO_SCANS:
         benchmark:
             "logs/benchmarks/surfaces_demo_scans.tsv",
         shell:
-            "contactlab surfaces demo-scans --sheet {input.sheet:q} --out-dir {params.out_dir:q}"
-            " --seed {params.seed:q} --published-dir {params.published:q} > {log:q} 2>&1"
+            "contactlab surfaces demo-scans {params.args:q} --sheet {input.sheet:q}"
+            " --published-dir {params.published:q} --out-dir {params.out_dir:q} 2> {log:q}"
 
 
 rule surfaces_texture:
@@ -57,8 +57,7 @@ rule surfaces_texture:
         surfaces=expand(result("surfaces/{surface}.nc"), surface=SURFACE_IDS),
         summary=result("surfaces/texture.nc"),
     params:
-        bins=SURFACES_CONFIG["histogram_bins"],
-        max_undefined=SURFACES_CONFIG["max_undefined_fraction"],
+        args=lambda wc: command_args("surfaces texture", config),
         out_dir=lambda wildcards, output: Path(output.summary).parent,
     threads: 2
     log:
@@ -66,9 +65,9 @@ rule surfaces_texture:
     benchmark:
         logs("benchmarks/surfaces_texture.tsv"),
     shell:
-        "contactlab surfaces texture --sheet {input.sheet:q} --out-dir {params.out_dir:q}"
-        " --bins {params.bins:q} --max-undefined-fraction {params.max_undefined:q}"
-        " --summary {output.summary:q} --workers {threads:q} 2> {log:q}"
+        "contactlab surfaces texture {params.args:q} --sheet {input.sheet:q}"
+        " --out-dir {params.out_dir:q} --summary {output.summary:q} --workers {threads:q}"
+        " 2> {log:q}"
 
 
 rule surfaces_texture_check:
@@ -78,14 +77,14 @@ rule surfaces_texture_check:
     output:
         result("surfaces/refused.csv"),
     params:
-        allow=["--allow-refused"] if SURFACES_CONFIG["allow_refused_scans"] else [],
+        args=lambda wc: command_args("surfaces texture-check", config),
     log:
         logs("surfaces/texture_check.log"),
     benchmark:
         logs("benchmarks/surfaces_texture_check.tsv"),
     shell:
-        "contactlab surfaces texture-check {input:q} {params.allow:q} --out {output:q}"
-        " > {log:q} 2>&1"
+        "contactlab surfaces texture-check {params.args:q} {input:q} --out {output:q}"
+        " 2> {log:q}"
 
 
 rule surfaces_seq:
@@ -108,7 +107,7 @@ rule surfaces_seq:
         " --published-dir {params.published:q} --out {output:q} 2> {log:q}"
 
 
-rule report_surfaces:
+rule surfaces_report:
     """Report section: Tables A.1, A.26, A.27, 2.6 and Seq (2.3, 2.10) beside ours."""
     input:
         seq=result("surfaces/seq.nc"),
@@ -160,7 +159,7 @@ rule report_surfaces:
     log:
         logs("report/surfaces.log"),
     benchmark:
-        logs("benchmarks/report_surfaces.tsv"),
+        logs("benchmarks/surfaces_report.tsv"),
     shell:
         "contactlab surfaces report --seq {input.seq:q} --texture {input.texture:q}"
         " --surface-dir {params.surface_dir:q} --published-dir {params.published:q}"
@@ -178,4 +177,4 @@ REPORT_SECTIONS.append(result("report/sections/10_surfaces.html"))
 localrules:
     surfaces_texture_check,
     surfaces_seq,
-    report_surfaces,
+    surfaces_report,

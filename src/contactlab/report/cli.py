@@ -7,9 +7,9 @@ report``); this command only stitches them together.
 from __future__ import annotations
 
 import argparse
-from pathlib import Path
 
-from contactlab.cliutil import add_command, add_group, input_file, json_value
+from contactlab.cliutil import input_file, json_value, out_option
+from contactlab.command import Command, Group, Option
 
 
 def _index(args: argparse.Namespace) -> None:
@@ -20,22 +20,26 @@ def _index(args: argparse.Namespace) -> None:
     build_index(args.sections, args.out, args.title, args.intro, provenance(), changes)
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
-    """Add the ``report`` command group."""
-    commands = add_group(
-        subparsers, "report", help="the report page",
-        description="Assemble the report page from the section fragments that each branch "
-                    "writes with its own report command.",
-        examples="  contactlab report index results/report/sections/*.html "
-                 "--title 'my study' --out results/report/index.html\n")
-    index = add_command(commands, "index", help="assemble index.html from section fragments",
-                        description="Stitch HTML section fragments, in the order given, "
-                                    "into one report page headed by the run's provenance.")
-    index.add_argument("sections", nargs="+", type=input_file, help="section HTML fragments")
-    index.add_argument("--title", default="contactlab report",
-                       help="page title (config report.title)")
-    index.add_argument("--intro", default="", help="introductory paragraph")
-    index.add_argument("--changes", type=json_value, default=None,
-                       help="JSON {key: [default, study]} of what a named study changes")
-    index.add_argument("--out", type=Path, required=True, help="HTML page to write")
-    index.set_defaults(func=_index)
+NAME = "report"
+
+COMMANDS = (
+    Command(
+        NAME, "index", "assemble index.html from section fragments",
+        description="Stitch HTML section fragments, in the order given, into one report "
+                    "page headed by the run's provenance.",
+        options=(Option("sections", "section HTML fragments", input_file, nargs="+"),
+                 Option("--title", "page title", key="report.title"),
+                 Option("--intro", "introductory paragraph", default=""),
+                 Option("--changes", "JSON {key: [default, study]} of what a named study "
+                        "changes", json_value, default=None),
+                 out_option("HTML page to write")),
+        run=_index),
+)
+
+GROUP = Group(
+    NAME, help="the report page",
+    description="Assemble the report page from the section fragments that each branch "
+                "writes with its own report command.",
+    examples="  contactlab report index results/report/sections/*.html "
+             "--title 'my study' --out results/report/index.html\n",
+    commands=COMMANDS)

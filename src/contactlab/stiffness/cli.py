@@ -1,4 +1,11 @@
-"""``contactlab stiffness ...``: contact stiffness from raw data and from published steps."""
+"""``contactlab stiffness ...``: contact stiffness from raw data and from published steps.
+
+The raw-data commands (``demo``, ``process``, ``summarize``, ``figures``, ``report-raw``)
+and those on the published per-step values (``summarize-published``,
+``report-published``). Options fed from the config (``stiffness.raw``,
+``stiffness.errors``, ``stiffness.published_steps``) take the schema's defaults when not
+given.
+"""
 
 from __future__ import annotations
 
@@ -7,32 +14,36 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 from contactlab.cliutil import (
-    add_command,
-    add_group,
-    add_section_outputs,
     check_memory,
     input_dir,
     input_file,
     input_path,
+    out_option,
+    published_dir_option,
+    section_outputs,
 )
+from contactlab.command import Command, Group, Option
 
 if TYPE_CHECKING:
     from contactlab.stiffness.errors import ErrorModel
 
-PUBLISHED = "directory of the transcribed thesis tables (default: the packaged copy)"
+NAME = "stiffness"
+RAW = "stiffness.raw"
+ERRORS = "stiffness.errors"
+PUBLISHED_STEPS = "stiffness.published_steps"
 EXAMPLES = """\
-  contactlab stiffness demo --test RU1 RU2 --seed 20180501 --out-dir results/demo
+  contactlab stiffness demo --test RU1 RU2 --out-dir results/demo
   contactlab stiffness process --test RU1 --load-log results/demo/RU1/load_log.csv \\
       --fields results/demo/RU1/fields.nc --max-normal-load-kN 4 --nominal-area-mm2 20 \\
-      --grid-points 41 --piston-area-cm2 6.5 --pressure-uncertainty-MPa 0.135 \\
-      --piston-area-rel-uncertainty 0.01 --tangential-pressure-rel-extra 0.01 \\
-      --qs-rel-extra 0.01 --tangential-pressure multiply --confidence 0.95 \\
       --out results/stiffness/RU1.nc
-  contactlab stiffness summarize-published --tests config/tests.csv --kt0-threshold 0.5 \\
-      --piston-area-cm2 6.5 --pressure-uncertainty-MPa 0.135 \\
-      --piston-area-rel-uncertainty 0.01 --tangential-pressure-rel-extra 0.01 \\
-      --qs-rel-extra 0.01 --tangential-pressure multiply \\
+  contactlab stiffness summarize results/stiffness/*.nc --tests config/tests.csv \\
+      --seq results/surfaces/seq.nc --out results/stiffness/summary.nc
+  contactlab stiffness figures results/stiffness/RU1.nc --out-dir /tmp/figures
+  contactlab stiffness summarize-published --tests config/tests.csv \\
       --out results/stiffness/summary_from_published_steps.nc
+Loads kN, displacements um, areas mm^2, stiffness per area kN/mm^3, beta 1/um. Options
+left out take the config schema's defaults (workflow/schemas/config.schema.yaml), shown in
+each command's --help.
 """
 
 
@@ -41,7 +52,7 @@ def _demo(args: argparse.Namespace) -> None:
 
     for test in args.test:
         write_demo(test, Path(args.out_dir) / test, seed=args.seed,
-                   published_dir=args.published_dir)
+                   published_dir=args.published_dir, history=args.history)
 
 
 def _process(args: argparse.Namespace) -> None:
@@ -55,6 +66,7 @@ def _process(args: argparse.Namespace) -> None:
         args.test, frames, rows, max_normal_load_kN=args.max_normal_load_kN,
         nominal_area_mm2=args.nominal_area_mm2, grid_points=args.grid_points,
         error_model=_model_from_args(args), confidence=args.confidence, sources=sources,
+        history=args.history,
     )
     write_netcdf(ds, args.out)
 
@@ -64,7 +76,8 @@ def _summarize(args: argparse.Namespace) -> None:
 
     summarize_raw(args.results, args.tests, args.out, tables_dir=args.tables_dir,
                   seq_path=args.seq, threshold=args.kt0_threshold,
-                  error_model=_model_from_args(args), published_dir=args.published_dir)
+                  error_model=_model_from_args(args), published_dir=args.published_dir,
+                  history=args.history)
 
 
 def _report_raw(args: argparse.Namespace) -> None:
@@ -72,123 +85,6 @@ def _report_raw(args: argparse.Namespace) -> None:
 
     build_section(args.results, args.summary, args.report_dir, args.out,
                   published_dir=args.published_dir, flags_out=args.flags)
-
-
-def _error_model_options(parser: argparse.ArgumentParser) -> None:
-    """The sec. 2.5.2 error-model settings (config stiffness.errors), all required."""
-    parser.add_argument("--piston-area-cm2", type=float, required=True,
-                        help="effective piston area converting gauge pressure to normal "
-                             "load, cm^2 (config stiffness.errors.piston_area_cm2)")
-    parser.add_argument("--pressure-uncertainty-MPa", type=float, required=True,
-                        help="uncertainty of the pressure reading (gauge + zeroing), MPa")
-    parser.add_argument("--piston-area-rel-uncertainty", type=float, required=True,
-                        help="relative uncertainty of the piston area (1 = 100%%)")
-    parser.add_argument("--tangential-pressure-rel-extra", type=float, required=True,
-                        help="extra relative pressure uncertainty during tangential steps")
-    parser.add_argument("--qs-rel-extra", type=float, required=True,
-                        help="extra relative uncertainty of Qs added to its fit margin "
-                             "(eq. 2.10)")
-    parser.add_argument("--tangential-pressure", choices=("divide", "multiply"),
-                        required=True,
-                        help="gauge pressure of the tangential-step load error: Pn/A (text of "
-                             "sec. 2.5.2) or Pn*A/10 (reproduces the published f margins)")
-
-
-def register(subparsers: argparse._SubParsersAction) -> None:
-    """Add the ``stiffness`` command group: raw-data, figure and published-steps commands."""
-    commands = add_group(
-        subparsers, "stiffness", help="contact stiffness (thesis ch. 2)",
-        description="Normal and tangential contact stiffness of the nine tests (ch. 2): fits "
-                    "of every load step from raw load logs and DIC fields, the error model "
-                    "of sec. 2.5 and the summary tables, from raw data or from the published "
-                    "per-step values. Loads kN, displacements um, areas mm^2, stiffness per "
-                    "area kN/mm^3, beta 1/um; margins are 95%.",
-        examples=EXAMPLES)
-    register_raw(commands)
-    register_figures(commands)
-    register_published(commands)
-
-
-def register_raw(commands: argparse._SubParsersAction) -> None:
-    """The raw-data sub-commands: demo, process, summarize, report-raw."""
-    demo = add_command(
-        commands, "demo", help="write the RECONSTRUCTED demo raw data of thesis tests",
-        description="Write a RECONSTRUCTED load log and DIC displacement fields of each given "
-                    "thesis test from its published fits (Tables 2.1, 2.7, A.2-A.39), seeded.")
-    demo.add_argument("--test", required=True, nargs="+",
-                      help="one or more of RU1-RU3, SU1-SU3, S1-S3")
-    demo.add_argument("--out-dir", type=Path, required=True,
-                      help="directory receiving <test>/load_log.csv, fields.nc and design.csv")
-    demo.add_argument("--seed", type=int, required=True,
-                      help="random seed (config stiffness.raw.demo_seed)")
-    demo.add_argument("--published-dir", type=input_dir, default=None, help=PUBLISHED)
-    demo.set_defaults(func=_demo)
-
-    proc = add_command(
-        commands, "process", help="fit every step of one test from raw data",
-        description="Contact displacements from the DIC fields (sec. 2.3.2), a fit of every "
-                    "load step (eqs 2.2, 2.3) with margins (sec. 2.5), stiffness curves on a "
-                    "load grid and the mean-row Kt0 with Student-t limits (sec. 2.5.4).")
-    proc.add_argument("--test", required=True, help="test id (a row of the test sheet)")
-    proc.add_argument("--load-log", type=input_file, required=True,
-                      help="load log CSV: frame, step, kind, direction, Pn, Qt (kN)")
-    proc.add_argument("--fields", type=input_path, default=None,
-                      help="DIC fields (u, v in um): .nc, .csv export or DaVis set directory")
-    proc.add_argument("--contact-displacement", type=input_file, default=None,
-                      help="contact displacement CSV frame, uc, vc (um), when there are no "
-                           "fields")
-    proc.add_argument("--max-normal-load-kN", type=float, required=True,
-                      help="largest normal load of the test, kN")
-    proc.add_argument("--nominal-area-mm2", type=float, required=True,
-                      help="nominal contact area An, mm^2")
-    proc.add_argument("--grid-points", type=int, required=True,
-                      help="points of the load grid of the fitted and stiffness curves "
-                           "(config stiffness.raw.grid_points)")
-    _error_model_options(proc)
-    proc.add_argument("--confidence", type=float, required=True,
-                      help="confidence of the Student-t limits of the mean-row Kt0/An, "
-                           "in (0, 1) (config stiffness.errors.confidence)")
-    proc.add_argument("--out", type=Path, required=True,
-                      help="netCDF output (results/stiffness/<test>.nc)")
-    proc.set_defaults(func=_process)
-
-    summ = add_command(
-        commands, "summarize", help="summary.nc and the thesis tables from per-test results",
-        description="Per test and direction: Kn/An, Kt0/An, beta, f, Cc with margins, and "
-                    "Tables 2.1-2.4, 2.7-2.10 and A.2-A.39 recomputed from raw-data results.")
-    summ.add_argument("results", nargs="+", type=input_file,
-                      help="per-test results (results/stiffness/<test>.nc)")
-    summ.add_argument("--tests", type=input_file, required=True,
-                      help="test sheet (config/tests.csv)")
-    summ.add_argument("--seq", type=input_file, default=None,
-                      help="Seq results (results/surfaces/seq.nc) for Tables 2.3/2.10")
-    summ.add_argument("--kt0-threshold", type=float, required=True,
-                      help="relative Kt0 margin below which a step enters the means "
-                           "(config stiffness.raw.kt0_margin_threshold)")
-    summ.add_argument("--published-dir", type=input_dir, default=None,
-                      help=PUBLISHED + "; texture wavelengths of Table 2.7")
-    _error_model_options(summ)
-    summ.add_argument("--tables-dir", type=Path, default=Path("results/report/tables"),
-                      help="directory for the table CSV files")
-    summ.add_argument("--out", type=Path, required=True,
-                      help="netCDF output (results/stiffness/summary.nc)")
-    summ.set_defaults(func=_summarize)
-
-    rep = add_command(
-        commands, "report-raw", help="report section: from raw vs published",
-        description="HTML report fragment with every number of Tables 2.1-2.4 and 2.7-2.10 "
-                    "from raw data beside the published one, flagged fits and figures.")
-    rep.add_argument("results", nargs="+", type=input_file,
-                     help="per-test results (results/stiffness/<test>.nc)")
-    rep.add_argument("--summary", type=input_file, required=True,
-                     help="results/stiffness/summary.nc (with each test's load and area)")
-    rep.add_argument("--published-dir", type=input_dir, default=None, help=PUBLISHED)
-    rep.add_argument("--report-dir", type=Path, default=Path("results/report"),
-                     help="report directory receiving tables/ and figures/")
-    rep.add_argument("--flags", type=Path, default=None,
-                     help="also write a CSV of the flagged fits here")
-    rep.add_argument("--out", type=Path, required=True, help="section HTML fragment")
-    rep.set_defaults(func=_report_raw)
 
 
 def _model_from_args(args: argparse.Namespace) -> ErrorModel:
@@ -209,7 +105,7 @@ def _summarize_published(args: argparse.Namespace) -> None:
 
     summarize_published(args.tests, args.out, seq_path=args.seq, tables_dir=args.tables_dir,
                         published_dir=args.published_dir, model=_model_from_args(args),
-                        threshold=args.kt0_threshold)
+                        threshold=args.kt0_threshold, history=args.history)
 
 
 def _report_published(args: argparse.Namespace) -> None:
@@ -219,43 +115,6 @@ def _report_published(args: argparse.Namespace) -> None:
                   published_dir=args.published_dir)
 
 
-def register_published(commands: argparse._SubParsersAction) -> None:
-    """Sub-commands on the published per-step values: summarize-published, report-published."""
-    summ = add_command(
-        commands, "summarize-published",
-        help="summary netCDF and Tables 2.1-2.4, 2.7-2.10 from the published per-step values",
-        description="Recompute the thesis summary tables from the published per-step values "
-                    "(Appendix A Tables A.2-A.39, fit rows of Tables 2.1/2.7) with the error "
-                    "model of sec. 2.5, without raw data.")
-    summ.add_argument("--tests", type=input_file, required=True,
-                      help="test sheet (config/tests.csv)")
-    summ.add_argument("--seq", type=input_file, default=None,
-                      help="Seq results (results/surfaces/seq.nc)")
-    summ.add_argument("--published-dir", type=input_dir, default=None, help=PUBLISHED)
-    summ.add_argument("--tables-dir", type=Path, default=None,
-                      help="write table_2.x_from_published_steps.csv here")
-    summ.add_argument("--kt0-threshold", type=float, required=True,
-                      help="relative Kt0 margin below which a step enters the means "
-                           "(config stiffness.published_steps.kt0_margin_threshold)")
-    _error_model_options(summ)
-    summ.add_argument("--out", type=Path, required=True,
-                      help="netCDF output (results/stiffness/summary_from_published_steps.nc)")
-    summ.set_defaults(func=_summarize_published)
-
-    rep = add_command(
-        commands, "report-published",
-        help="report section: published vs recomputed from published steps",
-        description="HTML report fragment putting every printed number of Tables 2.1-2.4 "
-                    "and 2.7-2.10 beside the one recomputed from the published steps.")
-    rep.add_argument("--summary", type=input_file, required=True,
-                     help="results/stiffness/summary_from_published_steps.nc")
-    rep.add_argument("--tables-dir", type=input_dir, required=True,
-                     help="directory with table_2.x_from_published_steps.csv")
-    rep.add_argument("--published-dir", type=input_dir, default=None, help=PUBLISHED)
-    add_section_outputs(rep)
-    rep.set_defaults(func=_report_published)
-
-
 def _figures(args: argparse.Namespace) -> None:
     from contactlab.stiffness.report_raw import test_figures
 
@@ -263,15 +122,144 @@ def _figures(args: argparse.Namespace) -> None:
         test_figures(result, args.out_dir, args.published_dir)
 
 
-def register_figures(commands: argparse._SubParsersAction) -> None:
-    """``stiffness figures``: Figs 2.8-2.17-like figures of per-test raw results."""
-    fig = add_command(
-        commands, "figures", help="figures of one or more per-test results",
+def kt0_threshold_option(section: str) -> Option:
+    """The Kt0 margin threshold of the means, of ``section`` (``stiffness.raw`` or
+    ``stiffness.published_steps``)."""
+    return Option("--kt0-threshold", "relative Kt0 margin below which a step enters the "
+                  "means (sec. 2.5.3)", float, key=f"{section}.kt0_margin_threshold")
+
+
+def error_model_options(section: str) -> tuple[Option, ...]:
+    """The sec. 2.5.2 error model (config ``stiffness.errors``); the gauge pressure of the
+    tangential-step load error is that of ``section`` (``stiffness.raw`` or
+    ``stiffness.published_steps``)."""
+    return (
+        Option("--piston-area-cm2", "effective piston area converting gauge pressure to "
+               "normal load", float, unit="cm^2", key=f"{ERRORS}.piston_area_cm2"),
+        Option("--pressure-uncertainty-MPa", "uncertainty of the pressure reading (gauge + "
+               "zeroing)", float, unit="MPa", key=f"{ERRORS}.pressure_uncertainty_MPa"),
+        Option("--piston-area-rel-uncertainty", "relative uncertainty of the piston area "
+               "(1 = 100%%)", float, key=f"{ERRORS}.piston_area_rel_uncertainty"),
+        Option("--tangential-pressure-rel-extra", "extra relative pressure uncertainty "
+               "during tangential steps", float, key=f"{ERRORS}.tangential_pressure_rel_extra"),
+        Option("--qs-rel-extra", "extra relative uncertainty of Qs added to its fit margin "
+               "(eq. 2.10)", float, key=f"{ERRORS}.qs_rel_extra"),
+        Option("--tangential-pressure", "gauge pressure of the tangential-step load error: "
+               "Pn/A (text of sec. 2.5.2) or Pn*A/10 (reproduces the published f margins)",
+               choices=("divide", "multiply"),
+               key=f"{section}.tangential_pressure"),
+    )
+
+
+def results_option() -> Option:
+    """The per-test results a command reads (positional)."""
+    return Option("results", "per-test results (results/stiffness/<test>.nc)", input_file,
+                  nargs="+")
+
+
+COMMANDS = (
+    Command(
+        NAME, "demo", "write the RECONSTRUCTED demo raw data of thesis tests",
+        description="Write a RECONSTRUCTED load log and DIC displacement fields of each given "
+                    "thesis test from its published fits (Tables 2.1, 2.7, A.2-A.39), seeded.",
+        options=(Option("--test", "one or more of RU1-RU3, SU1-SU3, S1-S3", nargs="+"),
+                 Option("--seed", "random seed", int, key=f"{RAW}.demo_seed"),
+                 published_dir_option(),
+                 Option("--out-dir", "directory receiving <test>/load_log.csv, fields.nc "
+                        "and design.csv", Path)),
+        run=_demo),
+    Command(
+        NAME, "process", "fit every step of one test from raw data",
+        description="Contact displacements from the DIC fields (sec. 2.3.2), a fit of every "
+                    "load step (eqs 2.2, 2.3) with margins (sec. 2.5), stiffness curves on a "
+                    "load grid and the mean-row Kt0 with Student-t limits (sec. 2.5.4).",
+        options=(Option("--test", "test id (a row of the test sheet)"),
+                 Option("--load-log", "load log CSV: frame, step, kind, direction, Pn, Qt "
+                        "(kN)", input_file),
+                 Option("--fields", "DIC fields (u, v in um): .nc, .csv export or DaVis set "
+                        "directory", input_path, default=None),
+                 Option("--contact-displacement", "contact displacement CSV frame, uc, vc "
+                        "(um), when there are no fields", input_file, default=None),
+                 Option("--max-normal-load-kN", "largest normal load of the test", float,
+                        unit="kN"),
+                 Option("--nominal-area-mm2", "nominal contact area An", float, unit="mm^2"),
+                 Option("--grid-points", "points of the load grid of the fitted and "
+                        "stiffness curves", int, key=f"{RAW}.grid_points"),
+                 *error_model_options(RAW),
+                 Option("--confidence", "confidence of the Student-t limits of the mean-row "
+                        "Kt0/An, in (0, 1)", float, key=f"{ERRORS}.confidence"),
+                 out_option("netCDF output (results/stiffness/<test>.nc)")),
+        run=_process),
+    Command(
+        NAME, "summarize", "summary.nc and the thesis tables from per-test results",
+        description="Per test and direction: Kn/An, Kt0/An, beta, f, Cc with margins, and "
+                    "Tables 2.1-2.4, 2.7-2.10 and A.2-A.39 recomputed from raw-data results.",
+        options=(results_option(),
+                 Option("--tests", "test sheet (config/tests.csv)", input_file),
+                 Option("--seq", "Seq results (results/surfaces/seq.nc) for Tables 2.3/2.10",
+                        input_file, default=None),
+                 kt0_threshold_option(RAW), *error_model_options(RAW),
+                 published_dir_option("directory of the transcribed thesis tables, for the "
+                                      "texture wavelengths of Table 2.7"),
+                 Option("--tables-dir", "directory for the table CSV files", Path,
+                        default=Path("results/report/tables")),
+                 out_option("netCDF output (results/stiffness/summary.nc)")),
+        run=_summarize),
+    Command(
+        NAME, "figures", "figures of one or more per-test results",
         description="Figures like Figs 2.8-2.17 (normal and tangential fits, per-step "
-                    "stiffness, mean-row Kt0) of per-test results, published values overlaid.")
-    fig.add_argument("results", nargs="+", type=input_file,
-                     help="per-test results (results/stiffness/<test>.nc)")
-    fig.add_argument("--published-dir", type=input_dir, default=None, help=PUBLISHED)
-    fig.add_argument("--out-dir", type=Path, default=Path("results/report/figures"),
-                     help="directory for the PNG/PDF figures")
-    fig.set_defaults(func=_figures)
+                    "stiffness, mean-row Kt0) of per-test results, published values overlaid.",
+        options=(results_option(), published_dir_option(),
+                 Option("--out-dir", "directory for the PNG/PDF figures", Path,
+                        default=Path("results/report/figures"))),
+        run=_figures),
+    Command(
+        NAME, "report-raw", "report section: from raw vs published",
+        description="HTML report fragment with every number of Tables 2.1-2.4 and 2.7-2.10 "
+                    "from raw data beside the published one, flagged fits and figures.",
+        options=(results_option(),
+                 Option("--summary", "results/stiffness/summary.nc (with each test's load "
+                        "and area)", input_file),
+                 published_dir_option(),
+                 Option("--flags", "also write a CSV of the flagged fits here", Path,
+                        default=None),
+                 *section_outputs()),
+        run=_report_raw),
+    Command(
+        NAME, "summarize-published",
+        "summary netCDF and Tables 2.1-2.4, 2.7-2.10 from the published per-step values",
+        description="Recompute the thesis summary tables from the published per-step values "
+                    "(Appendix A Tables A.2-A.39, fit rows of Tables 2.1/2.7) with the error "
+                    "model of sec. 2.5, without raw data.",
+        options=(Option("--tests", "test sheet (config/tests.csv)", input_file),
+                 Option("--seq", "Seq results (results/surfaces/seq.nc)", input_file,
+                        default=None),
+                 published_dir_option(),
+                 Option("--tables-dir", "write table_2.x_from_published_steps.csv here "
+                        "(default: none)", Path, default=None),
+                 kt0_threshold_option(PUBLISHED_STEPS),
+                 *error_model_options(PUBLISHED_STEPS),
+                 out_option("netCDF output (results/stiffness/"
+                            "summary_from_published_steps.nc)")),
+        run=_summarize_published),
+    Command(
+        NAME, "report-published",
+        "report section: published vs recomputed from published steps",
+        description="HTML report fragment putting every printed number of Tables 2.1-2.4 "
+                    "and 2.7-2.10 beside the one recomputed from the published steps.",
+        options=(Option("--summary", "results/stiffness/summary_from_published_steps.nc",
+                        input_file),
+                 Option("--tables-dir", "directory with table_2.x_from_published_steps.csv",
+                        input_dir),
+                 published_dir_option(), *section_outputs()),
+        run=_report_published),
+)
+
+GROUP = Group(
+    NAME, help="contact stiffness (thesis ch. 2)",
+    description="Normal and tangential contact stiffness of the nine tests (ch. 2): fits "
+                "of every load step from raw load logs and DIC fields, the error model "
+                "of sec. 2.5 and the summary tables, from raw data or from the published "
+                "per-step values. Loads kN, displacements um, areas mm^2, stiffness per "
+                "area kN/mm^3, beta 1/um; margins are 95%.",
+    examples=EXAMPLES, commands=COMMANDS)

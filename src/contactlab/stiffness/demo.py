@@ -403,9 +403,12 @@ def _kt0_rel(beta: float, beta_moe: float, qs: float, qs_moe: float) -> float:
 
 
 def generate_test(test: str, seed: int = 20180501,
-                  published_dir: Path | None = None) -> tuple[pd.DataFrame, xr.Dataset,
-                                                               pd.DataFrame]:
-    """Build the load log, the fields and the per-step design table of demo test ``test``."""
+                  published_dir: Path | None = None, history: str | None = None
+                  ) -> tuple[pd.DataFrame, xr.Dataset, pd.DataFrame]:
+    """Build the load log, the fields and the per-step design table of demo test ``test``.
+
+    ``history``: the command line the fields record (default: a description of the call).
+    """
     rng = _rng(test, seed)
     plan = demo_plan(test, published_dir)
     p_max = NORMAL_LOAD_KN[test]
@@ -520,7 +523,8 @@ def generate_test(test: str, seed: int = 20180501,
         },
     )
     stamp(ds, title=f"RECONSTRUCTED demo DIC displacement fields, test {test}",
-          source=RECONSTRUCTED, history=f"contactlab stiffness demo --test {test} --seed {seed}")
+          source=RECONSTRUCTED,
+          history=history or f"contactlab stiffness demo --test {test} --seed {seed}")
     ds.attrs.update(test=test, reconstructed=1, seed=seed,
                     comment="masked interface region stored as NaN; pad at low x",
                     conditioning=CONDITIONING,
@@ -529,10 +533,12 @@ def generate_test(test: str, seed: int = 20180501,
 
 
 def write_demo(test: str, out_dir: str | Path, seed: int = 20180501,
-               published_dir: Path | None = None) -> dict[str, Path]:
-    """Write ``load_log.csv``, ``fields.nc`` and ``design.csv`` of demo test ``test``."""
+               published_dir: Path | None = None, history: str | None = None
+               ) -> dict[str, Path]:
+    """Write ``load_log.csv``, ``fields.nc`` and ``design.csv`` of demo test ``test``
+    (``history``: the command line ``fields.nc`` records, as in :func:`generate_test`)."""
     out = Path(out_dir)
-    log, fields, design = generate_test(test, seed, published_dir)
+    log, fields, design = generate_test(test, seed, published_dir, history)
     paths = {"load_log": out / "load_log.csv", "fields": out / "fields.nc",
              "design": out / "design.csv"}
     header = f"# {RECONSTRUCTED}\n# test {test}, seed {seed}; units: frame 1, Pn kN, Qt kN\n"

@@ -205,13 +205,16 @@ def _step_dataset(record: dict[str, object], n_rows: int) -> xr.Dataset:
 def process_test(test: str, frames: pd.DataFrame, rows: xr.Dataset | None, *,
                  max_normal_load_kN: float, nominal_area_mm2: float,
                  grid_points: int, error_model: ErrorModel, confidence: float,
-                 sources: dict[str, str] | None = None) -> xr.Dataset:
+                 sources: dict[str, str] | None = None,
+                 history: str | None = None) -> xr.Dataset:
     """Fit every step of one test and build its CF-style result dataset.
 
     Each step (frames of one kind, direction and number, in time order) is fitted by
     :func:`fit_load_step`; with per-row displacements, each tangential step's rows by
     :func:`row_stiffness` (``confidence``: that of the Student-t limits of the mean-row
     Kt0/An, sec. 2.5.4). The steps' records are joined along ``step`` with xarray.
+    ``history`` is the command line the result records (default: a description of the
+    call).
 
     Raises ValueError naming the test and step when a step has too few frames; a fit
     that does not converge is kept with ``converged = 0`` and its reason in ``fit_message``.
@@ -288,7 +291,7 @@ def process_test(test: str, frames: pd.DataFrame, rows: xr.Dataset | None, *,
     flagged = _flag_lines(ds)
     stamp(ds, title=f"Contact stiffness of test {test} from raw data",
           source="; ".join(f"{k}: {v}" for k, v in (sources or {}).items()),
-          history=f"contactlab stiffness process --test {test}")
+          history=history or f"contactlab stiffness process --test {test}")
     ds.attrs.update(test=test, max_normal_load_kN=p_max, nominal_area_mm2=area,
                     reconstructed=int("data" in (sources or {})),
                     steps_flagged=len(flagged), flags="; ".join(flagged) or "none",

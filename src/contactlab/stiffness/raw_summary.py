@@ -113,10 +113,12 @@ def summarize_raw(results: list[Path], tests_path: Path, out: Path, *,
                   tables_dir: Path = Path("results/report/tables"),
                   seq_path: Path | None = None, threshold: float = 0.5,
                   error_model: ErrorModel | None = None,
-                  published_dir: Path | None = None) -> dict[str, pd.DataFrame]:
+                  published_dir: Path | None = None,
+                  history: str | None = None) -> dict[str, pd.DataFrame]:
     """Write ``summary.nc`` and the from-raw tables; return the tables by file stem.
 
-    Each result is read once; the test sheet only gives each test's group."""
+    Each result is read once; the test sheet only gives each test's group. ``history``:
+    the command line ``summary.nc`` records (default: a description of the call)."""
     datasets = load_datasets(results, "per-test result")
     sheet = read_test_sheet(tests_path)
     seq = read_seq(seq_path) if seq_path is not None else None
@@ -142,7 +144,7 @@ def summarize_raw(results: list[Path], tests_path: Path, out: Path, *,
     m = error_model or ErrorModel()
     stamp(ds, title="Contact stiffness summary from raw data (thesis Tables 2.1-2.4, 2.7-2.10)",
           source="per-test results: " + ", ".join(str(p) for p in results),
-          history="contactlab stiffness summarize")
+          history=history or "contactlab stiffness summarize")
     ds.attrs.update(kt0_margin_threshold=threshold, tangential_pressure=m.tangential_pressure,
                     piston_area_cm2=m.piston_area_cm2,
                     note="recomputed from raw data; for the demo tests the raw data are "

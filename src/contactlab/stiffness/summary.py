@@ -187,11 +187,12 @@ def summarize_published(tests_path: str | Path, out: str | Path, *,
                         seq_path: str | Path | None = None,
                         tables_dir: str | Path | None = None,
                         published_dir: Path | None = None, model: ErrorModel | None = None,
-                        threshold: float = 0.5, suffix: str = "_from_published_steps"
-                        ) -> dict[str, pd.DataFrame]:
+                        threshold: float = 0.5, suffix: str = "_from_published_steps",
+                        history: str | None = None) -> dict[str, pd.DataFrame]:
     """Aggregate the published per-step values; write the summary netCDF and the tables.
 
     Only tests present in both the test sheet and the published tables are aggregated.
+    ``history``: the command line the summary records (default: a description of the call).
     """
     sheet = read_test_sheet(tests_path)
     inputs = published_inputs(published_dir)
@@ -210,7 +211,7 @@ def summarize_published(tests_path: str | Path, out: str | Path, *,
     stamp(ds, title="Contact stiffness summary recomputed from the published per-step values",
           source="thesis Tables A.2-A.39 (per-step fits, mean-row stiffness), 2.1 and 2.7 "
                  "(normal fits); aggregation of sec. 2.5",
-          history=f"contactlab stiffness summarize-published --tests {tests_path}")
+          history=history or f"contactlab stiffness summarize-published --tests {tests_path}")
     ds.attrs.update(
         kt0_margin_threshold=threshold, piston_area_cm2=m.piston_area_cm2,
         pressure_uncertainty_MPa=m.pressure_uncertainty_MPa,

@@ -7,13 +7,13 @@ import logging
 from pathlib import Path
 
 from contactlab.cliutil import (
-    add_command,
-    add_group,
-    add_output,
-    add_section_outputs,
     input_dir,
     input_file,
+    out_option,
+    published_dir_option,
+    section_outputs,
 )
+from contactlab.command import Command, Group, Option
 from contactlab.progress import Progress
 
 LOG = logging.getLogger(__name__)
@@ -41,7 +41,7 @@ def _texture_of(spec, bins: int, max_undefined: float, out_dir: Path, history: s
           source="scans named in the surface sheet; undefined points filled by harmonic "
                  "interpolation; form removal, Gaussian filter (ISO 16610-21/61), "
                  "ISO 25178-2 and ISO 4287/4288 parameters (sec. 2.3.4)",
-          history=f"{history} --surface {spec.surface}")
+          history=history)
     write_netcdf(ds, out_dir / f"{spec.surface}.nc")
     lines = [f"{spec.surface}: filled {100 * fraction:.3g} % of the {kind} scan"
              for kind, fraction in texture.filled.items() if fraction > 0]
@@ -72,10 +72,8 @@ def _texture(args: argparse.Namespace) -> None:
             raise KeyError(f"{args.sheet}: no surface(s) {unknown} in the sheet")
         specs = [s for s in specs if s.surface in args.surface]
     progress = Progress("surface texture", len(specs), "surfaces")
-    history = (f"contactlab surfaces texture --sheet {args.sheet} "
-               f"--max-undefined-fraction {args.max_undefined_fraction}")
     one = partial(_texture_of, bins=args.bins, max_undefined=args.max_undefined_fraction,
-                  out_dir=Path(args.out_dir), history=history)
+                  out_dir=Path(args.out_dir), history=args.history)
     workers = 1 if len(specs) == 1 else min(args.workers, len(specs))
     # the pool is shut down (its workers ended) before the command returns
     with ProcessPoolExecutor(max_workers=workers) if workers > 1 else nullcontext() as pool:
@@ -87,10 +85,11 @@ def _texture(args: argparse.Namespace) -> None:
             progress.advance()
     progress.finish()
     if args.summary is not None:
-        _write_summary([Path(args.out_dir) / f"{s.surface}.nc" for s in specs], args.summary)
+        _write_summary([Path(args.out_dir) / f"{s.surface}.nc" for s in specs], args.summary,
+                       args.history)
 
 
-def _write_summary(paths: list[Path], out: Path) -> None:
+def _write_summary(paths: list[Path], out: Path, history: str) -> None:
     """One table of every surface's parameters (Tables A.1, A.26, A.27, 2.6)."""
     from contactlab.io import load_datasets, stamp, write_netcdf
     from contactlab.surfaces.texture import summary_dataset
@@ -99,7 +98,7 @@ def _write_summary(paths: list[Path], out: Path) -> None:
     summary = summary_dataset(datasets)
     stamp(summary, title="Texture parameters of every surface (Tables A.1, A.26, A.27, 2.6)",
           source="results/surfaces/<surface>.nc of the surfaces in the surface sheet, sec. 2.3.4",
-          history=f"contactlab surfaces texture --summary ({len(datasets)} surfaces)",
+          history=history,
           inputs=datasets)
     write_netcdf(summary, out)
 
@@ -159,7 +158,7 @@ def _seq(args: argparse.Namespace) -> None:
         ds,
         title="Equivalent roughness Seq of each test's imaged interface",
         source=source,
-        history=f"contactlab surfaces seq --tests {args.tests}",
+        history=args.history,
     )
     write_netcdf(ds, args.out)
 
@@ -171,104 +170,97 @@ def _report(args: argparse.Namespace) -> None:
                   texture_path=args.texture, surface_dir=args.surface_dir)
 
 
-def register(subparsers: argparse._SubParsersAction) -> None:
-    """Add the ``surfaces`` command group."""
-    commands = add_group(
-        subparsers, "surfaces", help="surface texture and Seq (thesis sec. 2.3.4)",
-        description="Surface texture of the specimens and pads from profilometer scans "
-                    "(ISO 25178-2, ISO 4287) and the equivalent roughness Seq (eq. 2.1) of "
-                    "each test's interface. Heights and roughness in um.",
-        examples="  contactlab surfaces demo-scans --sheet config/surfaces.csv "
-                 "--out-dir results/surfaces/demo_scans --seed 20150901\n"
-                 "  contactlab surfaces texture --sheet config/surfaces.csv "
-                 "--out-dir results/surfaces --bins 80 --max-undefined-fraction 0.01 "
-                 "--summary results/surfaces/texture.nc\n"
-                 "  contactlab surfaces texture-check results/surfaces/texture.nc "
-                 "--out results/surfaces/refused.csv\n"
-                 "  contactlab surfaces seq --tests config/tests.csv "
-                 "--texture results/surfaces/texture.nc --out results/surfaces/seq.nc\n")
-    published = "directory of the transcribed thesis tables (default: the packaged copy)"
 
-    demo = add_command(
-        commands, "demo-scans", help="write SYNTHETIC scans with the published statistics (X3P)",
+EXAMPLES = """\
+  contactlab surfaces demo-scans --sheet config/surfaces.csv --out-dir results/surfaces/demo_scans
+  contactlab surfaces texture --sheet config/surfaces.csv --out-dir results/surfaces \\
+      --summary results/surfaces/texture.nc
+  contactlab surfaces texture --sheet config/surfaces.csv --out-dir /tmp/one --surface S1_pad_A
+  contactlab surfaces texture-check results/surfaces/texture.nc --out results/surfaces/refused.csv
+  contactlab surfaces seq --tests config/tests.csv --texture results/surfaces/texture.nc \\
+      --out results/surfaces/seq.nc
+  contactlab surfaces report --seq results/surfaces/seq.nc --texture results/surfaces/texture.nc \\
+      --surface-dir results/surfaces --out results/report/sections/10_surfaces.html
+Heights and roughness in um. Options left out take the config schema's defaults
+(workflow/schemas/config.schema.yaml), shown in each command's --help.
+"""
+
+NAME = "surfaces"
+
+COMMANDS = (
+    Command(
+        NAME, "demo-scans", "write SYNTHETIC scans with the published statistics (X3P)",
         description="Write SYNTHETIC areal and profile scans (X3P) whose Sa, Sq and Str "
                     "match the published Tables A.1, A.26, A.27 and 2.6; for trying the "
-                    "workflow without the thesis's measurements.")
-    demo.add_argument("--sheet", type=input_file, required=True,
-                      help="surface sheet (CSV) naming each surface's scan files")
-    demo.add_argument("--out-dir", type=Path, required=True,
-                      help="write the sheet's scans that lie in this directory")
-    demo.add_argument("--seed", type=int, required=True,
-                      help="random seed (config surfaces.demo_seed)")
-    demo.add_argument("--published-dir", type=input_dir, default=None, help=published)
-    demo.set_defaults(func=_demo_scans)
-
-    texture = add_command(
-        commands, "texture", help="texture parameters of each surface's scans (<surface>.nc)",
+                    "workflow without the thesis's measurements.",
+        options=(Option("--sheet", "surface sheet (CSV) naming each surface's scan files",
+                        input_file),
+                 Option("--out-dir", "write the sheet's scans that lie in this directory",
+                        Path),
+                 Option("--seed", "random seed", int, key="surfaces.demo_seed"),
+                 published_dir_option()),
+        run=_demo_scans),
+    Command(
+        NAME, "texture", "texture parameters of each surface's scans (<surface>.nc)",
         description="Undefined points filled (harmonic interpolation, up to a limit), form "
                     "removal, Gaussian filter (ISO 16610-21/61) and the areal and profile "
                     "parameters Sa, Sq, Sp, Str, fractal dimension, Ra, Rq, Rz (um) of every "
                     "surface in the sheet, one <surface>.nc each. A scan that cannot be "
                     "evaluated (unreadable, too many undefined points, smaller than lambda_c) "
                     "is recorded as refused, parameters NaN and the reason in the file, and "
-                    "named on stderr; texture-check turns refusals into an error.")
-    texture.add_argument("--sheet", type=input_file, required=True,
-                         help="surface sheet (CSV)")
-    texture.add_argument("--out-dir", type=Path, required=True,
-                         help="directory for <surface>.nc")
-    texture.add_argument("--surface", action="append", default=None,
-                         help="only this surface (repeatable; default: every surface)")
-    texture.add_argument("--bins", type=int, required=True,
-                         help="bins of the stored height histogram (config "
-                              "surfaces.histogram_bins)")
-    texture.add_argument("--max-undefined-fraction", type=float, required=True,
-                         help="largest fraction of undefined points of a scan that is filled "
-                              "(harmonic interpolation), in [0, 1); more is refused")
-    texture.add_argument("--summary", type=Path, default=None,
-                         help="also gather every surface's parameters into this netCDF "
-                              "table (texture.nc; default: none)")
-    texture.add_argument("--workers", type=int, default=1,
-                         help="surfaces analysed side by side in worker processes "
-                              "(default: 1; the workflow passes the job's threads)")
-    texture.set_defaults(func=_texture)
-
-    check = add_command(
-        commands, "texture-check", help="fail when a scan was refused (list: refused.csv)",
+                    "named on stderr; texture-check turns refusals into an error.",
+        options=(Option("--sheet", "surface sheet (CSV)", input_file),
+                 Option("--out-dir", "directory for <surface>.nc", Path),
+                 Option("--surface", "only these surfaces (default: every surface)",
+                        nargs="+", default=None),
+                 Option("--bins", "bins of the stored height histogram", int,
+                        key="surfaces.histogram_bins"),
+                 Option("--max-undefined-fraction", "largest fraction of undefined points of "
+                        "a scan that is filled (harmonic interpolation), in [0, 1); more is "
+                        "refused", float, key="surfaces.max_undefined_fraction"),
+                 Option("--summary", "also gather every surface's parameters into this "
+                        "netCDF table (texture.nc; default: none)", Path, default=None),
+                 Option("--workers", "surfaces analysed side by side in worker processes; "
+                        "the workflow passes the job's threads", int, default=1)),
+        run=_texture),
+    Command(
+        NAME, "texture-check", "fail when a scan was refused (list: refused.csv)",
         description="List the scans the texture analysis refused (unreadable, too many "
                     "undefined points, smaller than lambda_c...) with the reason, from a "
-                    "texture summary; exit with an error naming them unless --allow-refused.")
-    check.add_argument("texture", type=input_file,
-                       help="texture summary (results/surfaces/texture.nc)")
-    check.add_argument("--allow-refused", action="store_true",
-                       help="list refused scans and succeed (config "
-                            "surfaces.allow_refused_scans); default: fail")
-    check.add_argument("--out", type=Path, required=True,
-                       help="CSV of the refused scans: surface, scan, reason")
-    check.set_defaults(func=_texture_check)
-
-    seq = add_command(
-        commands, "seq", help="Seq of each test's interface",
+                    "texture summary; exit with an error naming them unless --allow-refused.",
+        options=(Option("texture", "texture summary (results/surfaces/texture.nc)",
+                        input_file),
+                 Option("--allow-refused", "list refused scans and succeed (without: fail)",
+                        kind="flag", key="surfaces.allow_refused_scans"),
+                 out_option("CSV of the refused scans: surface, scan, reason")),
+        run=_texture_check),
+    Command(
+        NAME, "seq", "Seq of each test's interface",
         description="Equivalent roughness Seq = sqrt(Sq1^2 + Sq2^2) (eq. 2.1, um) of each "
                     "test's imaged interface from the published Sq and, with --texture, from "
-                    "the scans; with beta_n Seq of Tables 2.3 and 2.10.")
-    seq.add_argument("--tests", type=input_file, required=True,
-                     help="test sheet (config/tests.csv)")
-    seq.add_argument("--published-dir", type=input_dir, default=None, help=published)
-    seq.add_argument("--texture", type=input_file, default=None,
-                     help="texture summary (results/surfaces/texture.nc) for Seq from scans")
-    add_output(seq)
-    seq.set_defaults(func=_seq)
-
-    report = add_command(
-        commands, "report", help="report section: texture and Seq vs published",
+                    "the scans; with beta_n Seq of Tables 2.3 and 2.10.",
+        options=(Option("--tests", "test sheet (config/tests.csv)", input_file),
+                 published_dir_option(),
+                 Option("--texture", "texture summary (results/surfaces/texture.nc) for Seq "
+                        "from scans", input_file, default=None),
+                 out_option()),
+        run=_seq),
+    Command(
+        NAME, "report", "report section: texture and Seq vs published",
         description="HTML report fragment with the texture tables (A.1, A.26, A.27, 2.6), "
-                    "Seq beside Tables 2.3 and 2.10, height maps, profiles and spectra.")
-    report.add_argument("--seq", type=input_file, required=True,
-                        help="Seq results (results/surfaces/seq.nc)")
-    report.add_argument("--texture", type=input_file, default=None,
-                        help="texture summary (results/surfaces/texture.nc)")
-    report.add_argument("--surface-dir", type=input_dir, default=None,
-                        help="directory of the <surface>.nc files (pictures)")
-    report.add_argument("--published-dir", type=input_dir, default=None, help=published)
-    add_section_outputs(report)
-    report.set_defaults(func=_report)
+                    "Seq beside Tables 2.3 and 2.10, height maps, profiles and spectra.",
+        options=(Option("--seq", "Seq results (results/surfaces/seq.nc)", input_file),
+                 Option("--texture", "texture summary (results/surfaces/texture.nc)",
+                        input_file, default=None),
+                 Option("--surface-dir", "directory of the <surface>.nc files (pictures)",
+                        input_dir, default=None),
+                 published_dir_option(), *section_outputs()),
+        run=_report),
+)
+
+GROUP = Group(
+    NAME, help="surface texture and Seq (thesis sec. 2.3.4)",
+    description="Surface texture of the specimens and pads from profilometer scans "
+                "(ISO 25178-2, ISO 4287) and the equivalent roughness Seq (eq. 2.1) of "
+                "each test's interface. Heights and roughness in um.",
+    examples=EXAMPLES, commands=COMMANDS)
