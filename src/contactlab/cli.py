@@ -50,12 +50,7 @@ USER_ERRORS = (ValueError, KeyError, FileNotFoundError, OSError)
 
 def groups() -> list[Group]:
     """Every command group, in the order of :data:`COMMAND_MODULES`."""
-    found = []
-    for name in COMMAND_MODULES:
-        module = importlib.import_module(name)
-        if hasattr(module, "GROUP"):
-            found.append(module.GROUP)
-    return found
+    return [importlib.import_module(name).GROUP for name in COMMAND_MODULES]
 
 
 def command(path: str) -> Command:
@@ -72,12 +67,8 @@ def build_parser() -> argparse.ArgumentParser:
     parser = Parser(prog="contactlab", description=DESCRIPTION, epilog=EPILOG)
     parser.add_argument("--version", action="version", version=f"contactlab {__version__}")
     subparsers = parser.add_subparsers(dest="command", required=True, metavar="GROUP")
-    for name in COMMAND_MODULES:
-        module = importlib.import_module(name)
-        if hasattr(module, "GROUP"):
-            module.GROUP.add_to(subparsers)
-        else:
-            module.register(subparsers)
+    for group in groups():
+        group.add_to(subparsers)
     return parser
 
 
@@ -87,13 +78,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     configure_logging()
     typed = list(sys.argv[1:] if argv is None else argv)
     args = build_parser().parse_args(typed)
-    declaration = getattr(args, "command_declaration", None)
-    if declaration is not None:
-        problems = declaration.complete(args, typed)
-        if problems:
-            print(f"contactlab {declaration.path}: error: {'; '.join(problems)}",
-                  file=sys.stderr)
-            return 2
+    declaration = args.command_declaration
+    problems = declaration.complete(args, typed)
+    if problems:
+        print(f"contactlab {declaration.path}: error: {'; '.join(problems)}", file=sys.stderr)
+        return 2
     one_thread_environment()
     try:
         args.func(args)

@@ -70,20 +70,6 @@ class Parser(argparse.ArgumentParser):
         self._negative_number_matcher = NEGATIVE_NUMBER
 
 
-def add_group(subparsers: argparse._SubParsersAction, name: str, help: str,
-              description: str, examples: str) -> argparse._SubParsersAction:
-    """Add a command group ``name`` with an examples epilog; return its sub-command action."""
-    parser = subparsers.add_parser(name, help=help, description=description,
-                                   epilog="examples:\n" + examples)
-    return parser.add_subparsers(dest=f"{name}_command", required=True, metavar="COMMAND")
-
-
-def add_command(commands: argparse._SubParsersAction, name: str, help: str,
-                description: str | None = None) -> argparse.ArgumentParser:
-    """Add one sub-command; its description is ``description`` or, if not given, ``help``."""
-    return commands.add_parser(name, help=help, description=description or help)
-
-
 def _existing(text: str, want_file: bool | None) -> Path:
     path = Path(text)
     if not path.exists():
@@ -153,18 +139,6 @@ def published_dir_option(help: str = "directory of the transcribed thesis tables
                   default=None)
 
 
-def add_output(parser: argparse.ArgumentParser, help: str = "netCDF output") -> None:
-    """The required ``--out`` of a command that writes one result file."""
-    parser.add_argument("--out", type=Path, required=True, help=help)
-
-
-def add_section_outputs(parser: argparse.ArgumentParser) -> None:
-    """``--report-dir`` and ``--out`` of a command that writes a report section."""
-    parser.add_argument("--report-dir", type=Path, default=Path("results/report"),
-                        help="report directory receiving tables/ and figures/")
-    parser.add_argument("--out", type=Path, required=True, help="section HTML fragment")
-
-
 def positive_float(text: str) -> float:
     """``type=`` of an option that must be a positive number."""
     try:
@@ -184,19 +158,3 @@ def json_value(text: str) -> Any:
         return json.loads(text)
     except json.JSONDecodeError as exc:
         raise argparse.ArgumentTypeError(f"not valid JSON ({exc}): {text!r}") from None
-
-
-def add_robustness(parser: argparse.ArgumentParser, section: str, stick_zone: str,
-                   continuation: str | None = None) -> None:
-    """The receding sweeps' ``--stick-zone-limit`` and ``--refine-max-n`` (and, with
-    ``continuation`` as its help, ``--continuation``), required: the config section
-    ``section`` is their home. ``stick_zone`` says which stick zone the limit is of."""
-    parser.add_argument("--stick-zone-limit", type=float, required=True,
-                        help=f"{stick_zone}; 0: never (config {section}.stick_zone_limit)")
-    parser.add_argument("--refine-max-n", type=int, required=True,
-                        help="largest N to which a point failing the contact checks is "
-                             f"re-solved; --n: none (config {section}.refine_max_n)")
-    if continuation:
-        parser.add_argument("--continuation", action=argparse.BooleanOptionalAction,
-                            required=True,
-                            help=f"{continuation} (config {section}.continuation)")

@@ -10,8 +10,6 @@ import contextlib
 import datetime as dt
 import logging
 import os
-import shlex
-import sys
 import tempfile
 from collections.abc import Iterator, Sequence
 from pathlib import Path
@@ -51,23 +49,6 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
         tmp_path.unlink(missing_ok=True)
 
 
-def command_line(fallback: str) -> str:
-    """The running ``contactlab`` command with all its arguments, quoted as for a shell.
-
-    A declared command passes its completed line as ``fallback``
-    (:meth:`contactlab.command.Command.complete`: the command as typed plus the schema
-    defaults it took), which is kept when it extends the running command. When the process
-    is not the ``contactlab`` command (a library call, a test), the caller's ``fallback``
-    description is returned instead.
-    """
-    program = Path(sys.argv[0]) if sys.argv and sys.argv[0] else Path()
-    if program.name == "contactlab" or program.parts[-2:] == ("contactlab", "__main__.py"):
-        running = shlex.join(["contactlab", *sys.argv[1:]])
-        completed = fallback == running or fallback.startswith(running + " ")
-        return fallback if completed else running
-    return fallback
-
-
 def history_time() -> str | None:
     """ISO 8601 UTC time for ``history`` from ``SOURCE_DATE_EPOCH``, or None if unset.
 
@@ -101,14 +82,16 @@ def stamp(ds: xr.Dataset, *, title: str, source: str, history: str,
     """Add the global CF attributes every contactlab result carries.
 
     ``history`` (CF sec. 2.6.2) keeps the lines ``ds`` and the ``inputs`` (e.g. the chunks
-    of a gather) already carry and appends one for this step: the full command line (or
-    ``history`` outside the command line), dated only by ``SOURCE_DATE_EPOCH``
-    (:func:`history_time`). The command goes to the log (stderr, dated by the log format).
+    of a gather) already carry and appends ``history``, the line of this step -- for a
+    command, ``args.history``: the command as typed plus the schema defaults it was
+    completed with (:meth:`contactlab.command.Command.complete`) -- dated only by
+    ``SOURCE_DATE_EPOCH`` (:func:`history_time`). The command goes to the log (stderr,
+    dated by the log format).
     ``source`` names the method and the contactlab version; no ``institution``, which is
     the user's to say. Inside a workflow run the attributes include the study name, the
     hash of the effective config and the git commit (:func:`contactlab.study.provenance`).
     """
-    command = command_line(history)
+    command = history
     when = history_time()
     line = f"{when}: {command}" if when else command
     LOG.info("%s: writing %r", command, title)
