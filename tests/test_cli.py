@@ -1,12 +1,11 @@
-"""The ``contactlab`` command line as a whole: start-up imports, help, bad input, defaults."""
+"""The ``contactlab`` command line as a whole: one declaration per command, its schema
+defaults, help, every command run by hand with those defaults, and bad input."""
 
 from __future__ import annotations
 
 import argparse
-import importlib
 import inspect
 import os
-import pkgutil
 import re
 import shlex
 import subprocess
@@ -15,50 +14,38 @@ from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
-import xarray as xr
 import yaml
 
 import contactlab
-from contactlab.cli import build_parser, main
+from contactlab.cli import build_parser, command, groups, main
+from contactlab.command import REQUIRED, Command, schema_default, schema_node
 
 HEAVY = ("numpy", "scipy", "xarray", "pandas", "matplotlib", "lmfit", "SurfaceTopography")
-LINE = ["--lam", "3.5", "--e", "5"]
-PATCH = ["--lam-b", "2", "--e-minus-w", "5"]
-#: the options of issue 19 (config receding.*.stick_zone_limit, refine_max_n)
-ROBUST = ["--stick-zone-limit", "1e-4", "--refine-max-n", "100"]
+CONTACTLAB = str(Path(sys.executable).parent / "contactlab")
 
 
-def _subparsers(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
-    actions = [a for a in parser._actions if isinstance(a, argparse._SubParsersAction)]
-    return dict(actions[0].choices) if actions else {}
+def declared() -> list[Command]:
+    """Every declared command, in the order of the groups."""
+    return [declared for group in groups() for declared in group.commands]
 
 
-def walk(parser: argparse.ArgumentParser, path: tuple[str, ...] = ()
-         ) -> Iterator[tuple[tuple[str, ...], argparse.ArgumentParser]]:
-    """Every (command path, parser) below ``parser``, groups and sub-commands."""
-    for name, sub in _subparsers(parser).items():
-        yield (*path, name), sub
-        yield from walk(sub, (*path, name))
+def run(argv: list[str], cwd: Path, **env: str) -> subprocess.CompletedProcess[str]:
+    """``contactlab argv`` as a user runs it: the installed command in a fresh process."""
+    return subprocess.run([CONTACTLAB, *argv], cwd=cwd, capture_output=True, text=True,
+                          env={**os.environ, **env}, check=False)
 
 
-def commands() -> list[tuple[tuple[str, ...], argparse.ArgumentParser]]:
-    """The leaf sub-commands (those that run something)."""
-    return [(path, p) for path, p in walk(build_parser()) if not _subparsers(p)]
+# ---- the parser ---------------------------------------------------------------------
 
 
 def test_parsing_every_help_imports_no_science() -> None:
     """Building the parser and printing every group's and command's help (in a fresh
-    interpreter) loads none of the heavy modules."""
+    interpreter) loads none of the heavy modules, schema defaults included."""
     code = (
-        "import argparse, contextlib, io, sys\n"
-        "from contactlab.cli import build_parser\n"
-        "def walk(parser, path=()):\n"
-        "    for a in parser._actions:\n"
-        "        if isinstance(a, argparse._SubParsersAction):\n"
-        "            for name, sub in a.choices.items():\n"
-        "                yield (*path, name)\n"
-        "                yield from walk(sub, (*path, name))\n"
-        "paths = [(), *walk(build_parser())]\n"
+        "import contextlib, io, sys\n"
+        "from contactlab.cli import build_parser, groups\n"
+        "paths = [[]] + [[g.name] for g in groups()] + "
+        "[[g.name, c.name] for g in groups() for c in g.commands]\n"
         "for path in paths:\n"
         "    with contextlib.redirect_stdout(io.StringIO()):\n"
         "        try:\n"
@@ -68,68 +55,270 @@ def test_parsing_every_help_imports_no_science() -> None:
         "print(len(paths))\n"
         f"print(sorted(m for m in {HEAVY!r} if m in sys.modules))\n"
     )
-    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         check=True)
-    count, loaded = run.stdout.strip().splitlines()
-    assert int(count) == 1 + len(list(walk(build_parser()))) > 40
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          check=True)
+    count, loaded = done.stdout.strip().splitlines()
+    assert int(count) == 1 + len(groups()) + len(declared())
     assert loaded == "[]"
 
 
-def test_every_command_has_a_description_and_every_option_help() -> None:
-    missing = []
-    for path, parser in walk(build_parser()):
-        if not parser.description:
-            missing.append(f"{' '.join(path)}: no description")
-        if _subparsers(parser) and "examples:" not in (parser.epilog or ""):
-            missing.append(f"{' '.join(path)}: no examples")
-        for action in parser._actions:
-            if isinstance(action, (argparse._HelpAction, argparse._SubParsersAction)):
-                continue
-            if not action.help:
-                missing.append(f"{' '.join(path)} {action.option_strings or action.dest}")
+def test_every_command_has_a_description_examples_and_every_option_help() -> None:
+    missing = [f"group {g.name}: no examples" for g in groups() if "contactlab" not in
+               g.examples]
+    for declaration in declared():
+        if not declaration.help:
+            missing.append(f"{declaration.path}: no help")
+        missing += [f"{declaration.path} {o.flag}: no help" for o in declaration.options
+                    if not o.help]
     assert not missing, missing
-    assert len(list(walk(build_parser()))) >= 43  # 6 groups, 37 commands
+    assert len(groups()) == 7 and len(declared()) >= 44
 
 
-def test_every_example_parses(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_rule_and_command_names_match(repo: Path) -> None:
+    """Rule ``<branch>_<step>[_<what for>]`` runs ``contactlab <branch> <step>`` (steps with
+    dashes as underscores; report rules ``<branch>_report[_<part>]``)."""
+    wrong = []
+    for path in sorted((repo / "workflow" / "rules").glob("*.smk")):
+        text = path.read_text(encoding="utf-8")
+        for rule, body in re.findall(r"^rule (\w+):\n(.*?)(?=^rule |\Z)", text, re.M | re.S):
+            called = re.search(r"contactlab (\w+) ([\w-]+)", body)
+            if not called:
+                continue
+            stem = f"{called[1]}_{called[2].replace('-', '_')}"
+            if not (rule == stem or rule.startswith(stem + "_")):
+                wrong.append(f"{path.name}: rule {rule} runs contactlab {called[1]} "
+                             f"{called[2]}")
+    assert not wrong, wrong
+
+
+def test_every_example_parses_and_completes(monkeypatch: pytest.MonkeyPatch) -> None:
     """The examples in the groups' help are complete commands (input files not checked)."""
     import contactlab.cliutil
 
     monkeypatch.setattr(contactlab.cliutil, "_existing", lambda text, want_file: Path(text))
     examples = []
-    for _, parser in walk(build_parser()):
-        text = (parser.epilog or "").replace("\\\n", " ")
+    for group in groups():
+        text = group.examples.replace("\\\n", " ")
         examples += [shlex.split(line)[1:] for line in text.splitlines()
                      if line.startswith("  contactlab ")]
     assert len(examples) >= 20
     for argv in examples:
-        build_parser().parse_args(argv)
+        args = build_parser().parse_args(argv)
+        assert args.command_declaration.complete(args, argv) == [], argv
 
 
-def test_help_shows_defaults_but_not_for_required_options(
+# ---- one home for every value: the schema -------------------------------------------
+
+
+def test_config_fed_options_name_schema_keys_whose_defaults_they_parse() -> None:
+    """Every ``key=`` of a declaration is a key of the schema with a default, which the
+    option's type reads back from its words (so a rule's words and a hand run agree)."""
+    wrong = []
+    for declaration in declared():
+        for option in declaration.options:
+            for key in option.keys():
+                node = schema_node(key)
+                if "default" not in node:
+                    wrong.append(f"{declaration.path} {option.flag}: {key} has no default")
+                    continue
+                parser = argparse.ArgumentParser()
+                option.add_to(parser)
+                value = schema_default(key)
+                words = option.render(value)
+                parsed = getattr(parser.parse_args(words), option.dest)
+                if parsed != value:
+                    wrong.append(f"{declaration.path} {option.flag}: {key} = {value!r} "
+                                 f"reads back as {parsed!r}")
+                if option.choices and value not in option.choices:
+                    wrong.append(f"{declaration.path} {option.flag}: {value!r} not in "
+                                 f"{option.choices}")
+    assert not wrong, wrong
+
+
+def test_help_shows_the_schema_default_units_and_what_is_required(
         capsys: pytest.CaptureFixture[str]) -> None:
     with pytest.raises(SystemExit):
         main(["receding", "gap-profile", "--help"])
     text = " ".join(capsys.readouterr().out.split())
     assert "points of the profile (default: 601)" in text
-    assert "--n N Gauss-Chebyshev integration points N (even) --x-max" in text
+    assert "(default: 100, config receding.gap.profile_n)" in text
+    assert "gap half-width w/c (required)" in text
+    with pytest.raises(SystemExit):
+        main(["receding", "solve", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "(default: 100 for gap, config receding.gap.n; 500 for line, config " \
+           "receding.line.n; 100 for uniform/hertz/punch, config receding.patches.n)" in text
 
 
-@pytest.mark.parametrize("value", ["-1e-5", "-1E+3", "-2.5e3", "-.5", "-2.", "-7", "-inf"])
-def test_negative_numbers_in_any_notation_are_values(value: str) -> None:
-    args = build_parser().parse_args(
-        ["asperity", "grid", "--N", "3", "--pt-over-pd", value, "0.1", "--load-min", value,
-         "--load-max", "0.05", "--load-points", "4", "--area-min", "0.01",
-         "--area-points", "4", "--out", "x.nc"])
-    assert args.load_min == float(value) and args.pt_over_pd == [float(value), 0.1]
+def test_every_missing_or_inapplicable_option_is_named_in_one_message(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["receding", "solve", "--problem", "line", "--w-hat", "1", "--lam-b", "2"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert err == ("contactlab receding solve: error: --f is required; --w-hat does not "
+                   "apply to --problem line; --lam-b does not apply to --problem line")
+    assert main(["receding", "solve", "--problem", "gap"]) == 2
+    assert capsys.readouterr().err.strip().endswith(
+        "--f is required; --w-hat is required for --problem gap")
 
 
-def test_an_unknown_option_is_still_an_error(capsys: pytest.CaptureFixture[str]) -> None:
-    with pytest.raises(SystemExit) as exc:
-        build_parser().parse_args(["receding", "gap-regimes", "--sweep", "-1e-5x",
-                                   "--out", "x.nc"])
-    assert exc.value.code == 2 and "--sweep" in capsys.readouterr().err
+def test_rules_pass_every_config_value_so_nothing_is_completed(repo: Path) -> None:
+    """The words a rule passes (:meth:`Command.words` of the effective config) hold every
+    config-fed option: completing them fills in nothing, and they parse to the config's
+    values."""
+    from snakemake.utils import validate
 
+    config = yaml.safe_load((repo / "config/config.yaml").read_text())
+    validate(config, str(repo / "workflow/schemas/config.schema.yaml"))
+    for declaration in declared():
+        selections = [None]
+        if declaration.select:
+            selections = list(declaration.option(declaration.select).choices or [])
+        for selected in selections:
+            values = {declaration.select: selected} if selected is not None else {}
+            words = declaration.words(config, **values)
+            parser = argparse.ArgumentParser()
+            for option in declaration.options:
+                if not option.positional:
+                    option.add_to(parser)
+            args = parser.parse_args(words)
+            for option in declaration.options:
+                key = option.key_for(selected)
+                if key is not None and (option.only is None or selected in option.only):
+                    value = config
+                    for part in key.split("."):
+                        value = value[part]
+                    assert getattr(args, option.dest) == value, (declaration.path, key)
+
+
+def test_a_run_by_hand_records_the_defaults_it_used(tmp_path: Path) -> None:
+    out = tmp_path / "profile.nc"
+    done = run(["receding", "gap-profile", "--w-hat", "2.5", "--f", "0.5", "--points", "21",
+                "--out", str(out)], tmp_path)
+    assert done.returncode == 0, done.stderr
+    import xarray as xr
+
+    with xr.open_dataset(out) as ds:
+        history = ds.attrs["history"].splitlines()[-1]
+    assert history == shlex.join([
+        "contactlab", "receding", "gap-profile", "--w-hat", "2.5", "--f", "0.5", "--points",
+        "21", "--out", str(out), "--n", "100", "--x-max", "6.0", "--stick-zone-limit",
+        "1e-30", "--refine-max-n", "400"])
+
+
+# ---- every command by hand, with only what the user must give -----------------------
+
+#: Per group, the commands in an order where each may read what the ones before wrote:
+#: only the options a user must give ({run}: the session's end-to-end run, read only;
+#: {tmp}: this test's folder). Where a default means minutes of work, a size option keeps
+#: it to seconds (said beside it). Report commands write into {tmp}/report.
+MINIMAL: dict[str, list[str]] = {
+    "receding": [
+        "solve --problem line --f 0.5",
+        "solve --problem hertz --f 0.3 --w-hat 1",
+        "solve --f 0.5 --w-hat 2.5",
+        "gap-sweep --w-hat 1 2.5 --f 0.5 --out {tmp}/gap_0.nc",
+        "gap-gather {tmp}/gap_0.nc --out {tmp}/gap.nc",
+        "gap-regimes --sweep {tmp}/gap.nc --out {tmp}/gap_regimes.nc",
+        "gap-profile --w-hat 2.5 --f 0.5 --out {tmp}/gap_profile.nc",
+        "report-gap --sweep {tmp}/gap.nc --regimes {tmp}/gap_regimes.nc "
+        "--profiles {tmp}/gap_profile.nc --report-dir {tmp}/report --out {tmp}/report/gap.html",
+        "line-sweep --f 0.5 --out {tmp}/line_0.nc",
+        "line-gather {tmp}/line_0.nc --out {tmp}/line.nc",
+        "line-profile --f 0.5 --out {tmp}/line_profile.nc",
+        "patch-sweep --problem uniform --f 0.3 --w-hat 1 --out {tmp}/uniform_0.nc",
+        "patch-gather {tmp}/uniform_0.nc --out {tmp}/uniform.nc",
+        "patch-profile --problem uniform --f 0.3 --w-hat 1 --out {tmp}/patch_profile.nc",
+        "report-line-patch --line {tmp}/line.nc --patches {tmp}/uniform.nc --profiles "
+        "{tmp}/line_profile.nc {tmp}/patch_profile.nc --report-dir {tmp}/report "
+        "--out {tmp}/report/line_patch.html",
+    ],
+    "surfaces": [
+        "demo-scans --sheet config/e2e_surfaces.csv --out-dir {tmp}/scans",
+        "texture --sheet config/e2e_surfaces.csv --surface RU1_pad_B --out-dir {tmp}/surfaces",
+        "texture-check results/surfaces/texture.nc --out {tmp}/refused.csv",
+        "seq --tests config/e2e_tests.csv --out {tmp}/seq.nc",
+        "report --seq {tmp}/seq.nc --report-dir {tmp}/report --out {tmp}/report/surfaces.html",
+    ],
+    "stiffness": [
+        "demo --test RU1 --out-dir {tmp}/demo",
+        "process --test RU1 --load-log {tmp}/demo/RU1/load_log.csv --fields "
+        "{tmp}/demo/RU1/fields.nc --max-normal-load-kN 4 --nominal-area-mm2 20 "
+        "--out {tmp}/RU1.nc",
+        "summarize results/stiffness/RU1.nc results/stiffness/SU2.nc results/stiffness/S3.nc "
+        "--tests config/e2e_tests.csv --tables-dir {tmp}/tables --out {tmp}/summary.nc",
+        "figures {tmp}/RU1.nc --out-dir {tmp}/figures",
+        "report-raw results/stiffness/RU1.nc results/stiffness/SU2.nc results/stiffness/S3.nc "
+        "--summary {tmp}/summary.nc --report-dir {tmp}/report --out {tmp}/report/raw.html",
+        "summarize-published --tests config/e2e_tests.csv --tables-dir {tmp}/tables "
+        "--out {tmp}/published.nc",
+        "report-published --summary {tmp}/published.nc --tables-dir {tmp}/tables "
+        "--report-dir {tmp}/report --out {tmp}/report/published.html",
+    ],
+    "prediction": [
+        # the schema's 128 x 128 grid and 8 levels: about 10 s
+        "pair --test RU1 --specimen-scan results/surfaces/demo_scans/rough_specimen_B_areal.x3p "
+        "--pad-scan results/surfaces/demo_scans/RU1_pad_B_areal.x3p "
+        "--specimen-lambda-c-um 800 --pad-lambda-c-um 800 --max-normal-load-kN 4 "
+        "--nominal-area-mm2 20 --out {tmp}/RU1.nc",
+        "summarize {tmp}/RU1.nc --out {tmp}/summary.nc",
+        "report {tmp}/RU1.nc --summary {tmp}/summary.nc --report-dir {tmp}/report "
+        "--out {tmp}/report/prediction.html",
+    ],
+    "asperity": [
+        "bem --law coulomb --out {tmp}/coulomb.nc",
+        "transverse --out {tmp}/transverse.nc",
+        "single --bem {tmp}/coulomb.nc --out {tmp}/single.nc",
+        "multi --out {tmp}/multi.nc",
+        "grid --out {tmp}/grid.nc",
+        "grid-bem --N 1 --out {tmp}/N1.nc",
+        "grid-bem-gather {tmp}/N1.nc --out {tmp}/grid_bem.nc",
+        "report grid {tmp}/grid.nc {tmp}/grid_bem.nc --report-dir {tmp}/report "
+        "--out {tmp}/report/grid.html",
+    ],
+    "fe": [
+        # the gap problem on the default comparison mesh (h/c 0.0125) takes a minute: coarse
+        "receding --problem gap --level coarse --out {tmp}/gap_coarse.nc",
+        "compare --problem gap --run {tmp}/gap_coarse.nc --out {tmp}/gap.nc",
+        "convergence results/fe/runs/gap_coarse.nc results/fe/runs/gap_medium.nc "
+        "--out {tmp}/convergence_gap.nc",
+        # a mesh and domain study (three meshes, three domains) on the coarse mesh of h/c 0.1
+        "receding --problem gap --h 0.05 --out {tmp}/gap_h0.05.nc",
+        "receding --problem gap --h 0.025 --out {tmp}/gap_h0.025.nc",
+        "receding --problem gap --h 0.1 --out {tmp}/gap_h0.1.nc",
+        "receding --problem gap --h 0.1 --length 10 --depth 10 --out {tmp}/gap_s0.5.nc",
+        "receding --problem gap --h 0.1 --length 40 --depth 40 --out {tmp}/gap_s2.nc",
+        "study --problem gap --h-ref 0.1 {tmp}/gap_h0.05.nc {tmp}/gap_h0.025.nc "
+        "{tmp}/gap_h0.1.nc {tmp}/gap_s0.5.nc {tmp}/gap_s2.nc --out {tmp}/study_gap.nc",
+        # the 3D model of Fig. 3.8 takes minutes on its default mesh: a coarse one
+        "asperity --yield-stress 3000 --h-contact 1 --normal-increments 2 "
+        "--tangential-increments 1 --out {tmp}/sy3000.nc",
+        "asperity-gather {tmp}/sy3000.nc --out {tmp}/asperity_plastic.nc",
+        "report --results {tmp}/gap.nc --report-dir {tmp}/report --out {tmp}/report/fe.html",
+    ],
+    "report": [
+        "index results/report/sections/10_surfaces.html --out {tmp}/report/index.html",
+    ],
+}
+
+
+def test_every_command_has_a_minimal_call() -> None:
+    called = {f"{group} {line.split()[0]}" for group, lines in MINIMAL.items()
+              for line in lines}
+    assert called == {declaration.path for declaration in declared()}
+
+
+@pytest.mark.parametrize("group", sorted(MINIMAL))
+def test_every_command_runs_by_hand_with_the_schema_defaults(
+        group: str, e2e_run: Path, tmp_path: Path) -> None:
+    """Each command of ``group`` runs with only what a user must give (the rest from the
+    schema), in a fresh process as users run it; a missing option would stop it."""
+    for line in MINIMAL[group]:
+        argv = [group, *shlex.split(line.format(run=e2e_run, tmp=tmp_path))]
+        done = run(argv, e2e_run)
+        assert done.returncode == 0, f"contactlab {shlex.join(argv)}:\n{done.stderr[-2000:]}"
+
+
+# ---- bad input ----------------------------------------------------------------------
 
 def _bad_input_cases(tmp: Path) -> list[tuple[list[str], list[str]]]:
     folder = tmp / "a_folder"
@@ -138,26 +327,20 @@ def _bad_input_cases(tmp: Path) -> list[tuple[list[str], list[str]]]:
     return [
         (["receding", "solve", "--problem", "gap", "--f", "0.5", "--w-hat", "2.5",
           "--n", "100000"], ["--n 100000", "GiB"]),
-        (["receding", "gap-sweep", "--w-hat", "1", "--f", "0.5", "--n", "100000", *ROBUST,
-          "--continuation", "--out", out], ["--n 100000", "GiB"]),
-        (["receding", "line-sweep", "--f", "0.5", "--n", "1000000", *LINE, "--chaise",
-          *ROBUST, "--continuation", "--out", out], ["--n 1000000", "GiB"]),
-        (["receding", "liftoff-profile", "--problem", "uniform", "--f", "0.3", "--w-hat", "1",
-          "--n", "100", *PATCH, "--no-chaise", "--x-max", "12", "--points", "10000000000",
-          *ROBUST, "--out", out], ["--points 10000000000", "GiB"]),
-        (["asperity", "bem", "--law", "coulomb", "--f", "1", "--nu", "0.3", "--cells",
-          "100000", "--q-points", "11", "--out", out], ["--cells 100000", "GiB"]),
-        (["asperity", "grid", "--N", "3", "1000001", "--pt-over-pd", "0.1", "--load-min",
-          "1e-5", "--load-max", "0.05", "--load-points", "4", "--area-min", "0.01",
-          "--area-points", "4", "--out", out], ["--N 1000001", "GiB"]),
-        (["asperity", "grid-bem", "--N", "101", "--area-ratio", "0.3",
-          "--cells-per-spacing", "100000", "--out", out], ["--cells-per-spacing", "GiB"]),
+        (["receding", "gap-sweep", "--w-hat", "1", "--f", "0.5", "--n", "100000",
+          "--out", out], ["--n 100000", "GiB"]),
+        (["receding", "line-sweep", "--f", "0.5", "--n", "1000000", "--out", out],
+         ["--n 1000000", "GiB"]),
+        (["receding", "patch-profile", "--problem", "uniform", "--f", "0.3", "--w-hat", "1",
+          "--points", "10000000000", "--out", out], ["--points 10000000000", "GiB"]),
+        (["asperity", "bem", "--law", "coulomb", "--cells", "100000", "--out", out],
+         ["--cells 100000", "GiB"]),
+        (["asperity", "grid", "--N", "3", "1000001", "--out", out], ["--N 1000001", "GiB"]),
+        (["asperity", "grid-bem", "--N", "101", "--cells-per-spacing", "100000", "--out", out],
+         ["--cells-per-spacing", "GiB"]),
         (["stiffness", "process", "--test", "T", "--load-log", str(tmp / "log.csv"),
           "--max-normal-load-kN", "4", "--nominal-area-mm2", "20", "--grid-points",
-          "100000000000", "--piston-area-cm2", "6.5", "--pressure-uncertainty-MPa", "0.135",
-          "--piston-area-rel-uncertainty", "0.01", "--tangential-pressure-rel-extra", "0.01",
-          "--qs-rel-extra", "0.01", "--tangential-pressure", "multiply",
-          "--confidence", "0.95", "--out", out], ["--grid-points", "GiB"]),
+          "100000000000", "--out", out], ["--grid-points", "GiB"]),
         (["surfaces", "seq", "--tests", "config/tests.csv", "--texture", str(folder),
           "--out", out], ["--texture", str(folder), "directory"]),
         (["stiffness", "figures", str(folder), "--out-dir", str(tmp / "figures")],
@@ -166,10 +349,16 @@ def _bad_input_cases(tmp: Path) -> list[tuple[list[str], list[str]]]:
          [str(tmp / "missing.nc"), "no such file"]),
         (["surfaces", "seq", "--tests", "config/tests.csv", "--published-dir",
           str(tmp / "log.csv"), "--out", out], ["--published-dir", "not a directory"]),
+        (["asperity", "multi", "--tables", "{t: 1}", "--out", out],
+         ["--tables", "not valid JSON"]),
+        (["report", "index", "README.md", "--changes", "[1,", "--out", "x.html"],
+         ["--changes", "not valid JSON"]),
+        (["prediction", "summarize", "README.md", "--tangential-ratio", "-0.1", "--out", out],
+         ["--tangential-ratio", "-0.1 is not a positive number"]),
     ]
 
 
-@pytest.mark.parametrize("case", range(12))
+@pytest.mark.parametrize("case", range(15))
 def test_bad_input_is_refused_in_words_before_any_work(
         case: int, tmp_path: Path, repo: Path, monkeypatch: pytest.MonkeyPatch,
         capsys: pytest.CaptureFixture[str]) -> None:
@@ -186,6 +375,20 @@ def test_bad_input_is_refused_in_words_before_any_work(
     assert all(word in err for word in words), err
     assert "Traceback" not in err and err.strip().splitlines()[-1].count("error:") == 1
     assert sorted(tmp_path.rglob("*")) == before  # nothing written
+
+
+@pytest.mark.parametrize("value", ["-1e-5", "-1E+3", "-2.5e3", "-.5", "-2.", "-7", "-inf"])
+def test_negative_numbers_in_any_notation_are_values(value: str) -> None:
+    args = build_parser().parse_args(["asperity", "grid", "--pt-over-pd", value, "0.1",
+                                      "--load-min", value, "--out", "x.nc"])
+    assert args.load_min == float(value) and args.pt_over_pd == [float(value), 0.1]
+
+
+def test_an_unknown_option_is_still_an_error(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exc:
+        build_parser().parse_args(["receding", "gap-regimes", "--sweep", "-1e-5x",
+                                   "--out", "x.nc"])
+    assert exc.value.code == 2 and "--sweep" in capsys.readouterr().err
 
 
 def test_size_guard_message_is_one_line(capsys: pytest.CaptureFixture[str]) -> None:
@@ -206,12 +409,14 @@ def test_an_unreadable_input_is_refused(tmp_path: Path, capsys) -> None:
     assert exc.value.code == 2 and "not readable" in capsys.readouterr().err
 
 
-# ---- one home for every parameter: the config schema -------------------------------
+def test_package_starts_subprocesses_with_argument_lists() -> None:
+    root = Path(contactlab.__file__).parent
+    text = "\n".join(p.read_text() for p in root.rglob("*.py"))
+    assert "shell=True" not in text and "os.system(" not in text and "os.popen(" not in text
 
-ALIASES = {  # schema key -> the option that takes it, where the names differ
-    "demo_seed": "--seed", "histogram_bins": "--bins", "kt0_margin_threshold": "--kt0-threshold",
-    "profile_x_max": "--x-max", "lambda": "--lam", "lambda_b": "--lam-b",
-}
+
+# ---- science functions take the config's values explicitly --------------------------
+
 SCIENCE = ("surfaces", "stiffness", "asperity", "receding")
 
 
@@ -223,88 +428,101 @@ def schema_leaves(node: dict, path: str = "") -> Iterator[tuple[str, str, dict]]
             yield from schema_leaves(sub, f"{path}{key}.")
 
 
-@pytest.fixture(scope="module")
-def schema(repo: Path) -> dict:
-    return yaml.safe_load((repo / "workflow/schemas/config.schema.yaml").read_text())
-
-
-def test_an_omitted_stiffness_section_gets_the_schema_defaults(repo: Path) -> None:
-    """The stiffness options have no CLI default, so the schema must fill them in."""
-    from snakemake.utils import validate
-
-    config = yaml.safe_load((repo / "config/config.yaml").read_text())
-    config["stiffness"] = {}
-    validate(config, str(repo / "workflow/schemas/config.schema.yaml"))
-    assert config["stiffness"]["errors"]["confidence"] == 0.95
-    assert config["stiffness"]["raw"]["tangential_pressure"] == "multiply"
-    assert config["stiffness"]["published_steps"]["kt0_margin_threshold"] == 0.5
-
-
-def test_cli_defaults_are_none_or_the_schema_default(schema: dict) -> None:
-    options = [(path, a) for path, p in commands() for a in p._actions if a.option_strings]
-    wrong = []
-    for where, key, sub in schema_leaves(schema):
-        if "default" not in sub:
-            continue
-        flags = {"--" + key.replace("_", "-"), ALIASES.get(key)}
-        for path, action in options:
-            if flags & set(action.option_strings) and not action.required \
-                    and action.default not in (None, sub["default"]):
-                wrong.append(f"{' '.join(path)} {action.option_strings[0]} = "
-                             f"{action.default!r}, schema {where} = {sub['default']!r}")
-    assert not wrong, wrong
-
-
 def science_callables() -> Iterator[tuple[str, object]]:
+    import importlib
+    import pkgutil
+
     for branch in SCIENCE:
         package = importlib.import_module(f"contactlab.{branch}")
-        for info in pkgutil.iter_modules(package.__path__):
-            if info.name.endswith("cli"):
+        for info in pkgutil.iter_modules(package.__path__, f"contactlab.{branch}."):
+            if info.name.rsplit(".", 1)[-1] in ("cli", "options") or info.ispkg:
                 continue
-            module = importlib.import_module(f"contactlab.{branch}.{info.name}")
+            module = importlib.import_module(info.name)
             for name, obj in vars(module).items():
                 if (inspect.isfunction(obj) or inspect.isclass(obj)) \
                         and obj.__module__ == module.__name__:
                     yield f"{module.__name__}.{name}", obj
 
 
-#: Science defaults that differ from the schema's and are accepted (none).
-KNOWN_SCIENCE_DEFAULTS: set[str] = set()
+#: Parameters that share a config key's name but are not that value (the key's value is
+#: passed explicitly where it applies).
+KNOWN_SCIENCE_DEFAULTS = {
+    # solver tolerances of other problems than the transverse check (asperity.transverse.tol)
+    "contactlab.asperity.normal.solve_normal(tol=1e-10)": "normal contact solve",
+    "contactlab.asperity.normal.contact_stiffness(tol=1e-10)": "normal contact solve",
+    "contactlab.asperity.grid_bem.solve_grid_equal_loads(tol=1e-10)": "grid contact solve",
+    "contactlab.asperity.tangential.solve_vector(tol=1e-07)": "library call's tolerance",
+    # the shear limit of a law without one (Coulomb): never read
+    "contactlab.asperity.bem_runs.bem_curve(tau_max=1.0)": "placeholder of the Coulomb law",
+}
 
 
-def test_science_defaults_are_none_or_the_schema_default(schema: dict) -> None:
-    defaults: dict[str, set] = {}
-    for _, key, sub in schema_leaves(schema):
-        if "default" in sub:
-            defaults.setdefault(key, set()).add(repr(sub["default"]))
+def test_science_defaults_are_none_or_the_schema_default(repo: Path) -> None:
+    """A science function's default for a config value, where it has one, is the
+    schema's: never a second default that could drift."""
+    schema = yaml.safe_load((repo / "workflow/schemas/config.schema.yaml").read_text())
+    defaults: dict[tuple[str, str], set] = {}
+    for path, key, sub in schema_leaves(schema):
+        if "default" in sub and "properties" not in sub:
+            defaults.setdefault((path.split(".")[0], key), set()).add(repr(sub["default"]))
     wrong = []
     for name, obj in science_callables():
+        branch = name.split(".")[1]
         try:
             params = inspect.signature(obj).parameters.values()
         except (TypeError, ValueError):
             continue
         for p in params:
-            if p.name in defaults and p.default is not inspect.Parameter.empty \
-                    and p.default is not None and repr(p.default) not in defaults[p.name]:
+            schema_values = defaults.get((branch, p.name))
+            if schema_values and p.default is not inspect.Parameter.empty \
+                    and p.default is not None and repr(p.default) not in schema_values:
                 wrong.append(f"{name}({p.name}={p.default!r})")
-    assert set(wrong) == KNOWN_SCIENCE_DEFAULTS, (sorted(wrong), defaults)
+    assert set(wrong) == set(KNOWN_SCIENCE_DEFAULTS), sorted(wrong)
 
 
-@pytest.mark.parametrize("command, flags", [
-    (("receding", "line-sweep"), ["--n", "--lam", "--e", "--chaise"]),
-    (("receding", "patch-sweep"), ["--n", "--lam-b", "--e-minus-w"]),
-    (("receding", "liftoff-profile"),
-     ["--n", "--lam", "--e", "--lam-b", "--e-minus-w", "--chaise", "--x-max"]),
-    (("receding", "solve"), ["--n", "--lam", "--e", "--lam-b", "--e-minus-w"]),
-    (("receding", "gap-sweep"), ["--n"]),
-    (("receding", "gap-profile"), ["--n", "--x-max"]),
-    (("stiffness", "process"), ["--grid-points", "--confidence", "--tangential-pressure"]),
-])
-def test_config_parameters_have_no_cli_default(command: tuple[str, str],
-                                               flags: list[str]) -> None:
-    parser = dict(commands())[command]
-    actions = {s: a for a in parser._actions for s in a.option_strings}
-    assert all(actions[f].default is None for f in flags)
+def test_commands_call_science_with_keywords_the_science_takes() -> None:
+    """The keyword arguments a command module passes to a science function exist in the
+    function's signature (a renamed parameter fails here, not in a user's run)."""
+    import ast
+    import importlib
+
+    wrong = []
+    for group in groups():
+        modules = {importlib.import_module(c.run.__module__) for c in group.commands}
+        for module in modules:
+            tree = ast.parse(inspect.getsource(module))
+            imported: dict[str, list[str]] = {}
+            for node in ast.walk(tree):
+                if isinstance(node, ast.ImportFrom) and (node.module or "").startswith(
+                        "contactlab."):
+                    for alias in node.names:
+                        imported.setdefault(alias.asname or alias.name, []).append(node.module)
+            for call in ast.walk(tree):
+                if not (isinstance(call, ast.Call) and isinstance(call.func, ast.Name)
+                        and call.func.id in imported):
+                    continue
+                accepted: set[str] = set()
+                for source in imported[call.func.id]:  # a name may come from two modules
+                    target = getattr(importlib.import_module(source), call.func.id, None)
+                    try:
+                        params = inspect.signature(target).parameters
+                    except (TypeError, ValueError):
+                        accepted = {kw.arg for kw in call.keywords}
+                        break
+                    if any(p.kind is p.VAR_KEYWORD for p in params.values()):
+                        accepted = {kw.arg for kw in call.keywords}
+                        break
+                    accepted |= set(params)
+                wrong += [f"{module.__name__}: {call.func.id}({kw.arg}=...)"
+                          for kw in call.keywords if kw.arg and kw.arg not in accepted]
+    assert not wrong, wrong
+
+
+def test_required_options_have_no_default_and_config_options_no_plain_default() -> None:
+    for declaration in declared():
+        for option in declaration.options:
+            assert option.key is None or option.default is REQUIRED, \
+                (declaration.path, option.flag)
 
 
 def test_line_and_patch_science_take_their_parameters_explicitly() -> None:
@@ -317,73 +535,7 @@ def test_line_and_patch_science_take_their_parameters_explicitly() -> None:
         assert all(params[n].default is inspect.Parameter.empty for n in names), fn
 
 
-def test_liftoff_profile_uses_lambda_e_and_chaise_options(tmp_path: Path) -> None:
-    base = ["receding", "liftoff-profile", "--problem", "line", "--f", "0.5", "--n", "40",
-            "--x-max", "4", "--points", "9", *ROBUST[:2], "--refine-max-n", "40"]
-    runs = {"thesis": [*LINE, "--no-chaise"], "other": ["--lam", "3", "--e", "6", "--chaise"]}
-    for name, extra in runs.items():
-        assert main([*base, *extra, "--out", str(tmp_path / f"{name}.nc")]) == 0
-    with xr.open_dataset(tmp_path / "thesis.nc") as thesis, \
-            xr.open_dataset(tmp_path / "other.nc") as other:
-        assert (thesis.attrs["lambda_a"], thesis.attrs["e"]) == (3.5, 5.0)
-        assert (other.attrs["lambda_a"], other.attrs["e"]) == (3.0, 6.0)
-        assert "shear_chaise" not in thesis and "shear_chaise" in other
-    patch = ["receding", "liftoff-profile", "--problem", "uniform", "--f", "0.3", "--w-hat",
-             "1", "--n", "40", "--lam-b", "3", "--e-minus-w", "4", "--no-chaise",
-             "--x-max", "4", "--points", "9", *ROBUST[:2], "--refine-max-n", "40",
-             "--out", str(tmp_path / "patch.nc")]
-    assert main(patch) == 0
-    with xr.open_dataset(tmp_path / "patch.nc") as ds:
-        assert (ds.attrs["lambda_b"], ds.attrs["e"]) == (3.0, 5.0)
-
-
-def test_process_passes_the_confidence_on(tmp_path: Path,
-                                          monkeypatch: pytest.MonkeyPatch) -> None:
-    import contactlab.stiffness.process as process
-
-    seen = {}
-
-    def fake_process(*args: object, **kwargs: object) -> None:
-        seen.update(kwargs)
-        raise ValueError("stop here")
-
-    monkeypatch.setattr(process, "load_inputs", lambda *a: (None, None, {}))
-    monkeypatch.setattr(process, "process_test", fake_process)
-    log = tmp_path / "log.csv"
-    log.write_text("frame\n")
-    code = main(["stiffness", "process", "--test", "T", "--load-log", str(log),
-                 "--max-normal-load-kN", "4", "--nominal-area-mm2", "20", "--grid-points",
-                 "41", "--piston-area-cm2", "6.5", "--pressure-uncertainty-MPa", "0.135",
-                 "--piston-area-rel-uncertainty", "0.01", "--tangential-pressure-rel-extra",
-                 "0.01", "--qs-rel-extra", "0.01", "--tangential-pressure", "divide",
-                 "--confidence", "0.9", "--out", str(tmp_path / "T.nc")])
-    assert code == 2
-    assert seen["confidence"] == 0.9 and seen["error_model"].tangential_pressure == "divide"
-
-
-def test_package_starts_subprocesses_with_argument_lists() -> None:
-    root = Path(contactlab.__file__).parent
-    text = "\n".join(p.read_text() for p in root.rglob("*.py"))
-    assert "shell=True" not in text and "os.system(" not in text and "os.popen(" not in text
-
-
-@pytest.mark.parametrize("argv, words", [
-    (["asperity", "multi", "--m", "10", "--pt-over-pm", "2", "--tables", "{t: 1}",
-      "--s-max", "1", "--points", "5", "--out", "x.nc"], ["--tables", "not valid JSON"]),
-    (["report", "index", "README.md", "--changes", "[1,", "--out", "x.html"],
-     ["--changes", "not valid JSON"]),
-    (["prediction", "summarize", "README.md", "--tangential-ratio", "-0.1", "--out", "x.nc"],
-     ["--tangential-ratio", "-0.1 is not a positive number"]),
-    (["prediction", "summarize", "README.md", "--tangential-ratio", "one", "--out", "x.nc"],
-     ["--tangential-ratio", "one is not a positive number"]),
-])
-def test_shared_option_types_refuse_bad_values_while_parsing(
-        argv: list[str], words: list[str], repo: Path, monkeypatch: pytest.MonkeyPatch,
-        capsys: pytest.CaptureFixture[str]) -> None:
-    """The option types of contactlab.cliutil (JSON, positive numbers) refuse a bad value
-    before any work, naming the option."""
-    monkeypatch.chdir(repo)
-    with pytest.raises(SystemExit) as exc:
-        build_parser().parse_args(argv)
-    err = capsys.readouterr().err
-    assert exc.value.code == 2 and all(word in err for word in words), err
+def test_command_lookup_names_the_declaration() -> None:
+    assert command("receding gap-sweep").option("n").key == "receding.gap.n"
+    with pytest.raises(KeyError, match="no command 'contactlab receding nothing'"):
+        command("receding nothing")

@@ -49,21 +49,20 @@ def test_sweeps_gather_profile_report(tmp_path: Path) -> None:
     assert main(["receding", "line-sweep", "--f", "0.3", "0.0", "--n", "40", *LINE,
                  "--chaise", *ROBUST, "--continuation", "--out", str(c1)]) == 0
     line = tmp_path / "line.nc"
-    assert main(["receding", "liftoff-gather", str(c0), str(c1), "--out", str(line)]) == 0
+    assert main(["receding", "line-gather", str(c0), str(c1), "--out", str(line)]) == 0
     p0 = tmp_path / "u0.nc"
     assert main(["receding", "patch-sweep", "--problem", "uniform", "--f", "0.3", "0.5",
                  "--w-hat", "1", "2.5", "--n", "40", *PATCH, *ROBUST, "--continuation",
                  "--out", str(p0)]) == 0
     uniform = tmp_path / "uniform.nc"
-    assert main(["receding", "liftoff-gather", str(p0), "--out", str(uniform)]) == 0
+    assert main(["receding", "patch-gather", str(p0), "--out", str(uniform)]) == 0
     prof_line = tmp_path / "line_f0.5.nc"
-    assert main(["receding", "liftoff-profile", "--problem", "line", "--f", "0.3", "--n",
-                 "40", *LINE, "--chaise", "--x-max", "8", *ROBUST, "--out",
-                 str(prof_line)]) == 0
+    assert main(["receding", "line-profile", "--f", "0.3", "--n", "40", *LINE, "--chaise",
+                 "--x-max", "8", *ROBUST, "--out", str(prof_line)]) == 0
     prof_patch = tmp_path / "patch.nc"
-    assert main(["receding", "liftoff-profile", "--problem", "uniform", "--f", "0.3",
-                 "--w-hat", "1", "--n", "40", *PATCH, "--no-chaise", "--x-max", "8",
-                 *ROBUST, "--out", str(prof_patch)]) == 0
+    assert main(["receding", "patch-profile", "--problem", "uniform", "--f", "0.3",
+                 "--w-hat", "1", "--n", "40", *PATCH, "--x-max", "8", *ROBUST,
+                 "--out", str(prof_patch)]) == 0
     with xr.open_dataset(line) as ds:
         check_cf(ds)
         assert list(ds["f"].values) == [0.0, 0.3, 0.5]
@@ -101,23 +100,22 @@ def test_sweeps_gather_profile_report(tmp_path: Path) -> None:
         check_cf(ds)
         assert "separation_chaise" in ds and ds.attrs["converged"] == 1
     section = tmp_path / "report" / "sections" / "51_receding_line_patch.html"
-    assert main(["receding", "report-liftoff", "--line", str(line), "--patches", str(uniform),
+    assert main(["receding", "report-line-patch", "--line", str(line), "--patches", str(uniform),
                  "--profiles", str(prof_line), str(prof_patch), "--report-dir",
                  str(tmp_path / "report"), "--out", str(section)]) == 0
     html = section.read_text()
     assert "Fig. 6.3" in html and "Fig. 7.9" in html
     assert (tmp_path / "report" / "tables" / "receding_patch_fits.csv").exists()
-    assert main(["receding", "liftoff-gather", str(c0), str(c0), "--out",
+    assert main(["receding", "line-gather", str(c0), str(c0), "--out",
                  str(tmp_path / "bad.nc")]) == 2
 
 
 def test_receding_liftoff_rules_plan(workflow_copy: Path, snakemake) -> None:
     run = snakemake(workflow_copy, "-n", "results/report/sections/51_receding_line_patch.html")
     assert run.returncode == 0, run.stderr[-3000:]
-    jobs = dict(re.findall(r"^(receding_\w+|report_receding_line_patch)\s+(\d+)$",
-                           run.stdout, re.M))
-    assert jobs == {"receding_line_chunk": "2", "receding_line_gather": "1",
-                    "receding_patch_chunk": "3", "receding_patch_gather": "3",
+    jobs = dict(re.findall(r"^(receding_\w+)\s+(\d+)$", run.stdout, re.M))
+    # the user's shape is swept and gathered as a fourth patch law and shown in the section
+    assert jobs == {"receding_line_sweep": "2", "receding_line_gather": "1",
+                    "receding_patch_sweep": "4", "receding_patch_gather": "4",
                     "receding_line_profile": "1", "receding_patch_profile": "1",
-                    "receding_table_chunk": "1", "receding_table_gather": "1",
-                    "report_receding_line_patch": "1"}  # the user's shape is in the section
+                    "receding_report_line_patch": "1"}

@@ -123,10 +123,10 @@ def test_receding_rules_plan(workflow_copy: Path, snakemake) -> None:
     regimes, one profile, the section (the full run is part of tests/test_workflow.py)."""
     run = snakemake(workflow_copy, "-n", "results/report/sections/50_receding_gap.html")
     assert run.returncode == 0, run.stderr[-3000:]
-    jobs = dict(re.findall(r"^(receding_\w+|report_receding_gap)\s+(\d+)$", run.stdout, re.M))
-    assert jobs == {"receding_gap_chunk": "2", "receding_gap_gather": "1",
+    jobs = dict(re.findall(r"^(receding_\w+)\s+(\d+)$", run.stdout, re.M))
+    assert jobs == {"receding_gap_sweep": "2", "receding_gap_gather": "1",
                     "receding_gap_regimes": "1", "receding_gap_profile": "1",
-                    "report_receding_gap": "1"}
+                    "receding_report_gap": "1"}
 
 
 def test_workflow_helpers() -> None:

@@ -103,8 +103,8 @@ def family(law: str, q_ratio: Array, taus: list[float], *, f: float, nu: float,
     return curves
 
 
-def transverse_effect(law: str, fractions: Array, *, f: float = 1.0, tau_max: float = 0.86,
-                      nu: float = 0.3, cells: int = 40, tol: float = 1e-9) -> dict[str, Array]:
+def transverse_effect(law: str, fractions: Array, *, f: float, tau_max: float, nu: float,
+                      cells: int, tol: float) -> dict[str, Array]:
     """Partial slip of one law with and without the transverse traction ``q_y``.
 
     Both solved by :func:`contactlab.asperity.tangential.solve_vector` at the same remote

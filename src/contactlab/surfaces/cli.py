@@ -230,8 +230,8 @@ COMMANDS = (
                     "texture summary; exit with an error naming them unless --allow-refused.",
         options=(Option("texture", "texture summary (results/surfaces/texture.nc)",
                         input_file),
-                 Option("--allow-refused", "list refused scans and succeed (without: fail)",
-                        kind="flag", key="surfaces.allow_refused_scans"),
+                 Option("--allow-refused", "list refused scans and succeed (no: fail)",
+                        kind="switch", key="surfaces.allow_refused_scans"),
                  out_option("CSV of the refused scans: surface, scan, reason")),
         run=_texture_check),
     Command(
