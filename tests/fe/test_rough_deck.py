@@ -43,3 +43,38 @@ def test_structured_mesh_is_deterministic_and_paired(mesh) -> None:
     assert [mesh.nodes[n] for n in strip] == [mesh.nodes[n] for n in block]
     assert mesh.n_elements == 3 * 20 + 4 * 20 and mesh.n_nodes == 4 * 21 + 5 * 21
     assert len(mesh.edges["STRIP_BOTTOM"]) == len(mesh.edges["BLOCK_TOP"]) == 20
+
+
+def test_compliance_converts_to_stiffness_per_unit_area() -> None:
+    from contactlab.fe.interface_law import (
+        interface_compliance,
+        interface_stiffness,
+        layer_modulus,
+        mindlin_ratio,
+    )
+
+    # E = 20000, nu = 0.3: mu = 7692.3, kappa = 1.8, 2 mu / (kappa + 1) = E / (4 (1 - nu^2))
+    assert layer_modulus(20000.0, 0.3) == pytest.approx(2 * 20000 / 2.6 / 2.8, rel=1e-14)
+    k = interface_stiffness(0.5, 20000.0, 0.3, 2.0)
+    assert k == pytest.approx(20000.0 / (4 * 0.91) / (2.0 * 0.5), rel=1e-14)
+    assert interface_compliance(k, 20000.0, 0.3, 2.0) == pytest.approx(0.5, rel=1e-14)
+    assert mindlin_ratio(0.3) == pytest.approx(1.4 / 1.7, rel=1e-14)
+    with pytest.raises(ValueError, match="C > 0"):
+        interface_stiffness(0.0, 20000.0, 0.3, 1.0)
+
+
+def test_compliant_deck_writes_k_n_and_k_t(mesh) -> None:
+    model = RecedingModel("line", f=0.5, young=20000.0, edges="encastre", compliance=1.0,
+                          compliance_t=1.0 / (1.4 / 1.7))
+    deck = receding_deck(mesh, model, h=0.25)
+    assert "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n5494.505495\n" in deck
+    assert "*FRICTION\n0.5, 4524.886878\n" in deck
+    assert "** compliant interface: C = 1, C_T = 1.214285714" in deck
+    # one direction compliant, the other keeps the hard penalty (5 E/h)
+    normal_only = receding_deck(mesh, RecedingModel("line", f=0.5, young=20000.0,
+                                                    compliance=1.0), h=0.25)
+    assert "*FRICTION\n0.5, 400000\n" in normal_only
+    with pytest.raises(ValueError, match="either compliance or the hard penalty"):
+        receding_deck(mesh, RecedingModel("line", compliance=1.0, penalty=1e6), h=0.25)
+    with pytest.raises(ValueError, match="compliance_t must be finite"):
+        receding_deck(mesh, RecedingModel("line", compliance_t=-1.0), h=0.25)
