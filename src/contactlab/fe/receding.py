@@ -226,8 +226,9 @@ def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = ""
                                     if not compliant else "largest closure of the compliant "
                                     "interface (normalised like separation)", dims=()),
             "max_tension": _var(float(max(0.0, np.max(prof["N"]))),
-                                "largest tensile interface traction N/q (none: ccx's linear "
-                                "surface-to-surface law carries no tension)", dims=()),
+                                "largest tensile nodal interface traction N/q (the "
+                                "surface-to-surface law carries none at its integration "
+                                "points; the nodal CPRESS may overshoot next to b)", dims=()),
         },
         coords={"x": _var(prof["x"], "distance from the plane of symmetry over c (x/c)")},
     )
