@@ -42,3 +42,38 @@ def test_mobilisation_and_difference() -> None:
     x = np.arange(3.0)
     assert profile_difference(x, np.array([1.0, 2.0, 3.0]), np.array([1.0, 2.5, 3.0]), 1.0) \
         == pytest.approx(0.5)
+
+
+def test_closure_point_is_the_zero_of_the_separation() -> None:
+    from contactlab.fe.interface import closure_point
+
+    x = np.linspace(0.0, 4.0, 41)  # b = 2.13 lies between nodes
+    c = 0.7
+    p = np.clip(2.13 - x, 0.0, None)  # pressure vanishing linearly at b
+    # closure -C p inside, an opening beyond that leaves b with the same slope
+    sep = np.where(x < 2.13, -c * p, c * (x - 2.13) + 0.2 * (x - 2.13) ** 2)
+    assert closure_point(x, sep, inner=False) == pytest.approx(2.13, abs=1e-3)
+    # gap problem: open inside, closed beyond
+    assert closure_point(x, sep[::-1], inner=True) == pytest.approx(4.0 - 2.13, abs=1e-3)
+    assert np.isnan(closure_point(x, -np.ones_like(x), inner=False))
+
+
+def test_excess_point_finds_where_slip_passes_the_elastic_limit() -> None:
+    from contactlab.fe.interface import excess_point, slip_excess
+
+    x = np.linspace(0.0, 3.0, 31)
+    compliance, compliance_t, f, a = 1.0, 1.2, 0.5, 0.917
+    p = 0.5 - 0.1 * x
+    q = np.where(x < a, f * p * (1.0 - 0.8 * (a - x)), f * p)  # |q| reaches f p at a
+    plastic = np.where(x > a, 0.2 * (x - a), 0.0)
+    slip = compliance_t * q + plastic
+    sep = -compliance * p
+    g = slip_excess(slip, sep, -p, f, compliance, compliance_t)
+    assert np.allclose(g[x < a], compliance_t * (q - f * p)[x < a])
+    assert np.allclose(g[x > a], plastic[x > a])
+    assert excess_point(x, g, sep < 0, slip_outside=True) == pytest.approx(a, abs=2e-3)
+    # without a normal compliance the pressure comes from N
+    assert np.allclose(slip_excess(slip, np.zeros_like(x), -p, f, 0.0, compliance_t), g)
+    # gap problem: slip inside, stick outside
+    assert excess_point(x, g[::-1], (sep < 0)[::-1], slip_outside=False) == pytest.approx(
+        3.0 - a, abs=2e-3)

@@ -4,6 +4,8 @@
 ``asperity``                      3D elastic-perfectly plastic stuck asperity (Fig. 3.8)
 ``ccx``/``frd``                   running ccx in a scratch directory, reading .frd/.sta/.dat
 ``interface``                     transition points from interface tractions
+``interface_law``/``rough``       compliant (rough) interface: C, C_T -> ccx stiffnesses, the
+                                  patch test, runs, mesh series, the table against a DDT
 ``ddt``/``compare``               distributed-dislocation references, agreement, convergence
 ``workflow``/``cli``              rule helpers and the ``contactlab fe`` commands
 """

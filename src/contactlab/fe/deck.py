@@ -40,6 +40,10 @@ class RecedingModel:
     pass (``farfield_passes``) the half-plane's field under the interface forces of the
     previous one (``farfield_forces``: x (mm), normal and tangential nodal forces, N/mm, of
     the full model's interface).
+    ``compliance`` C and ``compliance_t`` C_T make the interface compliant
+    (:mod:`contactlab.fe.interface_law`): the contact penalty becomes the normal stiffness
+    k_n of C and the stick slope the tangential stiffness k_t of C_T; 0 keeps the hard
+    penalty (smooth interface) in that direction.
     """
 
     problem: str
@@ -54,6 +58,8 @@ class RecedingModel:
     increments: int = 1
     farfield_passes: int = 2
     farfield_forces: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+    compliance: float = 0.0
+    compliance_t: float = 0.0
 
     def check(self) -> None:
         if self.problem not in PROBLEMS:
@@ -66,6 +72,14 @@ class RecedingModel:
             raise ValueError(f"w must be > 0 for the {self.problem} problem, got {self.w}")
         if self.farfield_passes < 1:
             raise ValueError(f"farfield_passes must be >= 1, got {self.farfield_passes}")
+        for name, value, hard in (("compliance", self.compliance, self.penalty),
+                                  ("compliance_t", self.compliance_t, self.stick_slope)):
+            if not (np.isfinite(value) and value >= 0):
+                raise ValueError(f"{name} must be finite and >= 0, got {value}")
+            if value > 0 and hard:
+                raise ValueError(f"give either {name} or the hard "
+                                 f"{'penalty' if name == 'compliance' else 'stick_slope'}, "
+                                 "not both")
         if self.edges == "farfield" and self.problem == "gap":
             raise ValueError("farfield edges need a finite net load: line or uniform, not "
                              "gap (its roller block carries the far field exactly)")
@@ -79,7 +93,8 @@ class RecedingModel:
         raise ValueError("the gap problem's load has no finite resultant")
 
 
-def _ids(values: list[int], per_line: int = 12) -> str:
+def id_lines(values: list[int], per_line: int = 12) -> str:
+    """Node or element ids, ``per_line`` to a line (ccx reads lines of up to 132 characters)."""
     rows = [values[i:i + per_line] for i in range(0, len(values), per_line)]
     return "\n".join(", ".join(str(v) for v in row) for row in rows)
 
@@ -99,11 +114,44 @@ def _loaded_faces(mesh: PlaneMesh, model: RecedingModel) -> list[tuple[int, int]
     return out
 
 
-def penalty_defaults(model: RecedingModel, h: float) -> tuple[float, float]:
-    """Contact penalty and stick slope: 50 E/h and 5 E/h unless set explicitly."""
-    k = model.penalty if model.penalty else 50.0 * model.young / h
-    lam = model.stick_slope if model.stick_slope else 5.0 * model.young / h
+def penalty_defaults(model: RecedingModel, h: float, thickness: float = 1.0
+                     ) -> tuple[float, float]:
+    """Contact penalty and stick slope (N/mm^3).
+
+    A compliant interface's k_n and k_t from C and C_T (:func:`interface_stiffness` with
+    the strip's ``thickness`` c); otherwise ``penalty`` and ``stick_slope`` if set, else
+    the hard penalty 50 E/h and stick slope 5 E/h.
+    """
+    from contactlab.fe.interface_law import interface_stiffness
+
+    if model.compliance > 0:
+        k = interface_stiffness(model.compliance, model.young, model.poisson, thickness)
+    else:
+        k = model.penalty if model.penalty else 50.0 * model.young / h
+    if model.compliance_t > 0:
+        lam = interface_stiffness(model.compliance_t, model.young, model.poisson, thickness)
+    else:
+        lam = model.stick_slope if model.stick_slope else 5.0 * model.young / h
     return float(k), float(lam)
+
+
+def contact_cards(k: float, lam: float, f: float, digits: int = 6) -> list[str]:
+    """The ccx cards of the strip/block interface: surface-to-surface penalty contact
+    (strip bottom slave, block top master) with the linear pressure-overclosure law of
+    slope ``k`` and Coulomb friction ``f`` with the stick slope ``lam``.
+
+    Surface-to-surface, ccx reads both per unit area (CalculiX manual, *SURFACE BEHAVIOR,
+    *FRICTION and the face-to-face penalty contact section): pressure = k x overclosure
+    for a positive overclosure and zero for a clearance (no tension; the
+    node-to-surface parameters sigma_inf and c0 are ignored), shear = lam x elastic
+    tangential slip up to f x pressure. ``digits`` significant digits of k and lam.
+    """
+    return [
+        "*CONTACT PAIR, INTERACTION=INTERFACE, TYPE=SURFACE TO SURFACE", "SSTRIP, SBLOCK",
+        "*SURFACE INTERACTION, NAME=INTERFACE",
+        "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{k:.{digits}g}",
+        "*FRICTION", f"{f:.10g}, {lam:.{digits}g}",
+    ]
 
 
 def _farfield_boundary(mesh: PlaneMesh, model: RecedingModel, thickness: float) -> list[str]:
@@ -133,11 +181,16 @@ def receding_deck(mesh: PlaneMesh, model: RecedingModel, h: float,
     """The CalculiX input deck (text) of ``model`` on ``mesh``; ``h`` the finest element size,
     ``thickness`` the strip's c (mm; sets the far-field load of a patch)."""
     model.check()
-    k, lam = penalty_defaults(model, h)
+    k, lam = penalty_defaults(model, h, thickness)
+    compliant = model.compliance > 0 or model.compliance_t > 0
     out: list[str] = [
         f"** contactlab: receding contact '{model.problem}', plane strain half model (ch. 8)",
-        "*NODE, NSET=NALL",
     ]
+    if compliant:
+        out.append(f"** compliant interface: C = {model.compliance:.10g}, C_T = "
+                   f"{model.compliance_t:.10g} (0: hard penalty), k_n = {k:.10g}, "
+                   f"k_t = {lam:.10g} N/mm^3")
+    out += ["*NODE, NSET=NALL"]
     out += [f"{n}, {x:.10g}, {y:.10g}" for n, (x, y) in sorted(mesh.nodes.items())]
     for group, cells in mesh.elements.items():
         for corners, etype in ((4, "CPE4"), (3, "CPE3")):
@@ -147,9 +200,9 @@ def receding_deck(mesh: PlaneMesh, model: RecedingModel, h: float,
             out.append(f"*ELEMENT, TYPE={etype}, ELSET={group}")
             out += [f"{e}, " + ", ".join(str(n) for n in cells[e]) for e in ids]
     for name, ids in mesh.node_sets.items():
-        out += [f"*NSET, NSET={name}", _ids(ids)]
+        out += [f"*NSET, NSET={name}", id_lines(ids)]
     top = [n for n in mesh.node_sets["STRIP_TOP"] if abs(mesh.nodes[n][0]) < 1e-12]
-    out += ["*NSET, NSET=LOADPOINT", _ids(top)]
+    out += ["*NSET, NSET=LOADPOINT", id_lines(top)]
     out += ["*ELSET, ELSET=EALL", "STRIP, BLOCK"]
     out += [
         "*MATERIAL, NAME=ELASTIC", "*ELASTIC", f"{model.young:.10g}, {model.poisson:.10g}",
@@ -159,12 +212,7 @@ def receding_deck(mesh: PlaneMesh, model: RecedingModel, h: float,
     out += [f"{e}, S{face}" for e, face in mesh.edges["STRIP_BOTTOM"]]
     out.append("*SURFACE, NAME=SBLOCK, TYPE=ELEMENT")
     out += [f"{e}, S{face}" for e, face in mesh.edges["BLOCK_TOP"]]
-    out += [
-        "*CONTACT PAIR, INTERACTION=INTERFACE, TYPE=SURFACE TO SURFACE", "SSTRIP, SBLOCK",
-        "*SURFACE INTERACTION, NAME=INTERFACE",
-        "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR", f"{k:.6g}",
-        "*FRICTION", f"{model.f:.10g}, {lam:.6g}",
-    ]
+    out += contact_cards(k, lam, model.f, digits=10 if compliant else 6)
     out += ["*BOUNDARY", "STRIP_LEFT, 1, 1", "BLOCK_LEFT, 1, 1"]
     if model.edges == "roller":
         out.append("BLOCK_BASE, 2, 2")

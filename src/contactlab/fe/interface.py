@@ -159,3 +159,69 @@ def remote_slope(x: np.ndarray, separation: np.ndarray, b: float, start: float =
     a = np.c_[np.ones(sel.sum()), x[sel], np.log(x[sel])]
     coef, *_ = np.linalg.lstsq(a, sep[sel], rcond=None)
     return float(coef[1])
+
+
+def _sign_change(x: np.ndarray, g: np.ndarray, rising: bool, last: bool,
+                 where: np.ndarray | None = None) -> float:
+    """x where ``g`` crosses zero between two nodes, by linear interpolation: a change
+    from g <= 0 to g > 0 going outward (``rising``) or from g > 0 to g <= 0; the last
+    (``last``) or first such change; only between neighbours that are both in ``where``.
+    NaN if there is none."""
+    x, g = np.asarray(x, float), np.asarray(g, float)
+    pos = g > 0
+    ok = np.ones(x.size - 1, bool) if where is None else (where[1:] & where[:-1])
+    change = (pos[1:] != pos[:-1]) & (pos[1:] == rising) & ok
+    idx = np.nonzero(change)[0]
+    if idx.size == 0:
+        return np.nan
+    return _crossing(x, g, int(idx[-1] if last else idx[0]), 0.0)
+
+
+def closure_point(x: np.ndarray, separation: np.ndarray, inner: bool) -> float:
+    """The separation point b of a compliant interface.
+
+    In contact the surfaces overlap by the interface's closure, separation v2 - v1 =
+    -p / k_n < 0; they separate where the pressure has fallen to zero, beyond which the
+    separation is an opening > 0. With a compliant interface p vanishes linearly at b and
+    the separation passes through zero with a continuous slope, so its zero, interpolated
+    between the two nodes that bracket it, is b to second order in h. It is read off the
+    nodal displacements (the solution itself) rather than the nodal contact pressure,
+    which ccx averages over the faces of a node and so smears across the element that
+    holds b. ``inner``: open on |x| < b (gap problem), else on |x| > b.
+    """
+    sep = np.asarray(separation, float)
+    if inner:
+        return _sign_change(x, sep, rising=False, last=False)
+    return _sign_change(x, sep, rising=True, last=True)
+
+
+def slip_excess(slip: np.ndarray, separation: np.ndarray, n: np.ndarray, f: float,
+                compliance: float, compliance_t: float) -> np.ndarray:
+    """g = |slip| - C_T f p: the slip beyond what the interface takes elastically at the
+    friction limit (all normalised as in Part III).
+
+    In stick the slip is the elastic q C_T, so g = C_T (|q| - f p) < 0; in slip |q| = f p
+    and g is the plastic slip >= 0; g passes through zero at the stick-slip point. The
+    pressure p is -separation / C where the interface is compliant (the closure,
+    displacements only), else -N.
+    """
+    p = -np.asarray(separation, float) / compliance if compliance > 0 else -np.asarray(n)
+    return np.abs(np.asarray(slip, float)) - compliance_t * f * p
+
+
+def excess_point(x: np.ndarray, excess: np.ndarray, closed: np.ndarray,
+                 slip_outside: bool) -> float:
+    """The stick-slip point a of a compliant interface: the zero of :func:`slip_excess`
+    among nodes in contact (``closed``), interpolated between the bracketing nodes.
+
+    With a tangential compliance the shear is bounded and continuous at a, the excess
+    passes through zero there with a slope that changes little (the mobilised friction
+    approaches 1 linearly, the plastic slip grows linearly), so the interpolation is close
+    to second order in h; the nodal shear CSHEAR, averaged over the faces of a node, would
+    smear the element that holds a. ``slip_outside``: stick on |x| < a (line load,
+    patches), else slip inside (gap problem, a3).
+    """
+    closed = np.asarray(closed, bool)
+    if slip_outside:
+        return _sign_change(x, excess, rising=True, last=True, where=closed)
+    return _sign_change(x, excess, rising=False, last=False, where=closed)

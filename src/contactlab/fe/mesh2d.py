@@ -242,3 +242,59 @@ def _faces_on(mesh: PlaneMesh, group: str, on: set[int]) -> list[tuple[int, int]
             if conn[k] in on and conn[(k + 1) % m] in on:
                 out.append((e, k + 1))
     return out
+
+
+def structured_strip_on_block(xs: np.ndarray, thickness: float, depth: float,
+                              strip_rows: int, block_rows: int) -> PlaneMesh:
+    """A structured quad mesh of the strip-on-block half model, without gmsh.
+
+    Both bodies share the interface node positions ``xs`` (mm, increasing from 0); the
+    strip has ``strip_rows`` and the block ``block_rows`` uniform rows of CPE4 elements.
+    Node and element numbers follow the rows (strip first), so the mesh, and a deck
+    written on it, is the same on every machine: the patch test of the interface law
+    (:mod:`contactlab.fe.interface_law`) and the deck tests use it.
+    """
+    xs = np.asarray(xs, dtype=float)
+    if xs.ndim != 1 or xs.size < 2 or xs[0] != 0.0 or np.any(np.diff(xs) <= 0):
+        raise ValueError("xs must be increasing node positions starting at 0")
+    if not (thickness > 0 and depth > 0 and strip_rows >= 1 and block_rows >= 1):
+        raise ValueError("thickness and depth must be > 0, strip_rows and block_rows >= 1")
+    nx = xs.size
+    nodes: dict[int, tuple[float, float]] = {}
+    elements: dict[str, dict[int, tuple[int, ...]]] = {}
+    grids: dict[str, np.ndarray] = {}
+    next_node, next_elem = 1, 1
+    for body, ys in (("STRIP", np.linspace(0.0, thickness, strip_rows + 1)),
+                     ("BLOCK", np.linspace(-depth, 0.0, block_rows + 1))):
+        ids = np.arange(next_node, next_node + nx * ys.size).reshape(ys.size, nx)
+        next_node += ids.size
+        for j, y in enumerate(ys):
+            for i, x in enumerate(xs):
+                nodes[int(ids[j, i])] = (float(x), float(y))
+        cells = {}
+        for j in range(ys.size - 1):
+            for i in range(nx - 1):
+                cells[next_elem] = (int(ids[j, i]), int(ids[j, i + 1]), int(ids[j + 1, i + 1]),
+                                    int(ids[j + 1, i]))
+                next_elem += 1
+        elements[body] = cells
+        grids[body] = ids
+    strip, block = grids["STRIP"], grids["BLOCK"]
+    node_sets = {
+        "STRIP_BOTTOM": [int(n) for n in strip[0]],
+        "STRIP_TOP": [int(n) for n in strip[-1]],
+        "STRIP_LEFT": [int(n) for n in strip[:, 0]],
+        "STRIP_RIGHT": [int(n) for n in strip[:, -1]],
+        "BLOCK_TOP": [int(n) for n in block[-1]],
+        "BLOCK_LEFT": [int(n) for n in block[:, 0]],
+        "BLOCK_RIGHT": [int(n) for n in block[:, -1]],
+        "BLOCK_BASE": [int(n) for n in block[0]],
+    }
+    plane = PlaneMesh(nodes=nodes, elements=elements, node_sets=node_sets)
+    plane.edges = {
+        "STRIP_BOTTOM": _faces_on(plane, "STRIP", set(node_sets["STRIP_BOTTOM"])),
+        "STRIP_TOP": _faces_on(plane, "STRIP", set(node_sets["STRIP_TOP"])),
+        "BLOCK_TOP": _faces_on(plane, "BLOCK", set(node_sets["BLOCK_TOP"])),
+    }
+    plane.interface = (xs.copy(), strip[0].copy(), block[-1].copy())
+    return plane

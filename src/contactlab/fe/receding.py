@@ -33,8 +33,11 @@ from contactlab.fe.frd import read_dat_displacements
 from contactlab.fe.interface import (
     N_TOL,
     SLIP_TOL,
+    closure_point,
+    excess_point,
     mobilisation,
     separation_point,
+    slip_excess,
     stick_slip_point,
 )
 from contactlab.fe.mesh2d import PlaneMesh, StripBlockGeometry, strip_on_block
@@ -103,7 +106,31 @@ def interface_profiles(mesh: PlaneMesh, run: CcxRun, model: RecedingModel,
 
 def transitions(prof: dict[str, np.ndarray], model: RecedingModel,
                 n_tol: float = N_TOL, slip_tol: float = SLIP_TOL) -> tuple[float, float]:
-    """(b, a) of a profile: a is a3 for the gap problem (slip inside, stick outside)."""
+    """(b, a) of a profile: a is a3 for the gap problem (slip inside, stick outside).
+
+    Smooth interface (hard penalty): thresholds on the tractions
+    (:func:`traction_transitions`). Compliant interface: b where the separation passes
+    from closure to opening (:func:`closure_point`, when C > 0) and a where the slip
+    passes the interface's elastic slip at the friction limit (:func:`excess_point`,
+    when C_T > 0); a direction without compliance keeps the traction reading.
+    """
+    b, a = traction_transitions(prof, model, n_tol, slip_tol)
+    inner = model.problem == "gap"
+    if model.compliance > 0:
+        b = closure_point(prof["x"], prof["separation"], inner=inner)
+    if model.compliance_t > 0:
+        excess = slip_excess(prof["slip"], prof["separation"], prof["N"], model.f,
+                             model.compliance, model.compliance_t)
+        closed = prof["separation"] < 0 if model.compliance > 0 else -prof["N"] > n_tol
+        a = excess_point(prof["x"], excess, closed, slip_outside=not inner)
+    return b, a
+
+
+def traction_transitions(prof: dict[str, np.ndarray], model: RecedingModel,
+                         n_tol: float = N_TOL, slip_tol: float = SLIP_TOL
+                         ) -> tuple[float, float]:
+    """(b, a) from thresholds on the tractions: contact where -N > ``n_tol``, slip where
+    |S| >= (1 - ``slip_tol``) f |N| (:func:`separation_point`, :func:`stick_slip_point`)."""
     inner = model.problem == "gap"
     b = separation_point(prof["x"], prof["N"], inner=inner, n_tol=n_tol)
     a = stick_slip_point(prof["x"], prof["S"], prof["N"], model.f, slip_outside=not inner,
@@ -160,7 +187,8 @@ def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = ""
         change = float(np.nanmax(np.abs([b_new - b, a_new - a])))
         b, a = b_new, a_new
     name = STICK_SLIP_NAME[model.problem]
-    k, lam = penalty_defaults(model, geom.h)
+    compliant = model.compliance > 0 or model.compliance_t > 0
+    k, lam = penalty_defaults(model, geom.h, geom.thickness)
     x = mesh.interface[0]
     # equilibrium: interface normal force against the applied load on the half model
     applied = 0.5 * model.load if model.problem == "line" else model.load * (
@@ -194,17 +222,30 @@ def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = ""
             "farfield_change": _var(change, "largest change of b/c and a/c in the last "
                                     "far-field pass (0 without one)", dims=()),
             "max_penetration": _var(float(max(0.0, -np.min(prof["separation"]))),
-                                    "largest penalty penetration (normalised like separation)",
-                                    dims=()),
+                                    "largest penalty penetration (normalised like separation)"
+                                    if not compliant else "largest closure of the compliant "
+                                    "interface (normalised like separation)", dims=()),
+            "max_tension": _var(float(max(0.0, np.max(prof["N"]))),
+                                "largest tensile nodal interface traction N/q (the "
+                                "surface-to-surface law carries none at its integration "
+                                "points; the nodal CPRESS may overshoot next to b)", dims=()),
         },
         coords={"x": _var(prof["x"], "distance from the plane of symmetry over c (x/c)")},
     )
+    if compliant:
+        b_t, a_t = traction_transitions(prof, model)
+        ds["b_traction_fe"] = _var(b_t, "separation point b/c from the traction threshold "
+                                   "(-N > n_tol), for comparison", dims=())
+        ds[f"{name}_traction_fe"] = _var(a_t, f"stick-slip point {name}/c from the "
+                                         "mobilised friction threshold, for comparison",
+                                         dims=())
     ds.attrs.update(
         problem=model.problem, f=model.f, w_hat=model.w if model.problem != "line" else np.nan,
         level=level, edges=model.edges, young_N_per_mm2=model.young, poisson=model.poisson,
         strip_length_mm=geom.length, strip_thickness_mm=geom.thickness,
         block_depth_mm=geom.depth, x_fine_mm=geom.x_fine, layer_rows=geom.layer_rows,
         growth=geom.growth, penalty_N_per_mm3=k, stick_slope_N_per_mm3=lam,
+        compliance=model.compliance, compliance_t=model.compliance_t,
         load_increments=model.increments, farfield_passes=passes,
         element_types="CPE4 (strip), CPE4 + CPE3 (block)",
         contact="surface-to-surface penalty, strip slave, block master, Coulomb friction",
