@@ -70,6 +70,7 @@ H-switched one has no root, flagged ``continuous_slip_rule``.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -628,6 +629,23 @@ def compliance_seed(load: Load, f: float, lam_a: float, lam_b: float, e: float,
             return None
         seed = (sol.a, sol.b)
     return seed
+
+
+def solve_compliant(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
+                    preformed: bool, problem: str, interface: Interface,
+                    guess: tuple[float, float] | None,
+                    smooth: Callable[[], LiftoffSolution]) -> LiftoffSolution:
+    """A lifting-off problem at f > 0 on a compliant ``interface``: from ``guess`` (a
+    neighbour's a, b) or, without one, from ``smooth()`` (the smooth problem at a coarse N,
+    with its fallbacks) through ``compliance_seed``; the H-switched slip rule first, then
+    the continuous one (flag ``continuous_slip_rule``)."""
+    if guess is None or not guess[1] > guess[0] > 0:
+        first = smooth()
+        start = (max(first.a, 1e-3), first.b) if first.converged else None
+        guess = compliance_seed(load, f, lam_a, lam_b, e, preformed, interface, start) \
+            if start is not None else None
+    return solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, problem,
+                         seed_only=guess is not None, interface=interface)
 
 
 def coarse_failure(coarse: LiftoffSolution) -> RootResult:
