@@ -26,7 +26,7 @@ displacements in (kappa + 1) T c / (2 mu).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 import xarray as xr
@@ -39,6 +39,7 @@ from contactlab.receding.core.interface import (
     linear_interface,
     measured_interface,
 )
+from contactlab.receding.core.measured_law import StiffnessLaw
 from contactlab.receding.core.solution import (
     CHECK_TOL,
     flag_attrs,
@@ -383,4 +384,82 @@ def rough_profile(problem: str, f: float, w_hat: float, interface: Interface, *,
             ("admissible", int(sol.admissible)), ("residual", sol.residual))})
     ds.attrs.update({f"check_{k}": v for k, v in rough.checks.items()})
     ds.attrs.update({f"certificate_{k}": v for k, v in rough.certify().items()})
+    return ds
+
+
+# --------------------------------------------------------------------------- tested pairs
+
+LAWS = ("smooth", "linear", "measured")
+
+
+def tested_pairs(laws: Mapping[str, StiffnessLaw], pressures: Mapping[str, float], *,
+                 problem: str, w_hat: float, E: float, nu: float,
+                 c_values: Sequence[float], n: int, lam: float, e_extra: float,
+                 ) -> xr.Dataset:
+    """a, b, K_T of a layer (E [kN/mm^2], nu, thickness c [mm]) pressed by a patch of
+    half-width w = w_hat c and mean pressure p [kN/mm^2] (``pressures`` per test) onto a
+    half-plane of the same material through each tested pair's interface (``laws``, e.g.
+    ``core.measured_law.law_from_summary``), at the pair's f: dims (test, c, law) with
+    law ``smooth`` (the thesis's interface), ``linear`` (the stiffness at p, k_n(p) and
+    Cc k_n(p)) and ``measured`` (the law of eqs 2.4, 2.7 with T = 2 w p / c; NaN with
+    the reason in ``refused`` where the fit has k_n <= 0 at the contact edge)."""
+    if problem not in PROBLEMS[1:]:
+        raise ValueError(f"tested pairs need a patch problem, got {problem!r}")
+    tests = list(laws)
+    missing = [t for t in tests if t not in pressures]
+    if missing:
+        raise ValueError(f"no pressure for test(s) {missing}")
+    c_arr = _check_values("c", c_values, positive=True)
+    shape = (len(tests), c_arr.size, len(LAWS))
+    out = {k: np.full(shape, np.nan) for k in ("a", "b", "K_T", "C", "C_T", "pi0", "f",
+                                               "T")}
+    flags = {k: np.zeros(shape, dtype=np.int8) for k in ("converged", "admissible")}
+    refused = np.full((len(tests), c_arr.size), "", dtype=object)
+    for i, test in enumerate(tests):
+        law, p = laws[test], float(pressures[test])
+        T = 2.0 * w_hat * p
+        for j, c in enumerate(c_arr):
+            interfaces: dict[str, Interface | None] = {
+                "smooth": SMOOTH,
+                "linear": law.linearised(pressure=p, E=E, nu=nu, c=float(c))}
+            try:
+                interfaces["measured"] = law.measured(T=T, E=E, nu=nu, c=float(c))
+            except ValueError as exc:
+                interfaces["measured"], refused[i, j] = None, str(exc)
+            for k, name in enumerate(LAWS):
+                interface = interfaces[name]
+                out["f"][i, j, k], out["T"][i, j, k] = law.f, T
+                if interface is None:
+                    continue
+                sol = solve_rough(problem, law.f, w_hat, interface, n=n, lam=lam,
+                                  e_extra=e_extra)
+                out["C"][i, j, k], out["C_T"][i, j, k] = interface.C, interface.C_T
+                out["pi0"][i, j, k] = interface.pi0 if np.isfinite(interface.pi0) else np.nan
+                flags["converged"][i, j, k] = int(sol.converged)
+                flags["admissible"][i, j, k] = int(sol.admissible)
+                if sol.converged:
+                    out["a"][i, j, k], out["b"][i, j, k] = sol.a, sol.b
+                    out["K_T"][i, j, k] = sol.K_T
+    names = {"a": "end of the stick zone a/c", "b": "end of contact b/c",
+             "K_T": "remote slope k_l 2 mu / ((kappa + 1) T)",
+             "C": "normal compliance number (measured law: at p = T)",
+             "C_T": "tangential compliance number (measured law: at p = T)",
+             "pi0": "p0 / T of the measured law", "f": "friction coefficient of the pair",
+             "T": "load per thickness T = 2 w p / c [kN/mm^2]",
+             "converged": "root finder converged", "admissible": "contact checks hold"}
+    dims = ("test", "c", "law")
+    data = {k: (dims, v, {"long_name": names[k], "units": "kN/mm2" if k == "T" else ONE})
+            for k, v in {**out, **flags}.items()}
+    data["refused"] = (("test", "c"), refused.astype(str),
+                       {"long_name": "why the measured law was refused (empty: used)"})
+    ds = xr.Dataset(data, coords={
+        "test": ("test", np.array(tests, dtype=object), {"long_name": "tested pair"}),
+        "c": ("c", c_arr, {"long_name": "layer thickness", "units": "mm"}),
+        "law": ("law", np.array(LAWS, dtype=object), {"long_name": "interface law"})})
+    ds["pressure"] = ("test", np.array([float(pressures[t]) for t in tests]),
+                      {"long_name": "mean pressure of the patch", "units": "kN/mm2"})
+    ds["source"] = ("test", np.array([laws[t].source for t in tests], dtype=str),
+                    {"long_name": "where the law was taken from"})
+    ds.attrs.update({"problem": problem, "w_hat": w_hat, "E_kN_mm2": E, "nu": nu, "N": n,
+                     "lambda": lam, "e_minus_w": e_extra})
     return ds
