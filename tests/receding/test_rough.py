@@ -26,6 +26,7 @@ from contactlab.receding.core.interface import (
 from contactlab.receding.core.measured_law import StiffnessLaw, law_from_summary
 from contactlab.receding.core.solution import CHECK_TOL
 from contactlab.receding.liftoff.frictionless import solve_frictionless
+from contactlab.receding.liftoff.line import solve_line
 from contactlab.receding.liftoff.loading import make_load
 from contactlab.receding.liftoff.patch import solve_patch
 from contactlab.receding.liftoff.rough import (
@@ -322,3 +323,35 @@ def test_check_tolerance_is_the_shared_one() -> None:
     assert point["admissible"] == 1
     assert all(point[k] <= CHECK_TOL for k in point if str(k).startswith("max_")
                and k != "max_check_at_n")
+
+
+def test_tested_pairs_against_their_linearisation(published_summary) -> None:
+    """SU3 on a 10 mm layer: the measured law (soft near the edges) spreads the contact
+    beyond the law linearised at the mean pressure, which spreads it beyond the smooth
+    one; RU1's measured law is refused with its reason, its linearisation is solved."""
+    from contactlab.receding.liftoff.rough import tested_pairs
+
+    laws = {t: law_from_summary(published_summary, t, normal_direction="loading",
+                                tangential_direction="combined", cc_basis="mean")
+            for t in ("RU1", "SU3")}
+    ds = tested_pairs(laws, {"RU1": 0.2, "SU3": 0.6}, problem="uniform", w_hat=1.0,
+                      E=113.8, nu=0.31, c_values=[10.0], n=64, lam=2.0, e_extra=5.0)
+    b = ds["b"].sel(c=10.0)
+    assert b.sel(test="SU3", law="smooth") < b.sel(test="SU3", law="linear") \
+        < b.sel(test="SU3", law="measured")
+    assert np.isnan(b.sel(test="RU1", law="measured"))
+    assert "p0 = -0.01125" in str(ds["refused"].sel(test="RU1", c=10.0).item())
+    assert int(ds["converged"].sel(test="RU1", law="linear", c=10.0)) == 1
+    # C scales with 1/c and with 1/k_n(p): 0.0332 at RU1's 95 kN/mm^3 and c = 10 mm
+    assert float(ds["C"].sel(test="RU1", law="linear", c=10.0)) == pytest.approx(0.0332,
+                                                                                  abs=2e-4)
+
+
+def test_no_stick_zone_on_a_normally_compliant_interface() -> None:
+    """f = 0.05 with C = 0.1, C_T = 0: no resolved stick zone; the stick-zone limit with
+    the contact zone added is solved and certified (regime no_stick, a = 0)."""
+    point = rough_point("line", 0.05, 0.0, 0.1, 0.0, n=100, lam=3.5, e_extra=5.0)
+    assert point["converged"] == 1 and point["admissible"] == 1
+    assert point["a"] == 0.0 and point["regime"] == 1
+    smooth = solve_line(0.05, 100, 3.5, 5.0)
+    assert smooth.regime == "no_stick" and point["b"] > smooth.b

@@ -88,9 +88,10 @@ def solve_line(f: float, n: int, lam: float, e: float,
                                   guess=None if guess is None else guess[1],
                                   interface=interface)
     if not interface.smooth:
-        return solve_compliant(load, f, n, lam, lam, e, preformed, problem, interface, guess,
-                               lambda: solve_line(f, COARSE_N, lam, e, None, preformed,
-                                                  stick_zone_limit))
+        sol = solve_compliant(load, f, n, lam, lam, e, preformed, problem, interface, guess,
+                              lambda: solve_line(f, COARSE_N, lam, e, None, preformed,
+                                                 stick_zone_limit))
+        return sol if sol.converged else try_limit(sol, lam, lam, stick_zone_limit) or sol
     if guess is not None and guess[0] == 0 and stick_zone_limit > 0:
         lim = solve_no_stick(load, f, n, lam, lam, e, problem, preformed, guess[1])
         if lim.converged and lim.log10_a < np.log10(stick_zone_limit):

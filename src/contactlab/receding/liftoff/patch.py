@@ -21,7 +21,7 @@ import numpy as np
 
 from contactlab.receding.core.interface import SMOOTH, Interface
 from contactlab.receding.core.solution import check_friction
-from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT, solve_no_stick
+from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT, solve_no_stick, try_limit
 from contactlab.receding.liftoff.line import fallbacks, line_guess
 from contactlab.receding.liftoff.loading import Load, make_load
 from contactlab.receding.liftoff.solver import (
@@ -159,10 +159,12 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
                                   guess=None if guess is None else guess[1],
                                   interface=interface)
     if not interface.smooth:
-        return solve_compliant(load, f, n, lam_a, lam_b, e, preformed, load.law, interface,
-                               guess, lambda: solve_patch(law, f, w_hat, COARSE_N, lam_a,
-                                                          lam_b, e, table, None, preformed,
-                                                          stick_zone_limit))
+        sol = solve_compliant(load, f, n, lam_a, lam_b, e, preformed, load.law, interface,
+                              guess, lambda: solve_patch(law, f, w_hat, COARSE_N, lam_a,
+                                                         lam_b, e, table, None, preformed,
+                                                         stick_zone_limit))
+        return sol if sol.converged else try_limit(sol, lam_a, lam_b,
+                                                   stick_zone_limit) or sol
     if guess is not None and guess[0] == 0 and stick_zone_limit > 0:
         lim = solve_no_stick(load, f, n, lam_a, lam_b, e, load.law, preformed, guess[1])
         if lim.converged and lim.log10_a < np.log10(stick_zone_limit):
