@@ -256,6 +256,9 @@ def test_law_from_a_stiffness_summary(published_summary) -> None:
     with pytest.raises(ValueError, match=r"P0 of test RU1 .*mean.* is missing"):
         law_from_summary(published_summary, "RU1", normal_direction="mean",
                          tangential_direction="combined", cc_basis="mean")
+    same = StiffnessLaw.from_fit(beta_n_per_um=0.070, P0_kN=-4.490, area_mm2=20.0,
+                                 cc=s3.cc, f=s3.f)
+    assert (same.beta_n, same.p0) == pytest.approx((s3.beta_n, s3.p0))
     with pytest.raises(ValueError, match="no test 'XX'"):
         law_from_summary(published_summary, "XX", normal_direction="loading",
                          tangential_direction="combined", cc_basis="mean")
@@ -302,6 +305,12 @@ def test_sweep_records_every_point_and_parameter() -> None:
     # the stiffer tangential interface (smaller C_T) sticks less
     a = ds["a"].sel(C=1.0).squeeze()
     assert a.sel(ct_ratio=0.5).item() < a.sel(ct_ratio=RATIO).item()
+    # the measured law over C (pi0 = p0/T fixed): solved, softer than the linear law
+    soft = sweep_rough("uniform", [0.3], [0.0, 1.0], ct_ratios=[RATIO], w_values=[1.0],
+                       n=64, lam=2.0, e_extra=5.0, refine_max_n=128, interface="measured",
+                       pi0=0.5)
+    assert int(soft.attrs["summary_solved"]) == 2 and soft.attrs["interface"] == "measured"
+    assert soft["b"].sel(C=1.0).item() > ds["b"].sel(C=1.0, ct_ratio=RATIO).item()
 
 
 def test_profile_beside_the_smooth_solution() -> None:

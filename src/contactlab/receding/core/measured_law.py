@@ -58,6 +58,15 @@ class StiffnessLaw:
         if not (np.isfinite(self.f) and self.f >= 0):
             raise ValueError(f"friction coefficient f must be >= 0{where}, got {self.f}")
 
+    @classmethod
+    def from_fit(cls, *, beta_n_per_um: float, P0_kN: float, area_mm2: float, cc: float,
+                 f: float, source: str = "") -> StiffnessLaw:
+        """The law from the thesis's fit numbers (Tables 2.1, 2.7: beta_n [1/um], P0 [kN]
+        of eq. 2.2, per nominal area An [mm^2]) and Cc, f: beta_n -> 1/mm, p0 = -P0/An."""
+        if not (np.isfinite(area_mm2) and area_mm2 > 0):
+            raise ValueError(f"nominal area An must be positive, got {area_mm2} mm^2")
+        return cls(beta_n_per_um * 1e3, -P0_kN / area_mm2, cc, f, source)
+
     def k_n(self, p: np.ndarray | float) -> np.ndarray:
         """Normal stiffness per unit area [kN/mm^3] at the pressure p [kN/mm^2]."""
         return self.beta_n * (np.asarray(p, dtype=float) + self.p0)
@@ -121,11 +130,11 @@ def law_from_summary(ds: xr.Dataset, test: str, *, normal_direction: str,
     beta_n and P0 of the normal fit of ``normal_direction`` (loading or unloading; the
     mean rows carry no fit), f of ``tangential_direction`` (loading, unloading,
     combined), Cc of ``cc_basis`` (mean, loading, unloading), An of the test."""
-    beta_n = _value(ds, "beta_n", test, normal_direction=normal_direction) * 1e3  # 1/mm
-    p0 = -_value(ds, "P0", test, normal_direction=normal_direction) / _value(
-        ds, "nominal_area_mm2", test)
-    f = _value(ds, "f", test, tangential_direction=tangential_direction)
-    cc = _value(ds, "Cc", test, basis=cc_basis)
-    return StiffnessLaw(beta_n, p0, cc, f, source=f"{test} ({normal_direction} normal fit, "
-                                                  f"{tangential_direction} f, Cc on the "
-                                                  f"{cc_basis} Kn)")
+    return StiffnessLaw.from_fit(
+        beta_n_per_um=_value(ds, "beta_n", test, normal_direction=normal_direction),
+        P0_kN=_value(ds, "P0", test, normal_direction=normal_direction),
+        area_mm2=_value(ds, "nominal_area_mm2", test),
+        cc=_value(ds, "Cc", test, basis=cc_basis),
+        f=_value(ds, "f", test, tangential_direction=tangential_direction),
+        source=f"{test} ({normal_direction} normal fit, {tangential_direction} f, Cc on "
+               f"the {cc_basis} Kn)")
