@@ -66,6 +66,12 @@ smooth in b, and the Chaise model has an admissible root at every f up to 1 (N =
 500). Solutions of the two forms differ by the discretisation error of N beyond b (b by
 2e-4 relative at f = 0.5, N = 100), so the continuous form is the fallback where the
 H-switched one has no root, flagged ``continuous_slip_rule``.
+
+Rough interface: ``assemble(..., interface=)`` and ``solve_liftoff(..., interface=)`` take
+a compliant interface law (``core.interface``); ``compliant`` adds the stick and contact
+zones' densities and rows to the system above, ``compliance_seed`` reaches a compliant
+solution from the smooth one. The smooth interface (default) assembles the system above
+unchanged.
 """
 
 from __future__ import annotations
