@@ -9,7 +9,9 @@ Three sub-packages, pure cores first, I/O at the edge:
              ``dislocations`` (density intervals, influence matrices, relative
              displacements), ``solve`` (linear solve for fixed transition points, root
              finding on the leftover equations), ``solution`` (the solution protocol,
-             the contact checks and their tolerance, shared by both problems)
+             the contact checks and their tolerance, shared by both problems),
+             ``interface`` (rough, compliant interface laws), ``bridge`` (densities
+             carried through a transition point), ``measured_law`` (a tested pair's law)
 ``gap``      ch. 5, a pressure on |x| >= w: ``solver``, ``sweep`` (regime maps,
              thresholds, profiles), ``cli`` (``receding gap-...``), ``report``
 ``liftoff``  chs 6-7, the layer lifts off at all remote points: ``loading`` (the loads
@@ -17,7 +19,8 @@ Three sub-packages, pure cores first, I/O at the edge:
              A_y), ``remote`` (remote forms, the remote slip relation), ``solver`` (the
              method of secs 6.2-6.4, 7.4), ``line`` (ch. 6, with the Chaise et al.
              model), ``patch`` (ch. 7), ``frictionless`` (f = 0), ``sweep``, ``cli``
-             (``receding line-sweep``, ``patch-sweep``, ``liftoff-...``), ``report``
+             (``receding line-sweep``, ``patch-sweep``, ``liftoff-...``), ``report``;
+             ``compliant`` and ``rough``: the same problems on a rough interface
 
 ``cli`` holds the ``receding`` command group and ``receding solve`` for any problem.
 

@@ -2,5 +2,6 @@
 
 Kernels (App. B.1), quadrature, bilateral tractions (eqs 5.1-5.2), density intervals, the
 linear solve with root finding on the leftover equations, and the solution protocol with
-its contact checks (``solution``).
+its contact checks (``solution``); interface laws of a rough interface (``interface``,
+``measured_law``) and the bridge densities they need (``bridge``).
 """

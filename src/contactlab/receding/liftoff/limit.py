@@ -38,12 +38,18 @@ import numpy as np
 
 from contactlab.blas import single_thread
 from contactlab.receding.core.dislocations import DensityInterval
+from contactlab.receding.core.interface import SMOOTH, Interface
 from contactlab.receding.core.limit import LogDensity, SingularGlide
 from contactlab.receding.core.quadrature import interpolation_matrix
 from contactlab.receding.core.solve import LinearSystem, find_transitions
+from contactlab.receding.liftoff.compliant import Linearisation, extend, geometry
 from contactlab.receding.liftoff.loading import Load
 from contactlab.receding.liftoff.preformed import Preformed
-from contactlab.receding.liftoff.solver import LiftoffSolution, check_liftoff_inputs
+from contactlab.receding.liftoff.solver import (
+    LiftoffSolution,
+    base_tractions,
+    check_liftoff_inputs,
+)
 
 #: flag of a solution whose central stick zone is solved in its limit a -> 0
 FLAG = "stick_zone_limit"
@@ -65,10 +71,13 @@ def _intervals(n: int, b: float, lam_a: float, lam_b: float) -> tuple[SingularGl
 
 
 def assemble_limit(load: Load, f: float, n: int, b: float, lam_a: float, lam_b: float,
-                   e: float, preformed: bool = True):
+                   e: float, preformed: bool = True, interface: Interface = SMOOTH,
+                   state: Linearisation | None = None):
     """The rows of the module docstring for fixed b: (LinearSystem, glide, climb).
 
-    Columns: phi_x (N), k, phi_y (N) and, with the preformed density, K."""
+    Columns: phi_x (N), k, phi_y (N) and, with the preformed density, K; a compliant
+    ``interface`` adds its contact zone (``compliant``; the stick zone has no width, so
+    C_T does not enter), whose N(0) joins the jump row."""
     glide, climb = _intervals(n, b, lam_a, lam_b)
     xb, xa = climb.collocation, glide.collocation.copy()
     xa[n // 2] = 0.0  # t = cos(pi/2) = 6e-17: the row of S(0) = 0, not of S(0+)
@@ -107,29 +116,41 @@ def assemble_limit(load: Load, f: float, n: int, b: float, lam_a: float, lam_b: 
             climb.preimage(np.array([e])), n)[0], [0.0]])
         matrix, rhs = np.vstack([matrix, row]), np.concatenate([rhs, [0.0]])
     centre = n // 2
-    return LinearSystem(matrix, rhs, leftover=[centre, m + centre], targets=[0]), glide, climb
+    system = LinearSystem(matrix, rhs, leftover=[centre, m + centre], targets=[0])
+    if interface.normal:
+        pre = Preformed(load, b, e) if preformed else None
+        geom = geometry(interface, 0.0, b, n)
+        system = extend(system, geom, lambda x: base_tractions(load, glide, climb, pre, x),
+                        normal_rows=slice(0, m), normal_points=xb, shear_rows=slice(m, 2 * m),
+                        shear_points=xa, friction=h, state=state)
+        system.matrix[2 * m, -geom.size:] = f * geom.normal_matrix(zero)[0]
+    return system, glide, climb
 
 
 def solve_no_stick(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
                    problem: str = "", preformed: bool = True,
-                   guess: float | None = None) -> LiftoffSolution:
+                   guess: float | None = None,
+                   interface: Interface = SMOOTH) -> LiftoffSolution:
     """f > 0 with the stick zone in its limit a -> 0 (module docstring): find b and K_T.
 
     ``lam_a`` is the problem's scale of [a, inf); the whole-line map uses
     ``limit_scale(lam_a, w)`` (recorded as the solution's ``lam_a``). The result has
     regime ``no_stick``, a = 0, the flag ``stick_zone_limit`` and ``log10_a`` from
-    matching; it is ``converged`` only if the root finder converged."""
+    matching (the smooth interface's inner solution: on a compliant one a lower bound,
+    since the tangential compliance widens the stick zone); it is ``converged`` only if
+    the root finder converged."""
     check_liftoff_inputs(f, n, lam_a, lam_b, e, load)
     if f <= 0:
         raise ValueError("the stick-zone limit needs f > 0; f = 0 is solve_frictionless")
     start = time.perf_counter()
     lam_a = limit_scale(lam_a, load.w)
+    state = Linearisation()
 
     def system(p: np.ndarray) -> LinearSystem:
         b = float(np.exp(min(p[0], 4.0)))
         if preformed and b >= e - 0.25:
             raise ValueError("b too close to e")
-        return assemble_limit(load, f, n, b, lam_a, lam_b, e, preformed)[0]
+        return assemble_limit(load, f, n, b, lam_a, lam_b, e, preformed, interface, state)[0]
 
     b0 = [guess] if guess else []
     b0 += [1.35 + 0.5 * load.w, 1.2 + load.w, 1.6 + 0.3 * load.w]
@@ -138,14 +159,16 @@ def solve_no_stick(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
     b = float(np.exp(min(root.params[0], 4.0)))
     sol = LiftoffSolution(problem=problem or load.law, load=load, f=f, n=n, lam_a=lam_a,
                           lam_b=lam_b, e=e, preformed_used=preformed, regime="no_stick",
-                          a=0.0, b=b, nfev=root.nfev, message="; ".join(root.history))
+                          a=0.0, b=b, nfev=root.nfev, message="; ".join(root.history),
+                          interface=interface)
     sol.flags = (FLAG,)
     if root.system is not None:
         glide, climb = _intervals(n, b, lam_a, lam_b)
         sol.record(root, root.system, glide, climb)
     else:
         with single_thread():
-            sysm, glide, climb = assemble_limit(load, f, n, b, lam_a, lam_b, e, preformed)
+            sysm, glide, climb = assemble_limit(load, f, n, b, lam_a, lam_b, e, preformed,
+                                                interface, Linearisation())
         sol.record(root, sysm, glide, climb)
     if sol.converged and sol.phi_x.size == glide.size:
         sol.log10_a = glide.log_inner_end(sol.phi_x) / np.log(10.0)
@@ -166,12 +189,18 @@ def try_limit(sol: LiftoffSolution, lam_a: float, lam_b: float, stick_zone_limit
               b_guess: float | None = None) -> LiftoffSolution | None:
     """After a resolved solve that found no root at f < LIMIT_FRICTION: the stick-zone
     limit if it converges and matching puts a below ``stick_zone_limit`` (else None, with
-    the reason appended to ``sol.message``)."""
+    the reason appended to ``sol.message``). On a compliant interface (``sol.interface``)
+    only where C_T is below ``stick_zone_limit`` too: the tangential compliance widens
+    the stick zone to at least about C_T c."""
     if not (0 < sol.f < LIMIT_FRICTION and stick_zone_limit > 0):
+        return None
+    if sol.interface.C_T >= stick_zone_limit:
+        sol.message += (f"; stick-zone limit not used: C_T = {sol.interface.C_T:g} >= "
+                        f"stick_zone_limit {stick_zone_limit:g}")
         return None
     try:
         lim = solve_no_stick(sol.load, sol.f, sol.n, lam_a, lam_b, sol.e, sol.problem,
-                             sol.preformed_used, b_guess)
+                             sol.preformed_used, b_guess, sol.interface)
     except (ValueError, np.linalg.LinAlgError) as exc:
         sol.message += f"; stick-zone limit: {exc}"
         return None

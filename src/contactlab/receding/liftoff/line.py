@@ -35,10 +35,17 @@ from collections.abc import Callable
 
 import numpy as np
 
+from contactlab.receding.core.interface import SMOOTH, Interface
 from contactlab.receding.core.solution import check_friction
 from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT, solve_no_stick, try_limit
 from contactlab.receding.liftoff.loading import make_load
-from contactlab.receding.liftoff.solver import LiftoffSolution, critical_friction, solve_liftoff
+from contactlab.receding.liftoff.solver import (
+    COARSE_N,
+    LiftoffSolution,
+    critical_friction,
+    solve_compliant,
+    solve_liftoff,
+)
 
 #: (f, a, b) of converged line-load solutions (N = 100), only to seed the root finder
 GUESS_TABLE = np.array([[0.08, 6.4e-6, 1.379], [0.1, 2.53e-4, 1.394], [0.2, 0.0182, 1.476],
@@ -58,21 +65,33 @@ def line_guess(f: float) -> tuple[float, float]:
 
 def solve_line(f: float, n: int, lam: float, e: float,
                guess: tuple[float, float] | None = None, preformed: bool = True,
-               stick_zone_limit: float = STICK_ZONE_LIMIT) -> LiftoffSolution:
+               stick_zone_limit: float = STICK_ZONE_LIMIT,
+               interface: Interface = SMOOTH) -> LiftoffSolution:
     """Line load at friction f (see module docstring); ``preformed=False`` is the
     bounded-bounded-only model of Chaise et al.
 
     Below the critical friction (no resolved root) the stick zone is solved in its limit
     a -> 0 (``limit``: regime ``no_stick``, converged, a = 0) where matching puts a below
     ``stick_zone_limit`` (c; 0: never, the point stays ``no_stick`` unconverged). A
-    ``guess`` with a = 0 (a neighbour in that limit) goes to the limit first."""
+    ``guess`` with a = 0 (a neighbour in that limit) goes to the limit first.
+
+    ``interface``: a compliant (rough) interface (``core.interface``, ``compliant``),
+    solved from ``guess`` or by continuation from the smooth solution; the smooth one
+    (default) is the thesis's problem."""
     check_friction(f, zero=True)
     load = make_load("line")
     problem = "line" if preformed else "line_chaise"
     if f == 0:
         from contactlab.receding.liftoff.frictionless import solve_frictionless
 
-        return solve_frictionless(load, n, lam, lam, e, problem=problem, preformed=preformed)
+        return solve_frictionless(load, n, lam, lam, e, problem=problem, preformed=preformed,
+                                  guess=None if guess is None else guess[1],
+                                  interface=interface)
+    if not interface.smooth:
+        sol = solve_compliant(load, f, n, lam, lam, e, preformed, problem, interface, guess,
+                              lambda: solve_line(f, COARSE_N, lam, e, None, preformed,
+                                                 stick_zone_limit))
+        return sol if sol.converged else try_limit(sol, lam, lam, stick_zone_limit) or sol
     if guess is not None and guess[0] == 0 and stick_zone_limit > 0:
         lim = solve_no_stick(load, f, n, lam, lam, e, problem, preformed, guess[1])
         if lim.converged and lim.log10_a < np.log10(stick_zone_limit):

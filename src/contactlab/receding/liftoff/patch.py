@@ -19,11 +19,17 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from contactlab.receding.core.interface import SMOOTH, Interface
 from contactlab.receding.core.solution import check_friction
-from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT, solve_no_stick
+from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT, solve_no_stick, try_limit
 from contactlab.receding.liftoff.line import fallbacks, line_guess
 from contactlab.receding.liftoff.loading import Load, make_load
-from contactlab.receding.liftoff.solver import LiftoffSolution, solve_liftoff
+from contactlab.receding.liftoff.solver import (
+    COARSE_N,
+    LiftoffSolution,
+    solve_compliant,
+    solve_liftoff,
+)
 
 LAWS = ("uniform", "hertz", "punch")
 
@@ -128,7 +134,8 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
                 lam_a: float | None = None, lam_b: float | None = None,
                 e: float | None = None, table: Mapping[str, Sequence[float]] | None = None,
                 guess: tuple[float, float] | None = None, preformed: bool = True,
-                stick_zone_limit: float = STICK_ZONE_LIMIT) -> LiftoffSolution:
+                stick_zone_limit: float = STICK_ZONE_LIMIT,
+                interface: Interface = SMOOTH) -> LiftoffSolution:
     """A pressure patch at friction f and half-width w_hat (see module docstring).
 
     ``law`` is uniform/hertz/punch (aliases: constant, A1, A2, A3) or ``table`` with
@@ -136,6 +143,7 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
     root is found: the stick-zone limit at low f (``limit``, below ``stick_zone_limit``),
     then the continuous slip rule (``solver``), as for the line load (``line.fallbacks``).
     A ``guess`` with a = 0 (a neighbour in the stick-zone limit) goes to the limit first.
+    ``interface``: a compliant (rough) interface, as in ``line.solve_line``.
     """
     check_friction(f, zero=True)
     load = make_load(law, w_hat, table)
@@ -147,7 +155,16 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
         from contactlab.receding.liftoff.frictionless import solve_frictionless
 
         return solve_frictionless(load, n, lam_a, lam_b, e, problem=load.law,
-                                  preformed=preformed)
+                                  preformed=preformed,
+                                  guess=None if guess is None else guess[1],
+                                  interface=interface)
+    if not interface.smooth:
+        sol = solve_compliant(load, f, n, lam_a, lam_b, e, preformed, load.law, interface,
+                              guess, lambda: solve_patch(law, f, w_hat, COARSE_N, lam_a,
+                                                         lam_b, e, table, None, preformed,
+                                                         stick_zone_limit))
+        return sol if sol.converged else try_limit(sol, lam_a, lam_b,
+                                                   stick_zone_limit) or sol
     if guess is not None and guess[0] == 0 and stick_zone_limit > 0:
         lim = solve_no_stick(load, f, n, lam_a, lam_b, e, load.law, preformed, guess[1])
         if lim.converged and lim.log10_a < np.log10(stick_zone_limit):

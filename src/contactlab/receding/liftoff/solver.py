@@ -66,16 +66,24 @@ smooth in b, and the Chaise model has an admissible root at every f up to 1 (N =
 500). Solutions of the two forms differ by the discretisation error of N beyond b (b by
 2e-4 relative at f = 0.5, N = 100), so the continuous form is the fallback where the
 H-switched one has no root, flagged ``continuous_slip_rule``.
+
+Rough interface: ``assemble(..., interface=)`` and ``solve_liftoff(..., interface=)`` take
+a compliant interface law (``core.interface``); ``compliant`` adds the stick and contact
+zones' densities and rows to the system above, ``compliance_seed`` reaches a compliant
+solution from the smooth one. The smooth interface (default) assembles the system above
+unchanged.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from contactlab.blas import single_thread
 from contactlab.receding.core.dislocations import DensityInterval
+from contactlab.receding.core.interface import SMOOTH, Interface
 from contactlab.receding.core.quadrature import interpolation_matrix, legendre
 from contactlab.receding.core.solution import (
     admissible,
@@ -88,6 +96,13 @@ from contactlab.receding.core.solve import (
     RootResult,
     difference_jacobian,
     find_transitions,
+)
+from contactlab.receding.liftoff.compliant import (
+    CompliantPart,
+    Linearisation,
+    compliant_checks,
+    extend,
+    geometry,
 )
 from contactlab.receding.liftoff.loading import Load
 from contactlab.receding.liftoff.preformed import Preformed
@@ -132,6 +147,12 @@ class LiftoffSolution:
     flags: tuple[str, ...] = ()
     #: log10(a/c) by matching for a solution in the stick-zone limit; NaN otherwise
     log10_a: float = np.nan
+    #: the interface law (``core.interface``; smooth: the thesis's problem)
+    interface: Interface = SMOOTH
+    #: the densities a compliant interface adds (``compliant``; None when smooth)
+    compliant: CompliantPart | None = None
+    #: residual certificates beyond the contact checks (equilibrium, end conditions)
+    certificates: dict[str, float] = field(default_factory=dict)
 
     # ---- convenience for the FE branch and the CLI
     @property
@@ -166,14 +187,20 @@ class LiftoffSolution:
             if interval is not None and phi.size:
                 ms, mn = interval.influence(x)
                 s, n = s + ms @ phi, n + mn @ phi
+        if self.compliant is not None:
+            cs, cn = self.compliant.tractions(x)
+            s, n = s + cs, n + cn
         return s, n
 
     def glide_density(self, x: np.ndarray) -> np.ndarray:
         """B_x (even), times 2 mu / ((kappa + 1) T)."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        if self.glide is None or not self.phi_x.size:
-            return np.zeros_like(x)
-        return self.glide.density(self.phi_x, x)
+        out = np.zeros_like(x)
+        if self.glide is not None and self.phi_x.size:
+            out = self.glide.density(self.phi_x, x)
+        if self.compliant is not None:
+            out = out + self.compliant.density("glide", x)
+        return out
 
     def corrective_climb_density(self, x: np.ndarray) -> np.ndarray:
         """B_yc (odd), the bounded-bounded correction."""
@@ -189,24 +216,35 @@ class LiftoffSolution:
         return np.zeros_like(x) if pre is None else pre.density(x, self._k)
 
     def climb_density(self, x: np.ndarray) -> np.ndarray:
-        """Total B_y = A_y + B_yc (odd)."""
-        return self.preformed_density(x) + self.corrective_climb_density(x)
+        """Total B_y = A_y + B_yc (odd), and the contact zone's on a compliant interface."""
+        out = self.preformed_density(x) + self.corrective_climb_density(x)
+        if self.compliant is not None:
+            out = out + self.compliant.density("climb", x)
+        return out
 
     def slip(self, x: np.ndarray) -> np.ndarray:
         """Relative slip u2 - u1 = -int_0^x B_x (odd, zero at the centre), in
-        (kappa + 1) T c / (2 mu)."""
+        (kappa + 1) T c / (2 mu); on a compliant interface the elastic part c_t S in the
+        stick zone included."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
         if self.glide is None or not self.phi_x.size:
             return np.zeros_like(x)
         if self.glide.mapping == "infinite":  # whole-line density (f = 0, no stick zone)
             return (self.glide.displacement(self.phi_x, x)
                     - self.glide.displacement(self.phi_x, np.zeros(1)))
-        return -np.sign(x) * self.glide._cumulative(self.phi_x, np.abs(x))
+        out = -np.sign(x) * self.glide._cumulative(self.phi_x, np.abs(x))
+        if self.compliant is not None:
+            out -= np.sign(x) * self.compliant.integral_from_zero("glide", np.abs(x))
+        return out
 
     def separation(self, x: np.ndarray) -> np.ndarray:
-        """Separation v2 - v1 = -int_0^|x| B_y (even, zero in contact), same unit."""
+        """Separation v2 - v1 = -int_0^|x| B_y (even, zero in contact), same unit; on a
+        compliant interface the gap g(0) - int_0^|x| B_y, minus the closure in contact."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
         out = np.zeros_like(x)
+        if self.compliant is not None:
+            out += self.compliant.approach - self.compliant.integral_from_zero(
+                "climb", np.abs(x))
         if self.climb is not None and self.phi_y.size:
             out -= self.climb._cumulative(self.phi_y, np.abs(x))
         pre = self.preformed
@@ -245,6 +283,8 @@ class LiftoffSolution:
         lhs = self.glide.integral(self.phi_x) if self.glide is not None else np.nan
         if self.glide is not None and self.glide.mapping == "infinite":
             lhs *= 0.5  # the whole-line density of f = 0: half of it lies on x > 0
+        if self.compliant is not None:  # the stick zone's glide density (and bridge)
+            lhs += float(self.compliant.integral_from_zero("glide", np.array([1e3]))[0])
         rhs = slip_relation_rhs(self._k, self.shear_moment())
         return {"lhs": float(lhs), "rhs": float(rhs), "error": float(lhs - rhs)}
 
@@ -270,6 +310,10 @@ class LiftoffSolution:
             self.phi_x, self.phi_y = root.phi[:gs], root.phi[gs:gs + n]
             self.K_T = float(root.phi[gs + n]) if self.preformed_used else np.nan
             self.residual = float(np.max(np.abs(system.matrix @ root.phi - system.rhs)))
+            if not self.interface.smooth:
+                base = gs + n + (1 if self.preformed_used else 0)
+                geom = geometry(self.interface, max(self.a, 0.0), self.b, self.n)
+                self.compliant = CompliantPart(geom, root.phi[base:base + geom.size])
         self.leftover = root.residual
         self.converged = root.converged
         if not root.converged:
@@ -289,11 +333,40 @@ class LiftoffSolution:
         x = np.linspace(0.0, b + 8.0, points)[1:]
         eps = 1e-6
         s, n = self.tractions(x)
+        if not self.interface.smooth:
+            self.checks = compliant_checks(x, self.f, s, n, law=self.interface, a=a, b=b,
+                                           slip=self.slip(x), gap=self.separation(x))
+            self.certificates = self.certify()
+            return self.checks
         self.checks = contact_checks(x, self.f, s, n, contact=x < b - eps, stick=x < a - eps,
                                      slipping=(x > a + eps) & (x < b - eps),
                                      separated=x > b + eps, slip=self.slip,
                                      separation=self.separation)
         return self.checks
+
+    def certify(self, points: int = 200) -> dict[str, float]:
+        """Residual certificates beyond the contact checks (units of T, displacements in
+        (kappa + 1) T c / (2 mu)): ``equilibrium_error`` |2 int_0^b N dx + 1| (the
+        interface carries the load T), at the contact end ``end_traction`` |N(b)| and
+        ``end_gap`` |g(b)|, at the stick end ``stick_end_mismatch`` | |S(a)| - f |N(a)| |,
+        and ``centre_slip`` |u(0)| (zero by symmetry); NaN where they do not apply."""
+        out = {k: np.nan for k in ("equilibrium_error", "end_traction", "end_gap",
+                                   "stick_end_mismatch", "centre_slip")}
+        if not (self.converged and np.isfinite(self.b)):
+            return out
+        a = max(self.a, 0.0) if np.isfinite(self.a) else 0.0
+        total = 0.0
+        for lo, hi in ([(0.0, a), (a, self.b)] if 0 < a < self.b else [(0.0, self.b)]):
+            xs, ws = legendre(points, lo, hi)
+            total += float(ws @ self.tractions(xs)[1])
+        s_ab, n_ab = self.tractions(np.array([a, self.b]))
+        out.update(equilibrium_error=abs(2.0 * total + 1.0), end_traction=abs(n_ab[1]),
+                   end_gap=abs(float(self.separation(np.array([self.b]))[0])))
+        if a > 0 and self.f > 0:
+            out["stick_end_mismatch"] = abs(abs(s_ab[0]) - self.f * abs(n_ab[0]))
+        if self.compliant is not None:
+            out["centre_slip"] = abs(self.compliant.centre_slip)
+        return out
 
 
 # --------------------------------------------------------------------------- assembly
@@ -307,11 +380,14 @@ def _intervals(a: float, b: float, n: int, lam_a: float, lam_b: float):
 
 def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam_b: float,
              e: float, preformed: bool = True, drop: int | None = None,
-             continuous: bool = False):
+             continuous: bool = False, interface: Interface = SMOOTH,
+             state: Linearisation | None = None):
     """The full discretised system for fixed (a, b): (LinearSystem, glide, climb).
 
     ``continuous``: the friction term f N on every shear row instead of those with x < b
-    (the continuous slip rule of the module docstring).
+    (the continuous slip rule of the module docstring). ``interface``: a compliant
+    interface adds the unknowns and rows of ``compliant`` (N_k = N), ``state`` the
+    measured law's last linearisation; the smooth interface assembles the thesis's system.
 
     Columns: phi_x (N), phi_y (N) and, with the preformed density, K. Rows: N + 1 normal
     rows on [b, inf), N + 1 shear rows on [a, inf) and, with the preformed density, the
@@ -357,7 +433,32 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
         matrix[2 * m, 2 * n] = 0.0
         rhs[2 * m] = 0.0
     centre = n // 2 if drop is None else drop
-    return LinearSystem(matrix, rhs, leftover=[centre, m + centre]), glide, climb
+    system = LinearSystem(matrix, rhs, leftover=[centre, m + centre])
+    if interface.smooth:
+        return system, glide, climb
+    pre = Preformed(load, b, e) if preformed else None
+    system = extend(system, geometry(interface, a, b, n),
+                    lambda x: base_tractions(load, glide, climb, pre, x),
+                    normal_rows=slice(0, m), normal_points=xb, shear_rows=slice(m, 2 * m),
+                    shear_points=xa, friction=h, state=state)
+    return system, glide, climb
+
+
+def base_tractions(load: Load, glide, climb: DensityInterval, pre: Preformed | None,
+                   x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(S, N, s_known, n_known) at x: the traction matrices of the columns [phi_x, phi_y,
+    K] (K with the preformed density) and the tractions of the load and of the preformed
+    density's load part (units of T)."""
+    gs, gn = glide.influence(x)
+    cs, cn = climb.influence(x)
+    s0, n0 = load.bilateral(x)
+    shear, normal = [gs, cs], [gn, cn]
+    if pre is not None:
+        ps, pn = pre.stresses(x)
+        shear.append(ps[:, 1:2])
+        normal.append(pn[:, 1:2])
+        s0, n0 = s0 + ps[:, 0], n0 + pn[:, 0]
+    return np.hstack(shear), np.hstack(normal), s0, n0
 
 
 def _params(p: np.ndarray) -> tuple[float, float]:
@@ -380,17 +481,23 @@ def check_liftoff_inputs(f: float, n: int, lam_a: float, lam_b: float, e: float,
 def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
                   preformed: bool = True, guess: tuple[float, float] | None = None,
                   problem: str = "", checks: bool = True,
-                  continuous: bool | None = None, seed_only: bool = False) -> LiftoffSolution:
+                  continuous: bool | None = None, seed_only: bool = False,
+                  interface: Interface = SMOOTH) -> LiftoffSolution:
     """Solve for (a, b, K_T) and the densities at friction f > 0 (see module docstring);
     ``checks=False`` skips the contact checks (for solutions that only seed others);
     ``seed_only`` searches from ``guess`` alone (no stock guesses).
 
     ``continuous``: None tries the H-switched slip rule and, where it has no root, the
-    continuous one (flag ``continuous_slip_rule``); True or False uses that form only."""
+    continuous one (flag ``continuous_slip_rule``); True or False uses that form only.
+    ``interface``: a compliant interface (``compliant``); without a ``guess`` its cold
+    solve starts from the smooth solution and follows the compliance up
+    (``compliance_seed``)."""
     forms = [False, True] if continuous is None else [bool(continuous)]
+    if not interface.smooth and guess is None:
+        guess = compliance_seed(load, f, lam_a, lam_b, e, preformed, interface)
     for form in forms:
         sol = _solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, problem, checks,
-                             form, seed_only)[0]
+                             form, seed_only, interface)[0]
         if form:
             sol.flags = (*sol.flags, CONTINUOUS_FLAG)
         if sol.converged:
@@ -401,24 +508,27 @@ def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: f
 def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
                    preformed: bool, guess: tuple[float, float] | None, problem: str,
                    checks: bool = True, continuous: bool = False, seed_only: bool = False,
+                   interface: Interface = SMOOTH, seed_jacobian: np.ndarray | None = None,
                    ) -> tuple[LiftoffSolution, np.ndarray | None]:
     """``solve_liftoff`` and the secant Jacobian of its root in (log a, log(b - a)) (None
     if there is none), which seeds the root finder of the next N of the continuation.
     ``checks=False`` skips the contact checks (the coarse solve only seeds the fine one);
-    ``seed_only`` searches from ``guess`` alone (a sweep's neighbour), no stock guesses."""
+    ``seed_only`` searches from ``guess`` alone (a sweep's neighbour), no stock guesses,
+    starting from ``seed_jacobian`` when given (a neighbour's)."""
     import time
 
     check_liftoff_inputs(f, n, lam_a, lam_b, e, load)
     if f == 0:
         raise ValueError("f = 0 has no stick zone; use solve_frictionless")
     start = time.perf_counter()
+    state = Linearisation()
 
     def system(p: np.ndarray) -> LinearSystem:
         a, b = _params(p)
         if preformed and b >= e - 0.25:
             raise ValueError("b too close to e")
         return assemble(load, f, n, a, b, lam_a, lam_b, e, preformed,
-                        continuous=continuous)[0]
+                        continuous=continuous, interface=interface, state=state)[0]
 
     w = load.w
     fine_only = False
@@ -432,7 +542,8 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
         # one entry is 4x off at N = 64, so the fine Newton starts from the coarse secant
         # Jacobian times N/COARSE_N, or (large N) from differences at N/2 times 2.
         coarse, jacobian = _solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed,
-                                          guess, problem, False, continuous, seed_only)
+                                          guess, problem, False, continuous, seed_only,
+                                          interface)
         if jacobian is not None:
             jacobian = jacobian * (n / COARSE_N)
         if coarse.converged:
@@ -442,7 +553,8 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
             if half > 2 * COARSE_N:
                 mid = difference_jacobian(
                     lambda p: assemble(load, f, half, *_params(p), lam_a, lam_b, e,
-                                       preformed, continuous=continuous)[0],
+                                       preformed, continuous=continuous,
+                                       interface=interface, state=Linearisation())[0],
                     np.array([np.log(coarse.a), np.log(coarse.b - coarse.a)]))
                 jacobian = jacobian if mid is None else mid * (n / half)
     guesses = []
@@ -450,6 +562,8 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
         guesses.append(np.array([np.log(guess[0]), np.log(guess[1] - guess[0])]))
     if seed_only and guesses:
         fine_only = True  # one search from the seed, with the fine iteration budget
+        if jacobian is None:
+            jacobian = seed_jacobian
     if not fine_only:
         for a0, b0 in ((0.25 + 0.15 * w, 1.8 + 0.5 * w), (0.08 + 0.15 * w, 1.57 + 0.5 * w),
                        (0.6 + 0.15 * w, 2.2 + 0.5 * w), (0.02 + 0.5 * w, 1.5 + w)):
@@ -472,7 +586,8 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
     a, b = _params(root.params)
     sol = LiftoffSolution(problem=problem or load.law, load=load, f=f, n=n, lam_a=lam_a,
                           lam_b=lam_b, e=e, preformed_used=preformed, a=a, b=b,
-                          nfev=root.nfev, message="; ".join(root.history))
+                          nfev=root.nfev, message="; ".join(root.history),
+                          interface=interface)
     if root.system is not None:  # the root finder's own system at the root
         sol.record(root, root.system, *_intervals(a, b, n, lam_a, lam_b), checks=checks)
         sol.seconds = time.perf_counter() - start
@@ -480,8 +595,9 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
     try:
         with single_thread():
             sysm, glide, climb = assemble(load, f, n, a, b, lam_a, lam_b, e, preformed,
-                                          continuous=continuous)
-    except (ValueError, np.linalg.LinAlgError):
+                                          continuous=continuous, interface=interface,
+                                          state=Linearisation())
+    except (ValueError, np.linalg.LinAlgError, FloatingPointError):
         sol.message += "; no valid transition points"
         sol.regime = "failed"
         sol.evaluate_checks()
@@ -490,6 +606,52 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
     sol.record(root, sysm, glide, climb, checks=checks)
     sol.seconds = time.perf_counter() - start
     return sol, None
+
+
+#: compliance numbers (the larger of C, C_T) the cold solve of a compliant interface
+#: passes on its way from the smooth solution (``compliance_seed``)
+COMPLIANCE_STEPS = (0.01, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1e3, 3e3, 1e4)
+
+
+def compliance_seed(load: Load, f: float, lam_a: float, lam_b: float, e: float,
+                    preformed: bool, interface: Interface,
+                    smooth: tuple[float, float] | None = None) -> tuple[float, float] | None:
+    """(a, b) of ``interface`` at N = COARSE_N, reached from the smooth solution
+    (``smooth``, or a cold smooth solve) through the compliances of COMPLIANCE_STEPS
+    below the target's, each step seeding the next; None if a step finds no root."""
+    if smooth is None:
+        first = solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed, None,
+                              checks=False, continuous=False)
+        if not first.converged:
+            return None
+        smooth = (first.a, first.b)
+    seed, jacobian = smooth, None
+    largest = max(interface.C, interface.C_T)
+    for level in [v for v in COMPLIANCE_STEPS if v < largest] + [largest]:
+        step = interface.scaled(level / largest)
+        sol, jacobian = _solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed, seed,
+                                       "", False, False, True, step, jacobian)
+        if not sol.converged:
+            return None
+        seed = (sol.a, sol.b)
+    return seed
+
+
+def solve_compliant(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
+                    preformed: bool, problem: str, interface: Interface,
+                    guess: tuple[float, float] | None,
+                    smooth: Callable[[], LiftoffSolution]) -> LiftoffSolution:
+    """A lifting-off problem at f > 0 on a compliant ``interface``: from ``guess`` (a
+    neighbour's a, b) or, without one, from ``smooth()`` (the smooth problem at a coarse N,
+    with its fallbacks) through ``compliance_seed``; the H-switched slip rule first, then
+    the continuous one (flag ``continuous_slip_rule``)."""
+    if guess is None or not guess[1] > guess[0] > 0:
+        first = smooth()
+        start = (max(first.a, 1e-3), first.b) if first.converged else None
+        guess = compliance_seed(load, f, lam_a, lam_b, e, preformed, interface, start) \
+            if start is not None else None
+    return solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, problem,
+                         seed_only=guess is not None, interface=interface)
 
 
 def coarse_failure(coarse: LiftoffSolution) -> RootResult:

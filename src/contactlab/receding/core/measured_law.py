@@ -1,0 +1,140 @@
+"""The measured interface law of a tested pair (thesis Part II) as receding-contact input.
+
+From a stiffness summary (``results/stiffness/summary.nc``, :func:`contactlab.stiffness.
+summary.summary_dataset`: per test and direction the normal fit beta_n [1/um] and P0 [kN]
+of eq. (2.2), Kn_An [kN/mm^3] at the test's load, Kt0_An [kN/mm^3], f, Cc = Kt0/Kn and the
+nominal area An [mm^2]) :func:`law_from_summary` builds a :class:`StiffnessLaw` per unit
+nominal area (eqs 2.4, 2.7):
+
+    k_n(p) = beta_n (p + p0),  p0 = -P0 / An,      k_t0(p) = Cc k_n(p),   slip at f p
+
+(p the nominal pressure in kN/mm^2; see ``core.interface`` for the sign of P0). It gives
+the dimensionless interface of a receding contact of a layer (E, nu, thickness c) loaded
+with T (the load per thickness, kN/mm^2: P/c for a line load P, 2 w p / c for a patch of
+half-width w and pressure p):
+
+``measured``  (:meth:`StiffnessLaw.measured`): C and C_T = C / Cc at p = T and
+              pi0 = p0 / T -- refused (ValueError) when p0 <= 0, because k_n <= 0 at the
+              low pressures every contact edge meets;
+``linear``    (:meth:`StiffnessLaw.linearised`): the stiffness at one stated pressure,
+              k_n(p), k_t = Cc k_n(p), for any fit with k_n(p) > 0 there.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+from contactlab.receding.core.interface import (
+    Interface,
+    compliance_number,
+    linear_interface,
+    measured_interface,
+)
+
+
+@dataclass(frozen=True)
+class StiffnessLaw:
+    """Eqs (2.4), (2.7) per unit nominal area: ``beta_n`` [1/mm], ``p0`` [kN/mm^2]
+    (k_n = beta_n (p + p0) [kN/mm^3]), ``cc`` = k_t0 / k_n, ``f``; ``source`` names the
+    test and the directions it was taken from."""
+
+    beta_n: float
+    p0: float
+    cc: float
+    f: float
+    source: str = ""
+
+    def __post_init__(self) -> None:
+        where = f" ({self.source})" if self.source else ""
+        if not (np.isfinite(self.beta_n) and self.beta_n > 0):
+            raise ValueError(f"beta_n must be positive{where}, got {self.beta_n} 1/mm")
+        if not np.isfinite(self.p0):
+            raise ValueError(f"p0 must be finite{where}, got {self.p0}")
+        if not (np.isfinite(self.cc) and self.cc > 0):
+            raise ValueError(f"Cc (k_t0/k_n) must be positive{where}, got {self.cc}")
+        if not (np.isfinite(self.f) and self.f >= 0):
+            raise ValueError(f"friction coefficient f must be >= 0{where}, got {self.f}")
+
+    @classmethod
+    def from_fit(cls, *, beta_n_per_um: float, P0_kN: float, area_mm2: float, cc: float,
+                 f: float, source: str = "") -> StiffnessLaw:
+        """The law from the thesis's fit numbers (Tables 2.1, 2.7: beta_n [1/um], P0 [kN]
+        of eq. 2.2, per nominal area An [mm^2]) and Cc, f: beta_n -> 1/mm, p0 = -P0/An."""
+        if not (np.isfinite(area_mm2) and area_mm2 > 0):
+            raise ValueError(f"nominal area An must be positive, got {area_mm2} mm^2")
+        return cls(beta_n_per_um * 1e3, -P0_kN / area_mm2, cc, f, source)
+
+    def k_n(self, p: np.ndarray | float) -> np.ndarray:
+        """Normal stiffness per unit area [kN/mm^3] at the pressure p [kN/mm^2]."""
+        return self.beta_n * (np.asarray(p, dtype=float) + self.p0)
+
+    def closure(self, p: np.ndarray | float) -> np.ndarray:
+        """Closure [mm] from first touch (p = 0) to p: ln(1 + p/p0) / beta_n (p0 > 0)."""
+        self._check_edge()
+        return np.log1p(np.asarray(p, dtype=float) / self.p0) / self.beta_n
+
+    def _check_edge(self) -> None:
+        if not self.p0 > 0:
+            where = f"{self.source}: " if self.source else ""
+            raise ValueError(
+                f"{where}p0 = {self.p0:.4g} kN/mm^2 (p0 = -P0/An): the normal stiffness "
+                f"k_n = beta_n (p + p0) is <= 0 for p <= {-self.p0:.4g} kN/mm^2, which the "
+                "edge of every receding contact meets (p -> 0); use the law linearised at a "
+                "stated pressure instead")
+
+    def measured(self, *, T: float, E: float, nu: float, c: float) -> Interface:
+        """The dimensionless measured law of a layer (E [kN/mm^2], nu, c [mm]) under the
+        load per thickness T [kN/mm^2]: C, C_T = C/Cc at p = T, pi0 = p0/T."""
+        self._check_edge()
+        if not (np.isfinite(T) and T > 0):
+            raise ValueError(f"load per thickness T must be positive, got {T}")
+        C = compliance_number(E, nu, c, float(self.k_n(T)))
+        return measured_interface(C, C / self.cc, self.p0 / T)
+
+    def linearised(self, *, pressure: float, E: float, nu: float, c: float) -> Interface:
+        """The linear law with the stiffness at ``pressure`` [kN/mm^2]: C at k_n(pressure),
+        C_T at Cc k_n(pressure)."""
+        k = float(self.k_n(pressure))
+        if not k > 0:
+            raise ValueError(f"{self.source + ': ' if self.source else ''}normal stiffness "
+                             f"k_n = {k:.4g} kN/mm^3 <= 0 at p = {pressure} kN/mm^2")
+        C = compliance_number(E, nu, c, k)
+        return linear_interface(C, C / self.cc)
+
+
+def _value(ds: xr.Dataset, name: str, test: str, **where: str) -> float:
+    if name not in ds:
+        raise ValueError(f"stiffness summary has no variable {name!r}")
+    if test not in list(ds["test"].values):
+        raise ValueError(f"stiffness summary has no test {test!r} (tests: "
+                         f"{', '.join(map(str, ds['test'].values))})")
+    var = ds[name].sel(test=test)
+    for dim, label in where.items():
+        if label not in list(var[dim].values):
+            raise ValueError(f"stiffness summary: {dim} {label!r} not among "
+                             f"{', '.join(map(str, var[dim].values))}")
+        var = var.sel({dim: label})
+    value = float(var)
+    if not np.isfinite(value):
+        place = ", ".join(f"{k} {v}" for k, v in where.items())
+        raise ValueError(f"stiffness summary: {name} of test {test} ({place}) is missing")
+    return value
+
+
+def law_from_summary(ds: xr.Dataset, test: str, *, normal_direction: str,
+                     tangential_direction: str, cc_basis: str) -> StiffnessLaw:
+    """The law of ``test`` from a stiffness summary dataset (module docstring):
+    beta_n and P0 of the normal fit of ``normal_direction`` (loading or unloading; the
+    mean rows carry no fit), f of ``tangential_direction`` (loading, unloading,
+    combined), Cc of ``cc_basis`` (mean, loading, unloading), An of the test."""
+    return StiffnessLaw.from_fit(
+        beta_n_per_um=_value(ds, "beta_n", test, normal_direction=normal_direction),
+        P0_kN=_value(ds, "P0", test, normal_direction=normal_direction),
+        area_mm2=_value(ds, "nominal_area_mm2", test),
+        cc=_value(ds, "Cc", test, basis=cc_basis),
+        f=_value(ds, "f", test, tangential_direction=tangential_direction),
+        source=f"{test} ({normal_direction} normal fit, {tangential_direction} f, Cc on "
+               f"the {cc_basis} Kn)")

@@ -1,0 +1,470 @@
+"""Lifting-off receding contacts on a rough (compliant) interface: points, sweeps, profiles.
+
+The solvers of chs 6-7 take an ``interface`` (``core.interface``: smooth, linear or the
+measured law; ``compliant`` for the method). Here:
+
+``solve_rough``     one problem (line, uniform, hertz, punch) at (f, w/c) on an interface:
+                    a :class:`~contactlab.receding.liftoff.solver.LiftoffSolution`;
+``rough_point``     the same for (problem, f, w/c, C, C_T) on the linear law, as a record
+                    of plain numbers: a, b, K_T, the contact checks and the residual
+                    certificates (the entry point of the finite element comparison);
+``sweep_rough``     a sweep over the compliance C (from 0, the smooth interface) at every
+                    f, tangential ratio C_T/C and, for patches, w/c: an xarray Dataset with
+                    CF attributes, every parameter recorded; split it along f into chunks
+                    and join them with ``gather_rough``;
+``rough_profile``   tractions, relative displacements and the interface law along x,
+                    beside the smooth solution of the same problem.
+
+A sweep follows C upwards from the smooth solution, each point seeded by the last (a and
+b grow with C: the contact spreads over a softer interface); a point whose seeded solve
+fails is solved cold (continuation from the smooth solution, ``solver.compliance_seed``);
+a converged point that misses a contact check is solved again at 2N, 4N, ... up to
+``refine_max_n`` (``core.solution.refine_in_n``). No point is dropped: each is kept with
+its numbers and flags. Lengths in c, tractions in T (the load per thickness), relative
+displacements in (kappa + 1) T c / (2 mu).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import xarray as xr
+
+from contactlab.io import concat_chunks
+from contactlab.progress import Progress
+from contactlab.receding.core.interface import (
+    SMOOTH,
+    Interface,
+    linear_interface,
+    measured_interface,
+)
+from contactlab.receding.core.measured_law import StiffnessLaw
+from contactlab.receding.core.solution import (
+    CHECK_TOL,
+    flag_attrs,
+    flag_bits,
+    largest_check,
+    refine_in_n,
+    regime_attrs,
+)
+from contactlab.receding.core.summary import summary_attrs
+from contactlab.receding.liftoff.line import solve_line
+from contactlab.receding.liftoff.patch import default_lambdas, solve_patch
+from contactlab.receding.liftoff.solver import REGIMES, LiftoffSolution
+
+PROBLEMS = ("line", "uniform", "hertz", "punch")
+ONE = "1"
+#: the contact checks of a compliant interface (``compliant.compliant_checks``), units T
+CHECKS = {
+    "max_tension": "largest N/T in contact (admissible <= 0)",
+    "max_stick_excess": "largest |S| - f|N| in the stick zone, /T (admissible <= 0)",
+    "max_slip_mismatch": "largest friction-law mismatch | |S| - f|N| | in the slip zone, "
+                         "or |S| where S opposes the irreversible slip u - c_t S, /T",
+    "max_separated_traction": "largest |N|, |S| in the separation zone, /T",
+    "max_overlap": "largest interpenetration beyond the closure outside contact (negative "
+                   "gap for x > b), 2 mu g / ((kappa + 1) T c)",
+    "max_closure_mismatch": "largest |g + closure(P)| / (closure(P)/P) in contact: the "
+                            "normal interface law as a traction, /T",
+    "max_stick_law_mismatch": "largest |u - c_t S| / c_t in the stick zone: the tangential "
+                              "interface law as a traction, /T",
+}
+#: residual certificates beyond the checks (``solver.LiftoffSolution.certify``)
+CERTIFICATES = {
+    "equilibrium_error": "|2 int_0^b N dx / (T c) + 1|: the interface carries the load",
+    "end_traction": "|N(b)|/T: the pressure vanishes at the end of contact",
+    "end_gap": "|g(b)|, 2 mu g / ((kappa + 1) T c): the gap closes at the end of contact",
+    "stick_end_mismatch": "| |S(a)| - f|N(a)| | / T: the stick law meets the friction "
+                          "limit at a",
+    "centre_slip": "|u(0)|, 2 mu u / ((kappa + 1) T c): zero by symmetry",
+    "remote_slip_error": "remote slip relation (corrected eq. 6.32/7.32): lhs - rhs, "
+                         "in (kappa + 1) T c / (2 mu)",
+}
+SCALARS = {
+    "a": "end of the central stick zone a/c",
+    "b": "end of contact b/c (start of separation)",
+    "K_T": "remote slope of the layer k_l 2 mu / ((kappa + 1) T), T = load per thickness",
+    "approach": "gap at the centre g(0), 2 mu g / ((kappa + 1) T c): minus the closure "
+                "there (0 on a smooth interface)",
+    "a_resolution": "distance of the first node of the slip zone's glide density beyond a, "
+                    "/c (on a compliant interface a is resolved to ~10 % where a is 8 "
+                    "times this, ~1 % at 20 times)",
+    "residual": "largest residual of all discretised equations at the solution (units of T)",
+}
+EXTRA = {
+    "converged": ("root finder converged (1) or not", np.int8),
+    "admissible": (f"every contact check holds within CHECK_TOL = {CHECK_TOL} (1) or not",
+                   np.int8),
+    "nfev": ("linear solves (assemblies) used by the root finder", np.int32),
+    "n_used": ("Gauss-Chebyshev points N of the reported solution (the sweep's N unless "
+               "refined; N_k = N on the stick and contact zones)", np.int32),
+    "max_check_at_n": ("largest contact check value at the sweep's N, /T", float),
+}
+
+
+def solve_rough(problem: str, f: float, w_hat: float, interface: Interface, *, n: int,
+                lam: float, e_extra: float, guess: tuple[float, float] | None = None,
+                ) -> LiftoffSolution:
+    """``problem`` (line, uniform, hertz or punch) at friction f and half-width w_hat
+    (ignored for the line load) on ``interface``.
+
+    ``lam``: the map scale of the line load (both densities, sec. 6.4) or lambda_b of a
+    patch, whose lambda_a is the thesis's (``patch.default_lambdas``, sec. 7.4);
+    ``e_extra``: e - w (e for the line load); ``guess``: (a, b) of a neighbour."""
+    if problem not in PROBLEMS:
+        raise ValueError(f"problem must be one of {', '.join(PROBLEMS)}, got {problem!r}")
+    if problem == "line":
+        return solve_line(f, n, lam, e_extra, guess=guess, interface=interface)
+    if not (np.isfinite(w_hat) and w_hat > 0):
+        raise ValueError(f"w_hat must be positive for a patch, got {w_hat}")
+    lam_a = default_lambdas(w_hat)[0]
+    return solve_patch(problem, f, w_hat, n, lam_a=lam_a, lam_b=lam, e=w_hat + e_extra,
+                       guess=guess, interface=interface)
+
+
+def solution_record(sol: LiftoffSolution, start: float = np.nan) -> dict[str, float]:
+    """The numbers of one solution: SCALARS, CHECKS, CERTIFICATES and EXTRA (NaN where
+    they do not apply; a, b, K_T NaN unless converged); ``start`` is the largest check at
+    the sweep's N of a refined point."""
+    rec: dict[str, float] = {k: np.nan for k in [*SCALARS, *CHECKS, *CERTIFICATES]}
+    certificates = sol.certificates or sol.certify()
+    rec.update({k: float(v) for k, v in certificates.items()})
+    rec["remote_slip_error"] = sol.remote_slip_record()["remote_slip_error"]
+    rec.update(a=sol.a, b=sol.b, K_T=sol.K_T, residual=sol.residual,
+               approach=sol.compliant.approach if sol.compliant is not None else 0.0)
+    if sol.glide is not None and sol.glide.mapping == "semi-infinite":
+        rec["a_resolution"] = float(sol.glide.nodes.min() - sol.a)
+    if sol.converged:
+        rec.update({k: float(sol.checks.get(k, 0.0 if k in ("max_closure_mismatch",
+                                                              "max_stick_law_mismatch")
+                                            else np.nan)) for k in CHECKS})
+    else:
+        rec.update(a=np.nan, b=np.nan, K_T=np.nan, approach=np.nan)
+    rec["converged"] = int(sol.converged)
+    rec["admissible"] = int(sol.admissible)
+    rec["regime"] = REGIMES.index(sol.regime) if (sol.converged
+                                                  and sol.regime in REGIMES) else -1
+    rec["nfev"] = sol.nfev
+    rec["flags"] = flag_bits(sol.flags)
+    rec["n_used"] = sol.n
+    rec["max_check_at_n"] = start if np.isfinite(start) else largest_check(sol.checks)
+    return rec
+
+
+def rough_point(problem: str, f: float, w_hat: float, C: float, C_T: float, *, n: int,
+                lam: float, e_extra: float, refine_max_n: int | None = None,
+                ) -> dict[str, float | str]:
+    """The stick point a, contact extent b and remote slope K_T of ``problem`` at
+    (f, w/c) on the linear interface (C, C_T), with the contact checks and certificates
+    (``solution_record``), refined in N up to ``refine_max_n`` if a check fails.
+
+    For the finite element comparison: lengths in c, K_T = k_l 2 mu / ((kappa + 1) T)
+    with T the load per thickness (P/c for the line load, 2 w p / c for a uniform patch
+    of pressure p), C = (2 mu/(kappa + 1)) / (c k_n), C_T = (2 mu/(kappa + 1)) / (c k_t)."""
+    interface = linear_interface(C, C_T)
+    sol = solve_rough(problem, f, w_hat, interface, n=n, lam=lam, e_extra=e_extra)
+    start = np.nan
+    if refine_max_n is not None and refine_max_n > n:
+        sol, start = refine_in_n(
+            lambda m, seed: solve_rough(problem, f, w_hat, interface, n=m, lam=lam,
+                                        e_extra=e_extra, guess=(seed.a, seed.b)),
+            sol, refine_max_n)
+    rec: dict[str, float | str] = {"problem": problem, "f": float(f),
+                                   "w_hat": float(w_hat) if problem != "line" else 0.0,
+                                   "C": float(C), "C_T": float(C_T), "N": int(n)}
+    rec.update(solution_record(sol, start))
+    return rec
+
+
+# --------------------------------------------------------------------------- sweeps
+
+
+def _check_values(name: str, values: Sequence[float], positive: bool = False) -> np.ndarray:
+    out = np.asarray(values, dtype=float).ravel()
+    if out.size == 0 or np.any(~np.isfinite(out)) or np.any(out <= 0 if positive else out < 0):
+        raise ValueError(f"{name} must be {'positive' if positive else '>= 0'} and finite, "
+                         f"got {out.tolist()}")
+    if np.unique(out).size != out.size:
+        raise ValueError(f"{name} has repeated values: {out.tolist()}")
+    return out
+
+
+def _interface(kind: str, C: float, ratio: float, pi0: float | None) -> Interface:
+    if C == 0:
+        return SMOOTH
+    if kind == "linear":
+        return linear_interface(C, ratio * C)
+    if pi0 is None:
+        raise ValueError("the measured law needs pi0 = p0/T")
+    return measured_interface(C, ratio * C, pi0)
+
+
+def sweep_rough(problem: str, f_values: Sequence[float], C_values: Sequence[float], *,
+                ct_ratios: Sequence[float], w_values: Sequence[float] | None, n: int,
+                lam: float, e_extra: float, refine_max_n: int, interface: str = "linear",
+                pi0: float | None = None) -> xr.Dataset:
+    """``problem`` over the compliance: dims (f, ct_ratio, C) for the line load and
+    (f, w_hat, ct_ratio, C) for a patch (``w_values``), C_T = ct_ratio * C.
+
+    ``interface`` ``linear`` (C, C_T constant) or ``measured`` (the thesis's law with
+    p0/T = ``pi0``, C and C_T at p = T). C = 0 is the smooth interface (solved by the
+    thesis's method, exactly today's answers). See the module docstring for the order of
+    solution, the seeds and the refinement; every parameter is an attribute or a
+    coordinate of the result."""
+    if problem not in PROBLEMS:
+        raise ValueError(f"problem must be one of {', '.join(PROBLEMS)}, got {problem!r}")
+    if interface not in ("linear", "measured"):
+        raise ValueError(f"interface must be linear or measured, got {interface!r}")
+    f_values = _check_values("f", f_values)
+    C_values = np.sort(_check_values("C", C_values))
+    ratios = _check_values("ct_ratio", ct_ratios)
+    patch = problem != "line"
+    if patch and w_values is None:
+        raise ValueError(f"a {problem} patch sweep needs w_hat values")
+    w_list = _check_values("w_hat", w_values, positive=True) if patch else np.zeros(1)
+    if refine_max_n < n:
+        raise ValueError(f"refine_max_n = {refine_max_n} is below N = {n}")
+    shape = (f_values.size, w_list.size, ratios.size, C_values.size)
+    records = np.empty(shape, dtype=object)
+    what = f"{problem} rough sweep N = {n}"
+    with Progress(f"{what}: solving", int(np.prod(shape)), "points") as progress:
+        for i, f in enumerate(f_values):
+            for j, w in enumerate(w_list):
+                for k, ratio in enumerate(ratios):
+                    seed = None
+                    for m, C in enumerate(C_values):
+                        records[i, j, k, m], seed = _sweep_point(
+                            problem, float(f), float(w), _interface(interface, float(C),
+                                                                    float(ratio), pi0),
+                            seed, n, lam, e_extra, refine_max_n)
+                        progress.advance()
+    dims = ("f", "w_hat", "ct_ratio", "C")
+    if not patch:
+        records = records[:, 0]
+        dims = ("f", "ct_ratio", "C")
+    ds = xr.Dataset(_variables(records, dims), coords=_coords(f_values, w_list if patch
+                                                              else None, ratios, C_values))
+    ds["C_T"] = (("ct_ratio", "C"), ratios[:, None] * C_values[None, :],
+                 {"long_name": "tangential compliance number (2 mu/(kappa + 1))/(c k_t)",
+                  "units": ONE})
+    ds.attrs.update({"problem": problem, "N": int(n), "N_k": int(n), "lambda": lam,
+                     "e_minus_w": e_extra, "refine_max_n": int(refine_max_n),
+                     "interface": interface, "pi0": -1.0 if pi0 is None else float(pi0),
+                     "check_tol": CHECK_TOL,
+                     "lambda_note": "line load: lambda of both densities; patches: "
+                                    "lambda_b, with lambda_a of sec. 7.4 (variable lambda_a)",
+                     "units_note": "lengths in c, tractions in T (load per thickness), "
+                                   "relative displacements in (kappa + 1) T c / (2 mu)"})
+    if patch:
+        ds["lambda_a"] = (("w_hat",), np.array([default_lambdas(float(w))[0] for w in w_list]),
+                          {"long_name": "map scale lambda_a of [a, inf)", "units": ONE})
+    ds.attrs.update(summary_attrs(ds))
+    return ds
+
+
+def _sweep_point(problem: str, f: float, w: float, law: Interface,
+                 seed: tuple[float, float] | None, n: int, lam: float, e_extra: float,
+                 refine_max_n: int) -> tuple[dict[str, float], tuple[float, float] | None]:
+    """One point of a sweep: seeded, then cold; refined in N; its record and the seed it
+    passes on."""
+    def solve(m: int, guess: tuple[float, float] | None) -> LiftoffSolution:
+        return solve_rough(problem, f, w, law, n=m, lam=lam, e_extra=e_extra, guess=guess)
+
+    sol = None
+    try:
+        sol = solve(n, seed if not law.smooth else None)
+        if not sol.converged and seed is not None:
+            cold = solve(n, None)
+            if cold.converged or not sol.converged:
+                sol = cold
+                sol.flags = (*sol.flags, "continuation")
+        sol, start = refine_in_n(lambda m, s: solve(m, (s.a, s.b) if s.a > 0 else None),
+                                 sol, refine_max_n)
+    except (ValueError, np.linalg.LinAlgError, FloatingPointError):
+        if sol is None:
+            return _failed_record(n), seed
+        start = np.nan
+    good = sol.converged and sol.regime == "slip_separation"
+    return solution_record(sol, start), ((sol.a, sol.b) if good else seed)
+
+
+def _failed_record(n: int) -> dict[str, float]:
+    rec = {k: np.nan for k in [*SCALARS, *CHECKS, *CERTIFICATES]}
+    rec.update(converged=0, admissible=0, regime=-1, nfev=0, flags=0, n_used=n,
+               max_check_at_n=np.inf)
+    return rec
+
+
+def _variables(records: np.ndarray, dims: tuple[str, ...]) -> dict:
+    flat = records.ravel()
+    shape = records.shape
+    out = {}
+    for key, name in {**SCALARS, **CHECKS, **CERTIFICATES}.items():
+        values = np.array([r[key] for r in flat], dtype=float).reshape(shape)
+        out[key] = (dims, values, {"long_name": name, "units": ONE})
+    for key, (name, dtype) in EXTRA.items():
+        out[key] = (dims, np.array([r[key] for r in flat], dtype=dtype).reshape(shape),
+                    {"long_name": name, "units": ONE})
+    out["regime"] = (dims, np.array([r["regime"] for r in flat], dtype=np.int8).reshape(shape),
+                     regime_attrs(REGIMES))
+    out["flags"] = (dims, np.array([r["flags"] for r in flat], dtype=np.int8).reshape(shape),
+                    flag_attrs())
+    return out
+
+
+def _coords(f_values: np.ndarray, w_values: np.ndarray | None, ratios: np.ndarray,
+            C_values: np.ndarray) -> dict:
+    coords = {"f": ("f", f_values, {"long_name": "coefficient of friction", "units": ONE})}
+    if w_values is not None:
+        coords["w_hat"] = ("w_hat", w_values, {"long_name": "patch half-width w/c",
+                                               "units": ONE})
+    coords["ct_ratio"] = ("ct_ratio", ratios, {
+        "long_name": "C_T / C = k_n / k_t (1/m with Mindlin's m = 2 (1 - nu)/(2 - nu))",
+        "units": ONE})
+    coords["C"] = ("C", C_values, {
+        "long_name": "normal compliance number (2 mu/(kappa + 1))/(c k_n) (the measured "
+                     "law: at p = T); 0 = smooth interface", "units": ONE})
+    return coords
+
+
+def gather_rough(paths: Sequence[str]) -> xr.Dataset:
+    """Chunks of one sweep (split along f) joined along f, with the summary attributes of
+    the whole (``core.summary``)."""
+    ds, _ = concat_chunks(list(paths), "f")
+    ds.attrs.update(summary_attrs(ds))
+    return ds
+
+
+# --------------------------------------------------------------------------- profile
+
+
+def rough_profile(problem: str, f: float, w_hat: float, interface: Interface, *, n: int,
+                  lam: float, e_extra: float, x_max: float, points: int) -> xr.Dataset:
+    """Interface tractions, relative displacements and the interface law on
+    0 <= x <= w + x_max (w = 0 for the line load), beside the smooth solution (suffix
+    ``_smooth``) of the same problem."""
+    rough = solve_rough(problem, f, w_hat, interface, n=n, lam=lam, e_extra=e_extra)
+    smooth = solve_rough(problem, f, w_hat, SMOOTH, n=n, lam=lam, e_extra=e_extra)
+    w = 0.0 if problem == "line" else float(w_hat)
+    x = np.linspace(0.0, w + x_max, points)
+    unit_g = "times 2 mu / ((kappa + 1) T c)"
+    data: dict[str, tuple[np.ndarray, str]] = {}
+    for suffix, sol in (("", rough), ("_smooth", smooth)):
+        if not sol.converged:
+            continue
+        s, nn = sol.tractions(x)
+        u, g = sol.slip(x), sol.separation(x)
+        what = " (smooth interface)" if suffix else ""
+        data.update({
+            "shear" + suffix: (s, "shear traction S/T" + what),
+            "normal" + suffix: (nn, "normal traction N/T" + what),
+            "friction_limit" + suffix: (f * np.abs(nn), "friction limit f|N|/T" + what),
+            "slip" + suffix: (u, f"relative tangential displacement u {unit_g}" + what),
+            "gap" + suffix: (g, f"relative normal displacement (gap) g {unit_g}; minus the "
+                                f"closure in contact" + what),
+            "glide_density" + suffix: (sol.glide_density(x), "glide density B_x times "
+                                                             "2 mu/((kappa + 1) T)" + what),
+            "climb_density" + suffix: (sol.climb_density(x), "climb density B_y times "
+                                                             "2 mu/((kappa + 1) T)" + what),
+        })
+    if rough.converged and not interface.smooth:
+        pressure = -data["normal"][0]
+        inside = x < rough.b
+        data["closure"] = (np.where(inside, interface.closure(np.maximum(pressure, 0.0)),
+                                    np.nan),
+                           f"closure of the interface law at the computed pressure {unit_g}")
+        c_t = interface.tangential_compliance(np.maximum(pressure, 0.0))
+        data["irreversible_slip"] = (data["slip"][0] - c_t * data["shear"][0],
+                                     f"irreversible slip u - c_t S {unit_g}")
+    ds = xr.Dataset({k: ("x", v, {"long_name": name, "units": ONE})
+                     for k, (v, name) in data.items()},
+                    coords={"x": ("x", x, {"long_name": "position along the interface x/c",
+                                           "units": ONE})})
+    ds.attrs.update({"problem": problem, "f": float(f), "w_hat": w, "N": int(n),
+                     "lambda": lam, "e_minus_w": e_extra, "x_max": x_max,
+                     **interface.attrs()})
+    for suffix, sol in (("", rough), ("_smooth", smooth)):
+        ds.attrs.update({f"{k}{suffix}": v for k, v in (
+            ("a", sol.a), ("b", sol.b), ("K_T", sol.K_T), ("converged", int(sol.converged)),
+            ("admissible", int(sol.admissible)), ("residual", sol.residual))})
+    ds.attrs.update({f"check_{k}": v for k, v in rough.checks.items()})
+    ds.attrs.update({f"certificate_{k}": v for k, v in rough.certify().items()})
+    return ds
+
+
+# --------------------------------------------------------------------------- tested pairs
+
+LAWS = ("smooth", "linear", "measured")
+
+
+def tested_pairs(laws: Mapping[str, StiffnessLaw], pressures: Mapping[str, float], *,
+                 problem: str, w_hat: float, E: float, nu: float,
+                 c_values: Sequence[float], n: int, lam: float, e_extra: float,
+                 ) -> xr.Dataset:
+    """a, b, K_T of a layer (E [kN/mm^2], nu, thickness c [mm]) pressed by a patch of
+    half-width w = w_hat c and mean pressure p [kN/mm^2] (``pressures`` per test) onto a
+    half-plane of the same material through each tested pair's interface (``laws``, e.g.
+    ``core.measured_law.law_from_summary``), at the pair's f: dims (test, c, law) with
+    law ``smooth`` (the thesis's interface), ``linear`` (the stiffness at p, k_n(p) and
+    Cc k_n(p)) and ``measured`` (the law of eqs 2.4, 2.7 with T = 2 w p / c; NaN with
+    the reason in ``refused`` where the fit has k_n <= 0 at the contact edge)."""
+    if problem not in PROBLEMS[1:]:
+        raise ValueError(f"tested pairs need a patch problem, got {problem!r}")
+    tests = list(laws)
+    missing = [t for t in tests if t not in pressures]
+    if missing:
+        raise ValueError(f"no pressure for test(s) {missing}")
+    c_arr = _check_values("c", c_values, positive=True)
+    shape = (len(tests), c_arr.size, len(LAWS))
+    out = {k: np.full(shape, np.nan) for k in ("a", "b", "K_T", "C", "C_T", "pi0", "f",
+                                               "T")}
+    flags = {k: np.zeros(shape, dtype=np.int8) for k in ("converged", "admissible")}
+    refused = np.full((len(tests), c_arr.size), "", dtype=object)
+    for i, test in enumerate(tests):
+        law, p = laws[test], float(pressures[test])
+        T = 2.0 * w_hat * p
+        for j, c in enumerate(c_arr):
+            interfaces: dict[str, Interface | None] = {
+                "smooth": SMOOTH,
+                "linear": law.linearised(pressure=p, E=E, nu=nu, c=float(c))}
+            try:
+                interfaces["measured"] = law.measured(T=T, E=E, nu=nu, c=float(c))
+            except ValueError as exc:
+                interfaces["measured"], refused[i, j] = None, str(exc)
+            for k, name in enumerate(LAWS):
+                interface = interfaces[name]
+                out["f"][i, j, k], out["T"][i, j, k] = law.f, T
+                if interface is None:
+                    continue
+                sol = solve_rough(problem, law.f, w_hat, interface, n=n, lam=lam,
+                                  e_extra=e_extra)
+                out["C"][i, j, k], out["C_T"][i, j, k] = interface.C, interface.C_T
+                out["pi0"][i, j, k] = interface.pi0 if np.isfinite(interface.pi0) else np.nan
+                flags["converged"][i, j, k] = int(sol.converged)
+                flags["admissible"][i, j, k] = int(sol.admissible)
+                if sol.converged:
+                    out["a"][i, j, k], out["b"][i, j, k] = sol.a, sol.b
+                    out["K_T"][i, j, k] = sol.K_T
+    names = {"a": "end of the stick zone a/c", "b": "end of contact b/c",
+             "K_T": "remote slope k_l 2 mu / ((kappa + 1) T)",
+             "C": "normal compliance number (measured law: at p = T)",
+             "C_T": "tangential compliance number (measured law: at p = T)",
+             "pi0": "p0 / T of the measured law", "f": "friction coefficient of the pair",
+             "T": "load per thickness T = 2 w p / c [kN/mm^2]",
+             "converged": "root finder converged", "admissible": "contact checks hold"}
+    dims = ("test", "c", "law")
+    data = {k: (dims, v, {"long_name": names[k], "units": "kN/mm2" if k == "T" else ONE})
+            for k, v in {**out, **flags}.items()}
+    data["refused"] = (("test", "c"), refused.astype(str),
+                       {"long_name": "why the measured law was refused (empty: used)"})
+    ds = xr.Dataset(data, coords={
+        "test": ("test", np.array(tests, dtype=object), {"long_name": "tested pair"}),
+        "c": ("c", c_arr, {"long_name": "layer thickness", "units": "mm"}),
+        "law": ("law", np.array(LAWS, dtype=object), {"long_name": "interface law"})})
+    ds["pressure"] = ("test", np.array([float(pressures[t]) for t in tests]),
+                      {"long_name": "mean pressure of the patch", "units": "kN/mm2"})
+    ds["source"] = ("test", np.array([laws[t].source for t in tests], dtype=str),
+                    {"long_name": "where the law was taken from"})
+    ds.attrs.update({"problem": problem, "w_hat": w_hat, "E_kN_mm2": E, "nu": nu, "N": n,
+                     "lambda": lam, "e_minus_w": e_extra})
+    return ds
