@@ -1,10 +1,9 @@
 """One BLAS thread per job: the one place where the thread limit is set.
 
 The receding root finders solve hundreds of systems of 100-200 unknowns, the rough-contact
-prediction convolves grids of a few hundred cells a side; BLAS threads only add overhead
-at that size and, on a machine busy with other jobs, made each solve 50-100x slower
-(measured: numpy.linalg.solve of 200 x 200 took 60-120 ms instead of 0.5 ms at a load
-average of 5 on 2 cores). Parallelism comes from running jobs side by side.
+prediction convolves grids of a few hundred cells a side: BLAS threads only add overhead at
+that size and, on a machine busy with other jobs, spin against each other (figures in
+``docs/testing.md``). Parallelism comes from running jobs side by side.
 """
 
 from __future__ import annotations
@@ -35,8 +34,8 @@ def one_thread_environment() -> None:
 
 @lru_cache(maxsize=1)
 def _controller() -> ThreadpoolController:
-    """The thread pools of the loaded libraries, found once: the search reads the process's
-    memory map, ~1 ms, which a gap solution of 20 ms would pay at every root finder."""
+    """The thread pools of the loaded libraries, found once (the search reads the process's
+    memory map, which a root finder would otherwise repeat at every call)."""
     import scipy.linalg  # noqa: F401  (its BLAS among the libraries found)
     from threadpoolctl import ThreadpoolController
 

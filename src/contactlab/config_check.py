@@ -25,8 +25,8 @@ class ConfigError(ValueError):
 
 
 def parse_yaml(text: str) -> Any:
-    """YAML text as Python data, through libyaml when PyYAML has it (~10x faster: the
-    schema is read at every Snakemake start)."""
+    """YAML text as Python data, through libyaml when PyYAML has it (the schema is read at
+    every Snakemake start)."""
     import yaml
 
     return yaml.load(text, Loader=getattr(yaml, "CSafeLoader", yaml.SafeLoader))

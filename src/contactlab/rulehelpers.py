@@ -209,7 +209,7 @@ def convergence_files(fe: dict, results: str = "results/") -> list[str]:
 
 
 def study_edges(fe: dict, problem: str) -> list[str]:
-    """Block edges of a problem in the FE study: the gap problem keeps its own (issue 18)."""
+    """Block edges of a problem in the FE study: the gap problem keeps its own (Fig. 8.1)."""
     if problem == "gap":
         return [fe["problems"]["gap"]["edges"]]
     return list(fe["study"]["edges"])

@@ -2,7 +2,7 @@
 
 Each builder takes plain arguments (no config files) and returns an ``xr.Dataset``
 whose variables and coordinates carry ``long_name`` and ``units``. File names and
-variable names are an interface read by other tools (issue 4): keep them.
+variable names are an interface read by other tools: keep them.
 """
 
 from __future__ import annotations

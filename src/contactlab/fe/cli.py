@@ -131,7 +131,7 @@ def _study(args: argparse.Namespace) -> None:
     stamp(
         out,
         title=f"FE mesh and domain study of '{out.attrs['problem']}' against the DDT "
-              "(thesis ch. 8, issue 18)",
+              "(thesis ch. 8)",
         source="contactlab fe receding runs on mesh and domain series; extrapolation to "
                "h -> 0 and L -> infinity; DDT from the receding branch's solvers",
         history=args.history,

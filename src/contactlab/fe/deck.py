@@ -12,7 +12,7 @@ slope. Loads (symmetric half models, x = 0 is the plane of symmetry):
 Boundary conditions of the block: ``roller`` (base fixed in y, far edge free: Fig. 8.1),
 ``encastre`` (base and far edge fixed: Figs 8.7, 8.13) or ``farfield`` (base and far edge
 displaced as the half-plane under the net load, :mod:`contactlab.fe.farfield`; line load and
-patch only, issue 18). Both bodies have u_x = 0 on x = 0.
+patch only). Both bodies have u_x = 0 on x = 0.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Extrapolation of FE results to a vanishing mesh and an infinite domain (issue 18).
+"""Extrapolation of FE results to a vanishing mesh and an infinite domain.
 
 The thesis compared its FE models with the dislocation solutions on one mesh and one
 model size (ch. 8, secs 8.2-8.3). Here a quantity q (a transition point or the remote

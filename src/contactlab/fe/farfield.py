@@ -1,4 +1,4 @@
-"""Half-plane far-field displacements for the block's outer boundary (issue 18, sec. 8.2.2).
+"""Half-plane far-field displacements for the block's outer boundary (sec. 8.2.2).
 
 The thesis's FE models (ch. 8) encastre the block's base and far edge; the integral
 equations of chs 6-7 assume a half-plane. Far from the contact the half-plane responds to

@@ -110,7 +110,7 @@ def convergence_table(conv: list[xr.Dataset]) -> pd.DataFrame:
 def study_table(studies: list[xr.Dataset]) -> pd.DataFrame:
     """One row per problem, block edges and quantity: raw FE, FE extrapolated to h -> 0 and
     L -> infinity with its uncertainty, DDT at the reference N with its N-spread, and the
-    difference in percent and in units of the combined uncertainty (issue 18)."""
+    difference in percent and in units of the combined uncertainty."""
     rows = []
     for ds in studies:
         for i, edges in enumerate(ds["edges"].values):
@@ -259,7 +259,7 @@ def build_section(results: list[Path], convergence: list[Path], asperity: Path |
             f"L/c = {', '.join(f'{v:g}' for v in ds['length'].values)} at h/c = "
             f"{ds.attrs['h_ref']:g}" for ds in studies)
         sec.paragraph(
-            "Mesh and domain study (issue 18): each quantity on a mesh series of the "
+            "Mesh and domain study: each quantity on a mesh series of the "
             "configured model and a domain series (strip length and block depth scaled) "
             f"({series}), extrapolated to h -> 0 (Richardson with the observed "
             "order p; GCI uncertainty, 3 x the spread where the series is not monotone) and "

@@ -1,4 +1,4 @@
-"""The FE mesh and domain study of one receding-contact problem against the DDT (issue 18).
+"""The FE mesh and domain study of one receding-contact problem against the DDT.
 
 The thesis's FE checks (ch. 8, Figs 8.7 and 8.13 models, sec. 8.3 convergence) stop at
 "similar results"; here every compared quantity is extrapolated to h -> 0 and L -> infinity

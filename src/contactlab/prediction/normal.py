@@ -7,9 +7,8 @@ the hardness (:mod:`.bounded`); with ``hardness`` the pressure is capped there
 (perfectly plastic, Almqvist et al. 2006; Weber et al. 2018) and the plastic
 flattening is kept from one load level to the next, as a monotonic loading step does.
 Load levels are solved in increasing order, each started from the previous pressures.
-Until issue 21's timing work this module called ContactMechanics (MIT; Pastewka et
-al.), whose ``FreeFFTElasticHalfSpace`` has the same cell coefficients;
-``tests/prediction/test_bounded.py`` keeps the library as the reference, elastic and
+ContactMechanics (MIT; Pastewka et al.), whose ``FreeFFTElasticHalfSpace`` has the same
+cell coefficients, is the reference of ``tests/prediction/test_bounded.py``, elastic and
 capped, and both against Hertz.
 
 The window is a piece of a much larger nominal interface. With ``mean_free=True``

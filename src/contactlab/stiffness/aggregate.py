@@ -312,7 +312,7 @@ def beta_n_seq(normal: pd.DataFrame, seq: Mapping[str, float] | pd.Series | pd.D
     """Tables 2.3/2.10: Seq [um] and the dimensionless beta_n Seq (loading beta_n).
 
     ``seq`` maps test -> Seq, or is a frame indexed by test with a ``Seq`` column and
-    optionally ``Seq_scan`` (Seq from the scans' Sq, issue 7); each Seq column gives its
+    optionally ``Seq_scan`` (Seq from the scans' Sq); each Seq column gives its
     own ``beta_n_<column>`` product, side by side.
     """
     frame = seq.copy() if isinstance(seq, pd.DataFrame) else pd.Series(

@@ -1,4 +1,4 @@
-"""A vanishing central stick zone as a limit: log-singular glide densities (issue 19).
+"""A vanishing central stick zone as a limit: log-singular glide densities.
 
 The central stick zone of the gap problem (a1 of §5.2.1) and of the lifting-off problems
 (a of secs 6.2, 7.4) shrinks faster than any power of the friction coefficient: log a1 is

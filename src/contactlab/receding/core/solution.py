@@ -78,7 +78,7 @@ def largest_check(checks: Mapping[str, float]) -> float:
 
 def refine_in_n(solve_at: Callable[[int, S], S], sol: S, n_max: int) -> tuple[S, float]:
     """Raise N (doubling, at most ``n_max``) while a converged solution fails the contact
-    checks, each solve seeded by the last (``solve_at(n, seed)``); issue 19, item 2.
+    checks, each solve seeded by the last (``solve_at(n, seed)``).
 
     Next to a kink of the slip rule (eq. 5.19 at |x| = b) the checks fail by a small
     margin that falls with N. Returns the admissible solution or, if none is reached by

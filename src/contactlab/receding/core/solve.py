@@ -68,7 +68,7 @@ class Factor:
     Between the iterations of a root finder the transition points move little, and the
     square system with them: the LU factors of the last full factorisation then serve as
     the preconditioner of iterative refinement, x += (LU)^-1 (b - A x), each sweep O(n^2)
-    against the O(n^3) of a factorisation (n = 1001 at N = 500: 2 ms against 20 ms). The
+    against the O(n^3) of a factorisation (n = 1001 at N = 500). The
     sweeps stop at the backward error of a direct solve, |b - A x| <= 8 eps (|A| |x| +
     |b|) in the max norm; where they stop contracting (a large step of the transition
     points) the system is factorised afresh and its factors kept.

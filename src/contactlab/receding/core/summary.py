@@ -1,4 +1,4 @@
-"""The summary of a receding-contact sweep: how its points were solved (issue 19, item 4).
+"""The summary of a receding-contact sweep: how its points were solved.
 
 Counts per sweep (a gathered gap, line or patch result, or the Chaise et al. columns of
 the line load with ``suffix="_chaise"``): every point is ``failed`` (the root finder did

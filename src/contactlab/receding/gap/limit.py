@@ -1,4 +1,4 @@
-"""The slip regime of the gap problem in its limit a1 -> 0 (§5.2.1, §5.3; issue 19).
+"""The slip regime of the gap problem in its limit a1 -> 0 (§5.2.1, §5.3).
 
 Near f_sep(w) and as f -> 0 the central stick zone a1 of the slip regime falls faster than
 any power (log a1 ~ -1/(f - f_sep), ~ -1/f): 1e-70 c at f = 0.6 for w/c = 2.5, below any

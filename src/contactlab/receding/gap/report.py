@@ -281,7 +281,7 @@ def build_section(sweep_path: Path, compare_paths: list[Path], regimes_path: Pat
                   "profile points", tables / TABLES["points"], digits=4)
     section.table(summary_table(sweeps), "How the sweep points were solved: solved (plain, "
                   "in the stick-zone limit, from a neighbour, after raising N), failed, "
-                  "inadmissible (issue 19)", tables / TABLES["summary"], digits=0)
+                  "inadmissible", tables / TABLES["summary"], digits=0)
     every = max(1, regimes["w_hat"].size // 10)
     section.table(thresholds_table(regimes, every), "Friction thresholds of the regime map",
                   tables / TABLES["thresholds"], digits=4)

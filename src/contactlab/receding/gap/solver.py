@@ -330,8 +330,8 @@ def solve_slip(w: float, f: float, n: int = 100,
     return sol
 
 
-#: a1/c below which the slip regime may be reported in its limit a1 -> 0 (issue 19: "a1 <
-#: 1e-30, say"); the workflow passes receding.gap.stick_zone_limit
+#: a1/c below which the slip regime may be reported in its limit a1 -> 0 (far below what
+#: a linear grid resolves); the workflow passes receding.gap.stick_zone_limit
 STICK_ZONE_LIMIT = 1e-30
 
 

@@ -83,7 +83,7 @@ def _solve(w: float, f: float, n: int, guess: GapSolution | None,
 def continue_from_neighbours(grid: list[list[GapSolution]], n: int,
                              stick_zone_limit: float, passes: int = 3) -> None:
     """Retry every unconverged point of ``grid`` [f][w] seeded by each solved neighbour in f
-    and w (nearest first), repeating while points are won (issue 19, item 1); a point won
+    and w (nearest first), repeating while points are won; a point won
     so carries the flag ``continuation``."""
     rows, cols = len(grid), len(grid[0]) if grid else 0
     for _ in range(passes):

@@ -387,7 +387,7 @@ def build_section(line_path: Path, patch_paths: list[Path], profile_paths: list[
                    figures / "receding_patch_wide.png")
     section.table(summary_table(line, patches), "How the sweep points were solved: solved "
                   "(plain, in the stick-zone limit, from a neighbour, after raising N, with "
-                  "the continuous slip rule), failed, inadmissible (issue 19)",
+                  "the continuous slip rule), failed, inadmissible",
                   tables / "receding_liftoff_summary.csv", digits=0)
     section.table(line_table(line), "Line load: transition points, slope and diagnostics",
                   tables / "receding_line_sweep.csv", digits=4)

@@ -54,7 +54,7 @@ error of K_T and of the glide tail of this discretisation, not a defect of the r
 The Chaise et al. model (``preformed=False``) is the same system without A_y, K and
 eq. (6.22): bounded-bounded densities only, so the separation tends to a constant.
 
-Continuous slip rule (issue 19): the factor H(b - x_k) switches a shear row's friction
+Continuous slip rule: the factor H(b - x_k) switches a shear row's friction
 term off when b passes its collocation point, so the leftover equations jump in b, by
 f N(x_k) with N the discrete normal traction next to b (~1e-3 T), and a root can fall in
 such a jump. The Chaise et al. model is where this shows: with lambda = 3.5 its rows had

@@ -7,7 +7,7 @@ a patch is seeded by its neighbour in f at the same w and by its neighbour in w 
 by the change of w (a - w and b - w vary slowly, Fig. 7.10), a cold solve coming last.
 With ``continuation`` the points left unconverged or inadmissible are retried from every
 solved neighbour (flag ``continuation``), and converged points that fail the contact
-checks are re-solved at larger N up to ``refine_max_n`` (flag ``refined``; issue 19). A
+checks are re-solved at larger N up to ``refine_max_n`` (flag ``refined``). A
 failed point is kept with ``converged = 0``, its residual and its regime code, never
 dropped, and never stops the sweep.
 """
