@@ -318,13 +318,15 @@ def _icgn(ref: Reference, frame: Frame, subsets: np.ndarray, p: np.ndarray
 
 
 def _integer_shift(ref: Reference, frame: Frame, subsets: np.ndarray, prior: np.ndarray
-                   ) -> np.ndarray:
+                   ) -> tuple[np.ndarray, np.ndarray]:
     """Integer (u, v) of each subset by phase correlation around the prior shift (px).
 
     The reference subset is correlated with the window of the deformed image of the same
     size displaced by the rounded prior; the peak of the inverse transform of the
     normalised cross-power spectrum is the remaining integer shift (less than half a
-    subset). Both windows are zero-padded to a fast FFT length.
+    subset). Both windows are zero-padded to a fast FFT length. Also returns which windows
+    the prior puts (partly) outside the image: those are moved inside and their shift is
+    not to be trusted.
     """
     from scipy import fft
 
@@ -334,8 +336,10 @@ def _integer_shift(ref: Reference, frame: Frame, subsets: np.ndarray, prior: np.
     n = fft.next_fast_len(s, real=True)
     col0, row0 = grid.first_pixel()
     col0, row0 = col0[subsets], row0[subsets]
-    wx = np.clip(col0 + np.rint(prior[:, 0]).astype(np.int64), 0, cols - s)
-    wy = np.clip(row0 + np.rint(prior[:, 1]).astype(np.int64), 0, rows - s)
+    wx = col0 + np.rint(prior[:, 0]).astype(np.int64)
+    wy = row0 + np.rint(prior[:, 1]).astype(np.int64)
+    outside = (wx < 0) | (wx > cols - s) | (wy < 0) | (wy > rows - s)
+    wx, wy = np.clip(wx, 0, cols - s), np.clip(wy, 0, rows - s)
     f = ref.image.ravel().take(ref.pixels(subsets)).reshape(-1, s, s)
     g = frame.image.ravel().take((wy * cols + wx)[:, None] + ref.offsets).reshape(-1, s, s)
     f -= f.mean(axis=(1, 2), keepdims=True)
@@ -347,7 +351,7 @@ def _integer_shift(ref: Reference, frame: Frame, subsets: np.ndarray, prior: np.
     ky, kx = np.divmod(peak, n)
     ky = np.where(ky > n // 2, ky - n, ky)
     kx = np.where(kx > n // 2, kx - n, kx)
-    return np.column_stack([wx - col0 + kx, wy - row0 + ky]).astype(float)
+    return np.column_stack([wx - col0 + kx, wy - row0 + ky]).astype(float), outside
 
 
 def coarse_guess(ref: Reference, frame: Frame) -> np.ndarray:
@@ -381,8 +385,8 @@ def _solve(ref: Reference, frame: Frame, subsets: np.ndarray, guess: np.ndarray
     for block in ref.blocks(np.arange(len(subsets))):
         sub = subsets[block]
         start = guess[block].copy()
-        shift = _integer_shift(ref, frame, sub, start[:, [0, 3]])
-        jumped = np.any(shift != np.rint(start[:, [0, 3]]), axis=1)
+        shift, outside = _integer_shift(ref, frame, sub, start[:, [0, 3]])
+        jumped = np.any(shift != np.rint(start[:, [0, 3]]), axis=1) & ~outside
         start[jumped, 0] = shift[jumped, 0]
         start[jumped, 3] = shift[jumped, 1]
         p[block], zncc[block], iterations[block], status[block] = _icgn(ref, frame, sub, start)
