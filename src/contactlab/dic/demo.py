@@ -130,7 +130,7 @@ def write_image(image: np.ndarray, path: Path, description: str) -> None:
 
 def render_demo(out_dir: str | Path, *, test: str, seed: int, shape: tuple[int, int],
                 pixel_size_um: float, speckle_size: float, read_noise: float, bits: int,
-                image_format: str) -> dict[str, Path]:
+                image_format: str, frames: Sequence[int] | None = None) -> dict[str, Path]:
     """Render the RECONSTRUCTED image sequence of demo test ``test`` into ``out_dir``.
 
     Parameters
@@ -142,6 +142,8 @@ def render_demo(out_dir: str | Path, *, test: str, seed: int, shape: tuple[int, 
     speckle_size : speckle diameter, pixels (:func:`contactlab.dic.speckle.speckle_pattern`).
     read_noise : camera noise, grey levels; ``bits``: 8 or 16.
     image_format : ``"png"`` or ``"tif"``.
+    frames : render only these frames of the load log (and list only them in
+        ``load_log.csv`` and ``truth.csv``); None: all.
 
     Writes ``frame_0000.<fmt>`` (reference, at rest), ``frame_NNNN.<fmt>`` for each frame
     of the load log, ``contactlab.json``, ``load_log.csv`` and ``truth.csv`` (per frame the
@@ -152,6 +154,13 @@ def render_demo(out_dir: str | Path, *, test: str, seed: int, shape: tuple[int, 
     out = Path(out_dir)
     rows, cols = shape
     log, motion = demo_motion(test, seed=seed)
+    if frames is not None:
+        missing = sorted(set(frames) - set(log["frame"]))
+        if missing:
+            raise ValueError(f"demo test {test}: no frame {missing[0]} in its load log "
+                             f"(frames 1 to {int(log['frame'].max())})")
+        keep = log["frame"].isin(frames).to_numpy()
+        log, motion = log[keep], motion[keep]
     # re-centre: interface at the middle of the width (pixel edge), y from mid-height
     interface_um = cols / 2 * pixel_size_um
     middle_um = rows / 2 * pixel_size_um
