@@ -27,7 +27,8 @@ warped pixels, solves
 and composes the warp with the inverse increment, ``W(p) <- W(p) o W(dp)^-1``. A subset has
 converged when the increment moves its corners by less than ``tolerance`` (pixels):
 ``sqrt(du^2 + dv^2 + h^2 (d(du/dx)^2 + d(du/dy)^2 + d(dv/dx)^2 + d(dv/dy)^2)) < tolerance``,
-``h`` = (subset - 1)/2. Grey levels between pixels come from B-splines of order 3 or 5
+``h`` = (subset - 1)/2; an increment of more than half a subset means the subset is lost
+(``not_converged``). Grey levels between pixels come from B-splines of order 3 or 5
 (:mod:`contactlab.dic.bspline`); the reference gradients are those of the same splines.
 Optionally both images are smoothed by a Gaussian of ``prefilter_sigma`` pixels first,
 which lowers the interpolation bias of fine speckle.
@@ -37,9 +38,11 @@ of about two million pixels; converged subsets are frozen, the others iterate on
 
 First guess: an integer shift per subset from the phase correlation (FFT) of the reference
 subset with the window of the deformed image at the prior guess, the prior being the
-previous frame's solution (incremental) or, for the first frame and for subsets that fail
-from the previous solution (a jump between frames), the shift of the whole region from
-:func:`skimage.registration.phase_cross_correlation`.
+previous frame's solution, extrapolated linearly from the two previous frames where the
+motion is steady (incremental), or, for the first frame and for subsets that fail from the
+previous solution (a jump between frames), the shift of the whole region from
+:func:`skimage.registration.phase_cross_correlation`. Where the integer shift agrees with
+the prior, the prior (sub-pixel, with its gradients) is kept.
 
 Flags (``status``; ``valid`` is ``status == 0``): 1 ``textureless`` (the reference subset has
 no usable gradient), 2 ``left_image`` (a warped pixel centre left the image's area),
@@ -89,8 +92,13 @@ VALID, TEXTURELESS, LEFT_IMAGE, LEFT_REGION, NOT_CONVERGED, LOW_ZNCC, NO_SUBSET 
 _RETRY = (LEFT_IMAGE, LEFT_REGION, NOT_CONVERGED, LOW_ZNCC)
 #: pixels (subsets x pixels per subset) solved together; bounds the memory (~10 arrays)
 BLOCK_PIXELS = 1 << 21
+#: the reference keeps its subsets' grey levels and gradients stacked up to this size (bytes)
+STACK_BYTES = 128 * 2**20
 #: reference subsets whose Hessian is this ill-conditioned have no usable texture
 MAX_CONDITION = 1e10
+#: a sequence extrapolates a subset's motion only if it changed less than this between the
+#: two previous frames (px); a larger change is a jump, left to the FFT guess
+TREND_LIMIT = 1.0
 
 
 @dataclass(frozen=True)
@@ -217,6 +225,22 @@ class Reference:
             h[flat] = np.eye(6)
             self.hinv[block] = np.linalg.inv(h)
             self.textureless[block] = flat
+        #: the subsets' grey levels and gradients stacked, if small enough to keep
+        self.stack: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+        if 3 * n * grid.subset**2 * 8 <= STACK_BYTES:
+            idx = self.pixels(np.arange(n))
+            self.stack = (self.image.ravel().take(idx) - self.mean[:, None],
+                          self.gx.ravel().take(idx), self.gy.ravel().take(idx))
+
+    def subset_data(self, subsets: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(f - f_m, df/dx, df/dy) at the pixels of ``subsets`` (subsets x pixels), new
+        arrays: from the stored stack if the reference keeps one, else from the images."""
+        if self.stack is not None:
+            return self.stack[0][subsets], self.stack[1][subsets], self.stack[2][subsets]
+        idx = self.pixels(subsets)
+        f = self.image.ravel().take(idx)
+        f -= self.mean[subsets, None]
+        return f, self.gx.ravel().take(idx), self.gy.ravel().take(idx)
 
     def blocks(self, subsets: np.ndarray) -> list[np.ndarray]:
         """``subsets`` split into blocks of about :data:`BLOCK_PIXELS` pixels."""
@@ -267,7 +291,6 @@ def _icgn(ref: Reference, frame: Frame, subsets: np.ndarray, p: np.ndarray
     status[ref.textureless[subsets]] = TEXTURELESS
     active = np.flatnonzero(status == VALID)
     xc, yc = grid.xc[subsets], grid.yc[subsets]
-    image, gx, gy = ref.image.ravel(), ref.gx.ravel(), ref.gy.ravel()
     for _ in range(settings.max_iterations):
         if not len(active):
             break
@@ -293,16 +316,14 @@ def _icgn(ref: Reference, frame: Frame, subsets: np.ndarray, p: np.ndarray
         g = bspline.sample(frame.coeffs, points, settings.order)
         g -= g.mean(axis=1)[:, None]
         dg = np.sqrt(np.einsum("ij,ij->i", g, g))
-        idx = ref.pixels(sub)
-        f = image.take(idx)
-        f -= ref.mean[sub, None]
+        f, fx, fy = ref.subset_data(sub)
         df = ref.spread[sub]
         flat = ~(dg > 0)
         dg[flat] = 1.0
         zncc[active] = np.einsum("ij,ij->i", f, g) / (df * dg)
-        f -= (df / dg)[:, None] * g  # the residual e_i
-        b = np.concatenate([(gx.take(idx) * f) @ ref.moments,
-                            (gy.take(idx) * f) @ ref.moments], axis=1)
+        g *= -(df / dg)[:, None]
+        g += f  # the residual e_i = (f_i - f_m) - (df / dg) (g_i - g_m)
+        b = np.concatenate([(fx * g) @ ref.moments, (fy * g) @ ref.moments], axis=1)
         dp = -np.einsum("aij,aj->ai", ref.hinv[sub], b)
         p[active] = _compose(pa, dp)
         iterations[active] += 1
@@ -310,7 +331,9 @@ def _icgn(ref: Reference, frame: Frame, subsets: np.ndarray, p: np.ndarray
                        + half**2 * (dp[:, 1] ** 2 + dp[:, 2] ** 2 + dp[:, 4] ** 2
                                     + dp[:, 5] ** 2))
         status[active[flat]] = LOW_ZNCC
-        done = (step < settings.tolerance) | flat
+        lost = ~(step < grid.subset / 2)  # beyond any linearisation: a lost subset
+        status[active[lost & ~flat]] = NOT_CONVERGED
+        done = (step < settings.tolerance) | flat | lost
         active = active[~done]
     status[active] = NOT_CONVERGED
     status[(status == VALID) & ~(zncc >= settings.zncc_min)] = LOW_ZNCC
@@ -445,11 +468,21 @@ def correlate_frame(ref: Reference, frame: Frame, guess: np.ndarray | None, *,
     return result
 
 
-def next_guess(ref: Reference, previous: FrameResult) -> np.ndarray:
-    """Start parameters from the previous frame: its solution where valid, elsewhere the
-    median translation of the subset's region (no gradients)."""
+def next_guess(ref: Reference, previous: FrameResult,
+               before: FrameResult | None = None) -> np.ndarray:
+    """Start parameters from the previous frame(s).
+
+    A subset valid in the previous frame starts from its solution there, moved on by its
+    change since the frame ``before`` (linear extrapolation) if it was valid there too and
+    moved by less than :data:`TREND_LIMIT` pixels: a steady motion, not a jump. Elsewhere
+    the median translation of the subset's region in the previous frame, no gradients.
+    """
     guess = previous.p.copy()
     valid = previous.valid
+    if before is not None:
+        change = previous.p - before.p
+        steady = valid & before.valid & (np.hypot(change[:, 0], change[:, 3]) < TREND_LIMIT)
+        guess[steady] += change[steady]
     for r in np.unique(ref.grid.region):
         mine = ref.grid.region == r
         fill = mine & ~valid
@@ -478,6 +511,8 @@ def correlate_sequence(reference: np.ndarray, images: list[tuple[str, np.ndarray
             raise ValueError(f"{label}: image has shape {np.shape(image)}, the reference "
                              f"{grid.shape}")
         frame = prepare(image, settings)
-        guess = next_guess(ref, results[-1]) if incremental and results else None
+        guess = None
+        if incremental and results:
+            guess = next_guess(ref, results[-1], results[-2] if len(results) > 1 else None)
         results.append(correlate_frame(ref, frame, guess, label=label))
     return results
