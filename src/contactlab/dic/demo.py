@@ -253,7 +253,8 @@ def fields_from_images(folder: str | Path, frames: Sequence[int], *, subset: int
                                  incremental=incremental)
     label = f" ({setup.reconstructed.split(':')[0]})" if setup.reconstructed else ""
     attrs: dict[str, object] = {"images": str(setup.folder), "reference": setup.reference,
-                                "incremental": int(incremental)}
+                                "incremental": int(incremental), "colour": colour,
+                                "roi_px": " ".join(f"{v:g}" for v in setup.roi())}
     if setup.reconstructed:
         attrs["reconstructed"] = 1
         attrs["comment_images"] = setup.reconstructed

@@ -22,6 +22,7 @@ import xarray as xr
 from contactlab.dic.correlate import (
     NO_SUBSET,
     STATUS_MEANINGS,
+    TREND_LIMIT,
     FrameResult,
     Settings,
     correlate_sequence,
@@ -127,6 +128,10 @@ def _parameters(grid: SubsetGrid, settings: Settings) -> dict[str, object]:
     return {"subset_px": int(grid.subset), "step_px": int(grid.step), **settings.as_attrs(),
             "shape_function": "affine", "criterion": "ZNSSD (ZNCC reported)",
             "method": "inverse-compositional Gauss-Newton, B-spline interpolation",
+            "first_guess": "integer shift per subset by FFT phase correlation around the "
+                           "prior: the region's FFT shift (first frame, retries) or the "
+                           "previous frames' solution, extrapolated where it changed by "
+                           f"less than {TREND_LIMIT:g} px",
             "regions": regions}
 
 
@@ -194,12 +199,13 @@ def correlate_images(reference: str | Path | np.ndarray,
         grid_variables(grid, results, "image", scale, unit),
         coords={"image": ("image", np.arange(len(results)),
                           {"long_name": "image number", "units": "1"}),
-                "file": ("image", np.array(names, dtype=object)),
+                "file": ("image", np.array(names, dtype=object),
+                         {"long_name": "image file name"}),
                 "y": ("y", y, y_attrs), "x": ("x", x, x_attrs)},
     )
     ds.attrs.update(_parameters(grid, settings), reference=ref_name,
                     roi_px="none" if roi is None else " ".join(f"{v:g}" for v in roi),
-                    incremental=int(incremental))
+                    incremental=int(incremental), colour=colour)
     if pixel_size_um:
         ds.attrs["pixel_size_um"] = float(pixel_size_um)
     return stamp(ds, title="DIC displacements of images against a reference",
