@@ -64,6 +64,7 @@ or correlation coefficients. The engine here is numpy and scipy only.
 from __future__ import annotations
 
 import itertools
+from collections.abc import Iterable
 from dataclasses import dataclass
 
 import numpy as np
@@ -495,7 +496,7 @@ def next_guess(ref: Reference, previous: FrameResult,
     return guess
 
 
-def correlate_sequence(reference: np.ndarray, images: list[tuple[str, np.ndarray]] | object,
+def correlate_sequence(reference: np.ndarray, images: Iterable[tuple[str, np.ndarray]],
                        grid: SubsetGrid, settings: Settings, *, incremental: bool
                        ) -> list[FrameResult]:
     """Correlate each (label, image) of ``images`` with ``reference`` on ``grid``.
@@ -506,7 +507,7 @@ def correlate_sequence(reference: np.ndarray, images: list[tuple[str, np.ndarray
     """
     ref = Reference(reference, grid, settings)
     results: list[FrameResult] = []
-    for label, image in images:  # type: ignore[attr-defined]
+    for label, image in images:
         if np.shape(image) != grid.shape:
             raise ValueError(f"{label}: image has shape {np.shape(image)}, the reference "
                              f"{grid.shape}")
