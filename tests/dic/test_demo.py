@@ -101,3 +101,17 @@ def test_correlate_images_with_a_region_of_interest_in_um(demo: Path) -> None:
         row = truth.loc[frame]
         u = row["pad_u0"] + row["pad_dudx"] * x_px[None, :] + row["pad_dudy"] * y_px[:, None]
         assert float(np.abs(ds["u"].values[k] / 0.5 - u).max()) < 0.02
+
+
+def test_a_16_bit_tiff_demo(tmp_path: Path) -> None:
+    """16-bit TIFF frames carry the RECONSTRUCTED label and correlate like the PNG ones."""
+    import tifffile
+
+    render_demo(tmp_path, test="RU1", seed=SEED, shape=(160, 320), pixel_size_um=1.0,
+                speckle_size=4.0, read_noise=1.5, bits=16, image_format="tif", frames=[1, 2])
+    with tifffile.TiffFile(tmp_path / "frame_0002.tif") as tif:
+        assert tif.pages[0].dtype == np.uint16
+        assert tif.pages[0].description.startswith("RECONSTRUCTED")
+    ds = fields_from_images(tmp_path, [1, 2], subset=None, step=None, **CORRELATION)
+    placed = ds["status"] != 6
+    assert (ds["valid"] == placed).all() and int(placed.sum()) == 2 * 2 * 3 * 4

@@ -64,6 +64,14 @@ def test_folder_lists_frames_by_id_and_reads_them(tmp_path: Path) -> None:
     images.require([1, 3])
 
 
+def test_a_reference_may_be_named_without_a_number(tmp_path: Path) -> None:
+    folder = folder_with(tmp_path, 2)
+    save(folder / "reference.png", GREY16[:, :].astype(np.uint8))
+    images = ImageFolder(folder, reference="reference.png", colour="refuse")
+    assert list(images.frames) == [0, 1]
+    np.testing.assert_array_equal(images.read_reference(), GREY16.astype(np.uint8))
+
+
 def corrupt(path: Path) -> None:
     path.write_bytes(path.read_bytes()[:60])
 

@@ -158,9 +158,9 @@ class ImageFolder:
     reference : file name (in ``folder``) of the reference frame.
     colour : ``"refuse"`` or ``"luminance"`` (see :func:`read_image`).
 
-    Raises ValueError naming the file for a name without a frame number, an id used by two
-    files, or a frame whose size or sample type differs from the reference's, and
-    FileNotFoundError for a missing folder or reference.
+    Raises ValueError naming the file for a name without a frame number (the reference may
+    have none), an id used by two files, or a frame whose size or sample type differs from
+    the reference's, and FileNotFoundError for a missing folder or reference.
     """
 
     def __init__(self, folder: str | Path, *, reference: str, colour: str) -> None:
@@ -182,6 +182,8 @@ class ImageFolder:
         files = sorted(p for p in self.folder.iterdir()
                        if p.is_file() and p.suffix.lower() in IMAGE_SUFFIXES)
         for path in files:
+            if path == self.reference and not re.search(r"\d", path.stem):
+                continue  # a reference named without a number is no frame of the sequence
             number = frame_id(path)
             if number in frames:
                 raise ValueError(f"{path}: frame id {number} is also that of "
