@@ -54,11 +54,11 @@ the region.
 
 Why written here: the pip-installable DIC codes are global finite-element methods
 (muDIC, pyxel), compiled GPL code (spam), or local codes that pull GUI toolkits and
-parallel runtimes (sun-dic, pyALDIC) and none places subsets by region; none was found to
-give per-subset ZNCC, iteration counts and flags on a two-body image with the accuracy
-demanded here (0.01 px) without those dependencies (``docs/dic.md``).
-scikit-image's ``optical_flow_ilk`` is a dense Lucas-Kanade without subset shape functions
-or correlation coefficients. The engine here is numpy and scipy only.
+parallel runtimes (sun-dic, pyALDIC); none places subsets by region on the two sides of an
+interface, and each would bring those dependencies for what is here a few hundred lines of
+numpy (``docs/dic.md``). scikit-image's ``optical_flow_ilk`` is a dense Lucas-Kanade flow
+without subset shape functions, correlation coefficients or rejection. The engine uses
+scipy's B-splines and FFT and scikit-image's FFT registration.
 """
 
 from __future__ import annotations

@@ -18,9 +18,9 @@ re-centred on the image: the interface lies at the middle of the image's width, 
 measured from the middle of its height.
 
 Camera (thesis sec. 2.3.2: 1280 x 1024 px, about 1 um/px): by default a 640 x 512 px
-window of it at 1 um/px (a quarter of the frame, the interface in its middle), which keeps
-the render and the correlation of the ~290 frames of a test under a minute each on one core;
-``shape=(1024, 1280)`` gives the full frame. 8-bit grey levels, Gaussian noise of 1.5 grey
+window of it at 1 um/px (a quarter of the frame and of the cost, the interface in its
+middle; ``docs/dic.md`` gives the cost of both); ``shape=(1024, 1280)`` gives the full
+frame. 8-bit grey levels, Gaussian noise of 1.5 grey
 levels, speckles of 4 px (:mod:`contactlab.dic.speckle`: exact pixel integrals). Pad and
 specimen ranges leave a band of two grid steps around the interface out, and a margin of
 16 px along the image's edges (more than the largest motion, so no subset leaves the image).
