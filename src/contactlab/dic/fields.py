@@ -139,9 +139,8 @@ def correlate_images(reference: str | Path | np.ndarray,
                      images: Sequence[str | Path | np.ndarray], *, subset: int, step: int,
                      order: int, max_iterations: int, tolerance: float, zncc_min: float,
                      prefilter_sigma: float, incremental: bool,
-                     roi: tuple[float, float, float, float] | None = None,
-                     pixel_size_um: float | None = None, colour: str = "refuse"
-                     ) -> xr.Dataset:
+                     colour: str, roi: tuple[float, float, float, float] | None = None,
+                     pixel_size_um: float | None = None) -> xr.Dataset:
     """Correlate ``images`` with ``reference`` on a grid of subsets (single use).
 
     Parameters
