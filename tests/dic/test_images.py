@@ -39,6 +39,12 @@ def test_grey_files_round_trip(tmp_path: Path, suffix: str, data: np.ndarray) ->
     np.testing.assert_array_equal(back, data)
 
 
+def test_a_tiff_stack_of_one_image_is_one_frame(tmp_path: Path) -> None:
+    tifffile.imwrite(tmp_path / "frame_0001.tif", GREY16[None])  # series shape (1, 24, 32)
+    np.testing.assert_array_equal(read_image(tmp_path / "frame_0001.tif", colour="refuse"),
+                                  GREY16)
+
+
 def test_colour_is_refused_or_converted_on_request(tmp_path: Path) -> None:
     rgb = np.stack([GREY8, GREY8 // 2, 255 - GREY8], axis=2)
     path = save(tmp_path / "frame_0001.png", rgb)

@@ -96,6 +96,8 @@ def image_info(path: str | Path) -> ImageInfo:
             pages = len(tif.pages)
     except Exception as exc:  # tifffile raises several types for broken files
         raise ValueError(f"{path}: unreadable or corrupt TIFF file ({exc})") from None
+    while len(shape) > (2 if channels == 1 else 3) and shape[0] == 1:
+        shape = shape[1:]  # a stack of one image (e.g. an ImageJ hyperstack of one frame)
     if pages != 1 or len(shape) != (2 if channels == 1 else 3):
         raise ValueError(f"{path}: holds a stack of shape {shape}; one frame per file "
                          "expected")
@@ -134,6 +136,8 @@ def read_image(path: str | Path, *, colour: str) -> np.ndarray:
             import tifffile
 
             data = tifffile.imread(info.path)
+            while data.ndim > (2 if info.channels == 1 else 3) and data.shape[0] == 1:
+                data = data[0]
     except Exception as exc:  # decoders raise several types for truncated data
         raise ValueError(f"{info.path}: unreadable or corrupt image data ({exc})") from None
     if data.ndim == 3:
