@@ -40,6 +40,19 @@ def test_pixel_values_are_the_means_of_the_blob_over_the_pixels() -> None:
     assert image.sum() == pytest.approx(2.0 * 2 * math.pi * sx * sy, rel=1e-6)
 
 
+def test_elongated_blobs_keep_their_integral() -> None:
+    blob = Speckle(x=np.array([20.2]), y=np.array([10.7]), sigma=np.array([1.5]),
+                   amplitude=np.array([1.0]), aspect=4.0)
+    image = blob_image(blob, (22, 42))
+    assert image.sum() == pytest.approx(2 * math.pi * 1.5**2, rel=1e-6)
+    profile_x, profile_y = image.sum(axis=0), image.sum(axis=1)
+    width = [np.sqrt(np.sum(p * (np.arange(len(p)) - c) ** 2) / p.sum())
+             for p, c in ((profile_x, 20.2), (profile_y, 10.7))]
+    # pixel integration adds 1/12 px^2 to the variance of each profile
+    assert width[0] == pytest.approx(math.sqrt(3.0**2 + 1 / 12), rel=1e-3)
+    assert width[1] == pytest.approx(math.sqrt(0.75**2 + 1 / 12), rel=1e-3)
+
+
 def test_a_shift_by_whole_pixels_moves_the_image_exactly() -> None:
     pattern = speckle_pattern((40, 50), speckle_size=4.0, density=0.8, seed=4, margin=8)
     rest = blob_image(pattern, (40, 50))

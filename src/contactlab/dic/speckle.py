@@ -57,7 +57,9 @@ class Speckle:
     """An analytic speckle pattern in the reference configuration (pixels).
 
     ``x``, ``y``: blob centres; ``sigma``: Gaussian widths; ``amplitude``: peak intensity
-    of each blob above the background (arbitrary units; the camera scales them).
+    of each blob above the background (arbitrary units; the camera scales them);
+    ``aspect``: blobs ``sqrt(aspect)`` times wider along x and narrower along y (streaks
+    along x, like machining marks; 1: round).
     """
 
     x: np.ndarray
@@ -65,10 +67,12 @@ class Speckle:
     sigma: np.ndarray
     amplitude: np.ndarray
     background: float = 0.0
+    aspect: float = 1.0
 
 
 def speckle_pattern(shape: tuple[int, int], *, speckle_size: float, density: float,
-                    seed: int, margin: float = 0.0, size_spread: float = 0.2) -> Speckle:
+                    seed: int, margin: float = 0.0, size_spread: float = 0.2,
+                    aspect: float = 1.0) -> Speckle:
     """A seeded random speckle pattern covering an image of ``shape`` (rows, columns).
 
     Parameters
@@ -82,6 +86,7 @@ def speckle_pattern(shape: tuple[int, int], *, speckle_size: float, density: flo
     margin : pixels added around the image, so that blobs moved in from outside by a
         displacement still fill the frame.
     size_spread : relative spread of the blob diameters (uniform, +-).
+    aspect : elongation of the blobs along x (see :class:`Speckle`; the blob area is kept).
     """
     if speckle_size <= 0 or density <= 0:
         raise ValueError(f"speckle_size and density must be > 0, got {speckle_size}, "
@@ -94,7 +99,8 @@ def speckle_pattern(shape: tuple[int, int], *, speckle_size: float, density: flo
     y = rng.uniform(-0.5 - margin, rows - 0.5 + margin, count)
     diameter = speckle_size * rng.uniform(1 - size_spread, 1 + size_spread, count)
     amplitude = rng.uniform(0.5, 1.0, count)
-    return Speckle(x=x, y=y, sigma=diameter / (2 * _SQRT2), amplitude=amplitude)
+    return Speckle(x=x, y=y, sigma=diameter / (2 * _SQRT2), amplitude=amplitude,
+                   aspect=aspect)
 
 
 class DisplacementField(Protocol):
@@ -205,8 +211,8 @@ def blob_image(speckle: Speckle, shape: tuple[int, int],
     if displacement is None:
         displacement = AffineField()
     xd, yd, stretch_x, stretch_y, lo, hi = displacement.blobs(speckle.x, speckle.y)
-    sx = speckle.sigma * stretch_x
-    sy = speckle.sigma * stretch_y
+    sx = speckle.sigma * math.sqrt(speckle.aspect) * stretch_x
+    sy = speckle.sigma / math.sqrt(speckle.aspect) * stretch_y
     half = math.ceil(4.5 * float(max(sx.max(initial=0.0), sy.max(initial=0.0)))) + 1
     window = 2 * half + 1
     # canvas pixel = image pixel + 2 half; a blob's window starts at its shifted centre
