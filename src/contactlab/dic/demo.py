@@ -66,6 +66,8 @@ DEMO_STEP = 32
 DEMO_SUBSET = 31
 #: Pixels kept clear along the image's edges (more than the demo's largest motion).
 DEMO_EDGE = 16
+#: Blobs per speckle area: roughly equal dark and bright areas.
+SPECKLE_DENSITY = 0.8
 _BODIES = ("pad", "specimen")
 _PARAMETERS = ("u0", "dudx", "dudy", "v0", "dvdx", "dvdy")
 
@@ -173,7 +175,7 @@ def render_demo(out_dir: str | Path, *, test: str, seed: int, shape: tuple[int, 
     y_range = (edge, rows * pixel_size_um - edge)
     largest = float(np.abs(motion[[f"{b}_{n}0" for b in _BODIES for n in "uv"]]).max().max())
     margin = math.ceil(largest / pixel_size_um + 0.002 * max(shape)) + 8
-    speckle = speckle_pattern(shape, speckle_size=speckle_size, density=0.8,
+    speckle = speckle_pattern(shape, speckle_size=speckle_size, density=SPECKLE_DENSITY,
                               seed=seed, margin=margin)
     camera = Camera(levels=(20.0, 235.0) if bits == 8 else (5000.0, 60000.0),
                     read_noise=read_noise * (1 if bits == 8 else 256), bits=bits)
@@ -197,7 +199,12 @@ def render_demo(out_dir: str | Path, *, test: str, seed: int, shape: tuple[int, 
                            geometry=geometry, y_range=y_range, subset=DEMO_SUBSET,
                            step=DEMO_STEP,
                            reconstructed=RECONSTRUCTED, test=test, seed=seed,
-                           comment="frames rendered from truth.csv; load_log.csv lists them")
+                           comment=f"frames rendered from truth.csv (load_log.csv lists "
+                                   f"them): {shape[1]} x {shape[0]} px, speckle "
+                                   f"{speckle_size:g} px at density {SPECKLE_DENSITY:g}, "
+                                   f"{bits}-bit, levels {camera.levels[0]:g}-"
+                                   f"{camera.levels[1]:g}, noise {camera.read_noise:g} grey "
+                                   "levels, exact pixel integrals (contactlab.dic.speckle)")
     paths["sidecar"] = write_text(json.dumps(sidecar, indent=1) + "\n", out / SIDECAR)
     header = f"# {RECONSTRUCTED}\n# test {test}, seed {seed}; units: Pn kN, Qt kN\n"
     paths["load_log"] = write_text(header + log.to_csv(index=False, lineterminator="\n"),
