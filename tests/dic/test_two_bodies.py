@@ -99,6 +99,10 @@ def test_fields_follow_the_stiffness_format(tmp_path: Path) -> None:
                  "zncc_min", "prefilter_sigma_px", "pixel_size_um", "regions"):
         assert name in ds.attrs
     assert ds["status"].attrs["flag_meanings"].split()[3] == "left_region"
+    # converged: the last increment moved the corners by less than the tolerance (um)
+    valid = ds["valid"] == 1
+    assert (ds["increment"].where(valid) < 1e-3 * PIXEL_UM).sum() == valid.sum()
+    assert ds["iterations"].where(valid).min() >= 1
     write_netcdf(ds, tmp_path / "f.nc")  # checks long_name and units of every variable
     back = read_fields_netcdf(tmp_path / "f.nc")
     # qt_positive = -1: vc is the specimen's motion along -y relative to the pad

@@ -164,16 +164,28 @@ def prepare(image: np.ndarray, settings: Settings) -> Frame:
 @dataclass(frozen=True)
 class FrameResult:
     """Per subset: warp parameters ``p`` (subsets x 6, order :data:`PARAMETERS`, pixels),
-    final ``zncc``, ``iterations`` and ``status`` (:data:`STATUS_MEANINGS`)."""
+    final ``zncc``, ``iterations``, the corner motion of the last increment ``increment``
+    (px; below the tolerance when converged) and ``status`` (:data:`STATUS_MEANINGS`)."""
 
     p: np.ndarray
     zncc: np.ndarray
     iterations: np.ndarray
+    increment: np.ndarray
     status: np.ndarray
 
     @property
     def valid(self) -> np.ndarray:
         return self.status == VALID
+
+    @classmethod
+    def empty(cls, n: int) -> FrameResult:
+        return cls(np.zeros((n, 6)), np.full(n, np.nan), np.zeros(n, dtype=np.int32),
+                   np.full(n, np.nan), np.zeros(n, dtype=np.int8))
+
+    def put(self, where: np.ndarray, other: FrameResult) -> None:
+        """Copy the rows of ``other`` into the rows ``where`` (indices or mask)."""
+        for name in ("p", "zncc", "iterations", "increment", "status"):
+            getattr(self, name)[where] = getattr(other, name)
 
 
 class Reference:
@@ -277,9 +289,8 @@ def _extent(p: np.ndarray, half: float) -> tuple[np.ndarray, np.ndarray]:
             (np.abs(p[:, 4]) + np.abs(1 + p[:, 5])) * half)
 
 
-def _icgn(ref: Reference, frame: Frame, subsets: np.ndarray, p: np.ndarray
-          ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """Solve ``subsets`` from the start parameters ``p``: (p, zncc, iterations, status)."""
+def _icgn(ref: Reference, frame: Frame, subsets: np.ndarray, p: np.ndarray) -> FrameResult:
+    """Solve ``subsets`` from the start parameters ``p``."""
     settings = ref.settings
     grid = ref.grid
     rows, cols = grid.shape
@@ -288,6 +299,7 @@ def _icgn(ref: Reference, frame: Frame, subsets: np.ndarray, p: np.ndarray
     n = len(subsets)
     zncc = np.full(n, np.nan)
     iterations = np.zeros(n, dtype=np.int32)
+    increment = np.full(n, np.nan)
     status = np.full(n, VALID, dtype=np.int8)
     status[ref.textureless[subsets]] = TEXTURELESS
     active = np.flatnonzero(status == VALID)
@@ -331,6 +343,7 @@ def _icgn(ref: Reference, frame: Frame, subsets: np.ndarray, p: np.ndarray
         step = np.sqrt(dp[:, 0] ** 2 + dp[:, 3] ** 2
                        + half**2 * (dp[:, 1] ** 2 + dp[:, 2] ** 2 + dp[:, 4] ** 2
                                     + dp[:, 5] ** 2))
+        increment[active] = step
         status[active[flat]] = LOW_ZNCC
         lost = ~(step < grid.subset / 2)  # beyond any linearisation: a lost subset
         status[active[lost & ~flat]] = NOT_CONVERGED
@@ -338,7 +351,7 @@ def _icgn(ref: Reference, frame: Frame, subsets: np.ndarray, p: np.ndarray
         active = active[~done]
     status[active] = NOT_CONVERGED
     status[(status == VALID) & ~(zncc >= settings.zncc_min)] = LOW_ZNCC
-    return p, zncc, iterations, status
+    return FrameResult(p, zncc, iterations, increment, status)
 
 
 def _integer_shift(ref: Reference, frame: Frame, subsets: np.ndarray, prior: np.ndarray
@@ -400,12 +413,9 @@ def coarse_guess(ref: Reference, frame: Frame) -> np.ndarray:
 
 
 def _solve(ref: Reference, frame: Frame, subsets: np.ndarray, guess: np.ndarray
-           ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+           ) -> FrameResult:
     """Integer FFT check of the guess, then IC-GN, block by block."""
-    p = guess.copy()
-    zncc = np.full(len(subsets), np.nan)
-    iterations = np.zeros(len(subsets), dtype=np.int32)
-    status = np.zeros(len(subsets), dtype=np.int8)
+    result = FrameResult.empty(len(subsets))
     for block in ref.blocks(np.arange(len(subsets))):
         sub = subsets[block]
         start = guess[block].copy()
@@ -413,8 +423,8 @@ def _solve(ref: Reference, frame: Frame, subsets: np.ndarray, guess: np.ndarray
         jumped = np.any(shift != np.rint(start[:, [0, 3]]), axis=1) & ~outside
         start[jumped, 0] = shift[jumped, 0]
         start[jumped, 3] = shift[jumped, 1]
-        p[block], zncc[block], iterations[block], status[block] = _icgn(ref, frame, sub, start)
-    return p, zncc, iterations, status
+        result.put(block, _icgn(ref, frame, sub, start))
+    return result
 
 
 def _check_regions(ref: Reference, result: FrameResult, label: str) -> None:
@@ -456,15 +466,16 @@ def correlate_frame(ref: Reference, frame: Frame, guess: np.ndarray | None, *,
     everything = np.arange(n)
     coarse = guess is None
     start = coarse_guess(ref, frame) if coarse else np.asarray(guess, dtype=float)
-    p, zncc, iterations, status = _solve(ref, frame, everything, start)
-    retry = np.flatnonzero(np.isin(status, _RETRY))
+    result = _solve(ref, frame, everything, start)
+    retry = np.flatnonzero(np.isin(result.status, _RETRY))
     if len(retry) and not coarse:
         again = _solve(ref, frame, retry, coarse_guess(ref, frame)[retry])
-        better = again[3] == VALID
-        take = retry[better]
-        p[take], zncc[take], status[take] = again[0][better], again[1][better], VALID
-        iterations[retry] += again[2]
-    result = FrameResult(p, zncc, iterations, status)
+        spent = result.iterations[retry] + again.iterations
+        better = again.valid
+        result.put(retry[better], FrameResult(*(getattr(again, name)[better] for name in
+                                                ("p", "zncc", "iterations", "increment",
+                                                 "status"))))
+        result.iterations[retry] = spent  # both attempts count
     _check_regions(ref, result, label)
     return result
 

@@ -8,7 +8,8 @@ subset); the geometry ``pad_x_min`` ... ``specimen_x_max`` on ``x`` and ``qt_pos
 ``y``. :func:`correlate_images` correlates a list of images with a reference (dims
 ``image, y, x``, pixels or um). Both carry the quality of every vector (``zncc``,
 ``iterations``, ``valid``, ``status``), the affine displacement gradients and every
-parameter of the correlation as attributes.
+parameter of the correlation as attributes; ``increment`` (the last IC-GN step) shows how
+far each vector converged.
 """
 
 from __future__ import annotations
@@ -72,6 +73,11 @@ def grid_variables(grid: SubsetGrid, results: Sequence[FrameResult], dim: str,
     variables["iterations"] = (dims, on_grid(np.stack([r.iterations for r in results]), 0,
                                              np.int32),
                                {"long_name": "IC-GN iterations", "units": "1"})
+    variables["increment"] = (dims, on_grid(np.stack([r.increment for r in results]) * scale,
+                                            np.nan, float),
+                              {"long_name": "corner motion of the last IC-GN increment "
+                                            "(below the tolerance when converged)",
+                               "units": unit})
     variables["valid"] = (dims, on_grid(valid.astype(np.int8), 0, np.int8),
                           {"long_name": "vector is valid (status 0)", "units": "1",
                            "flag_values": np.array([0, 1], dtype=np.int8),
