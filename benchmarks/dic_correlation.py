@@ -14,7 +14,8 @@ Hessians), the first frame (FFT guess of every region) and the mean of the follo
 frames (incremental guesses), the mean IC-GN iterations, and the error against the
 imposed motion over all frames (mean, standard deviation, largest), px.
 
-Run: ``python benchmarks/dic_correlation.py`` (about a minute of CPU). CPU time is printed
+Run: ``python benchmarks/dic_correlation.py`` (about a minute of CPU;
+``DIC_BENCH_STEPS=32`` for the thesis grid only). CPU time is printed
 (``time.process_time``) besides wall time, which other jobs on a shared machine inflate.
 """
 
