@@ -16,11 +16,11 @@ deviations; ``C = 2 (1 - ZNCC)`` with the zero-normalised cross-correlation coef
 ``ZNCC = sum (f_i - f_m)(g_i - g_m) / (df dg)``, reported per subset. ZNSSD ignores an
 offset and a gain of the grey levels between images (lighting, exposure).
 
-Inverse-compositional Gauss-Newton (Baker and Matthews, IJCV 56 (2004) 221; Pan, Li and Tong,
-Strain 49 (2013) 48): the increment ``dp`` is sought on the reference side, so its Jacobian
-``J_i = grad f(x_i) dW/dp`` (six numbers per pixel) and the Hessian ``H = sum J_i^T J_i``
-are fixed by the reference and computed once; each iteration interpolates ``g`` at the
-warped pixels, solves
+Inverse-compositional Gauss-Newton (Baker and Matthews, Int. J. Comput. Vis. 56 (2004) 221;
+Pan, Li and Tong, Exp. Mech. 53 (2013) 1277): the increment ``dp`` is sought on the
+reference side, so its Jacobian ``J_i = grad f(x_i) dW/dp`` (six numbers per pixel) and
+the Hessian ``H = sum J_i^T J_i`` are fixed by the reference and computed once; each
+iteration interpolates ``g`` at the warped pixels, solves
 
     dp = -H^-1 sum_i J_i^T [ (f_i - f_m) - (df / dg) (g_i - g_m) ]
 
