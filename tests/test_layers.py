@@ -7,9 +7,9 @@ of its own layer and of the layers below it, never above:
    ``csvlines``, ``config_check``, ``config_docs``, ``setup_check``, ``progress``, ``blas``
    -- files, provenance, the thesis's transcribed tables, the test sheet, the set-up's
    system packages, the log format and progress reports, one BLAS thread;
-1. science: every module of a branch package (``surfaces``, ``stiffness``, ``asperity``,
-   ``receding``, ``fe``, ``prediction`` and their sub-packages) that is not a report builder
-   or a command line -- numbers and files in, numbers and datasets out;
+1. science: every module of a branch package (``surfaces``, ``stiffness``, ``dic``,
+   ``asperity``, ``receding``, ``fe``, ``prediction`` and their sub-packages) that is not a
+   report builder or a command line -- numbers and files in, numbers and datasets out;
 2. report toolkit: ``report`` (``report.section``, ``report.index``) -- sections, tables,
    figures, the page; it imports the ground floor only, no science;
 3. report builders: a branch's ``report`` module (or ``report_<part>``), e.g.
@@ -35,7 +35,7 @@ GROUND = {"contactlab", "contactlab.__init__", "contactlab.io", "contactlab.stud
           "contactlab.published", "contactlab.testsheet", "contactlab.csvlines",
           "contactlab.config_check", "contactlab.config_docs", "contactlab.setup_check",
           "contactlab.progress", "contactlab.blas"}
-BRANCHES = ("surfaces", "stiffness", "asperity", "receding", "fe", "prediction")
+BRANCHES = ("surfaces", "stiffness", "dic", "asperity", "receding", "fe", "prediction")
 LAYERS = ("ground floor", "science", "report toolkit", "report builder", "command line",
           "workflow")
 

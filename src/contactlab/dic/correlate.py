@@ -1,0 +1,530 @@
+"""Local subset correlation: ZNSSD with the inverse-compositional Gauss-Newton method.
+
+Every subset of a :class:`~contactlab.dic.regions.SubsetGrid` is matched between the
+reference image ``f`` and a deformed image ``g`` by an affine (first-order) warp of its
+pixel offsets ``(dx, dy)`` from its centre,
+
+    x' = x + u + (1 + du/dx) dx + du/dy dy,    y' = y + v + dv/dx dx + (1 + dv/dy) dy,
+
+with parameters ``p = (u, du/dx, du/dy, v, dv/dx, dv/dy)`` (pixels). The match minimises the
+zero-normalised sum of squared differences
+
+    C(p) = sum_i [ (f_i - f_m) / df - (g(W(x_i; p)) - g_m) / dg ]^2,
+
+``f_m``, ``g_m`` the subset means and ``df``, ``dg`` the square roots of the sums of squared
+deviations; ``C = 2 (1 - ZNCC)`` with the zero-normalised cross-correlation coefficient
+``ZNCC = sum (f_i - f_m)(g_i - g_m) / (df dg)``, reported per subset. ZNSSD ignores an
+offset and a gain of the grey levels between images (lighting, exposure).
+
+Inverse-compositional Gauss-Newton (Baker and Matthews, Int. J. Comput. Vis. 56 (2004) 221;
+Pan, Li and Tong, Exp. Mech. 53 (2013) 1277): the increment ``dp`` is sought on the
+reference side, so its Jacobian ``J_i = grad f(x_i) dW/dp`` (six numbers per pixel) and
+the Hessian ``H = sum J_i^T J_i`` are fixed by the reference and computed once; each
+iteration interpolates ``g`` at the warped pixels, solves
+
+    dp = -H^-1 sum_i J_i^T [ (f_i - f_m) - (df / dg) (g_i - g_m) ]
+
+and composes the warp with the inverse increment, ``W(p) <- W(p) o W(dp)^-1``. A subset has
+converged when the increment moves its corners by less than ``tolerance`` (pixels):
+``sqrt(du^2 + dv^2 + h^2 (d(du/dx)^2 + d(du/dy)^2 + d(dv/dx)^2 + d(dv/dy)^2)) < tolerance``,
+``h`` = (subset - 1)/2; an increment of more than half a subset means the subset is lost
+(``not_converged``). Grey levels between pixels come from B-splines of order 3 or 5
+(:mod:`contactlab.dic.bspline`); the reference gradients are those of the same splines.
+Optionally both images are smoothed by a Gaussian of ``prefilter_sigma`` pixels first,
+which lowers the interpolation bias of fine speckle.
+
+All subsets of a frame are solved together as stacked arrays (subsets x pixels), in blocks
+of about two million pixels; converged subsets are frozen, the others iterate on.
+
+First guess: an integer shift per subset from the phase correlation (FFT) of the reference
+subset with the window of the deformed image at the prior guess, the prior being the
+previous frame's solution, extrapolated linearly from the two previous frames where the
+motion is steady (incremental), or, for the first frame and for subsets that fail from the
+previous solution (a jump between frames), the shift of the whole region from
+:func:`skimage.registration.phase_cross_correlation`. Where the integer shift agrees with
+the prior, the prior (sub-pixel, with its gradients) is kept.
+
+Flags (``status``; ``valid`` is ``status == 0``): 1 ``textureless`` (the reference subset has
+no usable gradient), 2 ``left_image`` (a warped pixel centre left the image's area),
+3 ``left_region`` (its footprint crossed into a neighbouring region, moved by that region's
+median displacement), 4 ``not_converged`` (``max_iterations`` reached), 5 ``low_zncc``
+(final ZNCC below ``zncc_min``); 6 ``no_subset`` marks grid positions without a subset in
+the output fields. A region whose subsets are all rejected is an error naming the frame and
+the region.
+
+Why written here: the pip-installable DIC codes are global finite-element methods
+(muDIC, pyxel), compiled GPL code (spam), or local codes that pull GUI toolkits and
+parallel runtimes (sun-dic, pyALDIC); none places subsets by region on the two sides of an
+interface, and each would bring those dependencies for what is here a few hundred lines of
+numpy (``docs/dic.md``). scikit-image's ``optical_flow_ilk`` is a dense Lucas-Kanade flow
+without subset shape functions, correlation coefficients or rejection. The engine uses
+scipy's B-splines and FFT and scikit-image's FFT registration.
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+import numpy as np
+
+from contactlab.dic import bspline
+from contactlab.dic.regions import SubsetGrid
+
+__all__ = [
+    "PARAMETERS",
+    "STATUS_MEANINGS",
+    "Frame",
+    "FrameResult",
+    "Reference",
+    "Settings",
+    "coarse_guess",
+    "correlate_frame",
+    "correlate_sequence",
+    "next_guess",
+    "prepare",
+]
+
+PARAMETERS = ("u", "dudx", "dudy", "v", "dvdx", "dvdy")
+STATUS_MEANINGS = ("valid", "textureless", "left_image", "left_region", "not_converged",
+                   "low_zncc", "no_subset")
+VALID, TEXTURELESS, LEFT_IMAGE, LEFT_REGION, NOT_CONVERGED, LOW_ZNCC, NO_SUBSET = range(7)
+_RETRY = (LEFT_IMAGE, LEFT_REGION, NOT_CONVERGED, LOW_ZNCC)
+#: pixels (subsets x pixels per subset) solved together; bounds the memory (~10 arrays)
+BLOCK_PIXELS = 1 << 21
+#: the reference keeps its subsets' grey levels and gradients stacked up to this size (bytes)
+STACK_BYTES = 128 * 2**20
+#: reference subsets whose Hessian is this ill-conditioned have no usable texture
+MAX_CONDITION = 1e10
+#: a sequence extrapolates a subset's motion only if it changed less than this between the
+#: two previous frames (px); a larger change is a jump, left to the FFT guess
+TREND_LIMIT = 1.0
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Parameters of the correlation (see the module docstring and ``docs/dic.md``).
+
+    order : B-spline order of the interpolation, 3 or 5.
+    max_iterations : IC-GN iterations before a subset is flagged ``not_converged``.
+    tolerance : convergence threshold on the corner motion of the increment, pixels.
+    zncc_min : subsets with a lower final ZNCC are flagged ``low_zncc``.
+    prefilter_sigma : Gaussian smoothing of both images before interpolation, pixels
+        (0: none).
+    """
+
+    order: int
+    max_iterations: int
+    tolerance: float
+    zncc_min: float
+    prefilter_sigma: float
+
+    def __post_init__(self) -> None:
+        if self.order not in bspline.ORDERS:
+            raise ValueError(f"order must be one of {bspline.ORDERS}, got {self.order}")
+        if int(self.max_iterations) != self.max_iterations or self.max_iterations < 1:
+            raise ValueError(f"max_iterations must be a whole number >= 1, got "
+                             f"{self.max_iterations}")
+        if not self.tolerance > 0:
+            raise ValueError(f"tolerance must be > 0 pixels, got {self.tolerance}")
+        if not -1 <= self.zncc_min <= 1:
+            raise ValueError(f"zncc_min must lie in [-1, 1], got {self.zncc_min}")
+        if not self.prefilter_sigma >= 0:
+            raise ValueError(f"prefilter_sigma must be >= 0 pixels, got "
+                             f"{self.prefilter_sigma}")
+
+    def as_attrs(self) -> dict[str, float | int]:
+        return {"order": int(self.order), "max_iterations": int(self.max_iterations),
+                "tolerance_px": float(self.tolerance), "zncc_min": float(self.zncc_min),
+                "prefilter_sigma_px": float(self.prefilter_sigma)}
+
+
+@dataclass(frozen=True)
+class Frame:
+    """An image ready for correlation: grey levels (float, prefiltered) and their
+    B-spline coefficients."""
+
+    image: np.ndarray
+    coeffs: np.ndarray
+
+
+def prepare(image: np.ndarray, settings: Settings) -> Frame:
+    """Grey levels as float, the optional Gaussian prefilter, the B-spline coefficients."""
+    from scipy import ndimage
+
+    grey = np.asarray(image, dtype=float)
+    if grey.ndim != 2:
+        raise ValueError(f"an image must be 2-D grey levels, got shape {grey.shape}")
+    if settings.prefilter_sigma > 0:
+        grey = ndimage.gaussian_filter(grey, settings.prefilter_sigma, mode=bspline.MODE)
+    return Frame(grey, bspline.coefficients(grey, settings.order))
+
+
+@dataclass(frozen=True)
+class FrameResult:
+    """Per subset: warp parameters ``p`` (subsets x 6, order :data:`PARAMETERS`, pixels),
+    final ``zncc``, ``iterations``, the corner motion of the last increment ``increment``
+    (px; below the tolerance when converged) and ``status`` (:data:`STATUS_MEANINGS`)."""
+
+    p: np.ndarray
+    zncc: np.ndarray
+    iterations: np.ndarray
+    increment: np.ndarray
+    status: np.ndarray
+
+    @property
+    def valid(self) -> np.ndarray:
+        return self.status == VALID
+
+    @classmethod
+    def empty(cls, n: int) -> FrameResult:
+        return cls(np.zeros((n, 6)), np.full(n, np.nan), np.zeros(n, dtype=np.int32),
+                   np.full(n, np.nan), np.zeros(n, dtype=np.int8))
+
+    def put(self, where: np.ndarray, other: FrameResult) -> None:
+        """Copy the rows of ``other`` into the rows ``where`` (indices or mask)."""
+        for name in ("p", "zncc", "iterations", "increment", "status"):
+            getattr(self, name)[where] = getattr(other, name)
+
+
+class Reference:
+    """What the IC-GN needs of the reference image, computed once (module docstring).
+
+    Holds the prefiltered reference and its spline gradients as images, and per subset the
+    mean and spread of its grey levels, the inverse Hessian and a ``textureless`` flag.
+    """
+
+    def __init__(self, image: np.ndarray, grid: SubsetGrid, settings: Settings) -> None:
+        if np.shape(image) != grid.shape:
+            raise ValueError(f"reference image has shape {np.shape(image)}, the grid was "
+                             f"made for {grid.shape}")
+        self.grid = grid
+        self.settings = settings
+        frame = prepare(image, settings)
+        self.image = frame.image
+        self.gx, self.gy = bspline.gradients(frame.coeffs, settings.order)
+        cols = grid.shape[1]
+        self.dx, self.dy = grid.offsets()
+        self.moments = np.column_stack([np.ones_like(self.dx), self.dx, self.dy])
+        col0, row0 = grid.first_pixel()
+        s = grid.subset
+        self.offsets = (np.arange(s)[:, None] * cols + np.arange(s)[None, :]).ravel()
+        self.base = row0 * cols + col0
+        n = grid.size
+        self.mean = np.empty(n)
+        self.spread = np.empty(n)
+        self.hinv = np.empty((n, 6, 6))
+        self.textureless = np.zeros(n, dtype=bool)
+        quad = np.column_stack([np.ones_like(self.dx), self.dx, self.dy, self.dx**2,
+                                self.dx * self.dy, self.dy**2])
+        pair = np.array([[0, 1, 2], [1, 3, 4], [2, 4, 5]])  # (1, dx, dy) x (1, dx, dy)
+        for block in self.blocks(np.arange(n)):
+            idx = self.pixels(block)
+            f = self.image.ravel().take(idx)
+            self.mean[block] = f.mean(axis=1)
+            self.spread[block] = np.sqrt(((f - self.mean[block, None]) ** 2).sum(axis=1))
+            fx = self.gx.ravel().take(idx)
+            fy = self.gy.ravel().take(idx)
+            sxx, sxy, syy = ((a * b) @ quad for a, b in ((fx, fx), (fx, fy), (fy, fy)))
+            h = np.empty((len(block), 6, 6))
+            h[:, :3, :3] = sxx[:, pair]
+            h[:, :3, 3:] = sxy[:, pair]
+            h[:, 3:, :3] = sxy[:, pair]
+            h[:, 3:, 3:] = syy[:, pair]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                condition = np.linalg.cond(h)
+            flat = ~(self.spread[block] > 0) | ~(condition < MAX_CONDITION)
+            h[flat] = np.eye(6)
+            self.hinv[block] = np.linalg.inv(h)
+            self.textureless[block] = flat
+        #: the subsets' grey levels and gradients stacked, if small enough to keep
+        self.stack: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+        if 3 * n * grid.subset**2 * 8 <= STACK_BYTES:
+            idx = self.pixels(np.arange(n))
+            self.stack = (self.image.ravel().take(idx) - self.mean[:, None],
+                          self.gx.ravel().take(idx), self.gy.ravel().take(idx))
+
+    def subset_data(self, subsets: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(f - f_m, df/dx, df/dy) at the pixels of ``subsets`` (subsets x pixels), new
+        arrays: from the stored stack if the reference keeps one, else from the images."""
+        if self.stack is not None:
+            return self.stack[0][subsets], self.stack[1][subsets], self.stack[2][subsets]
+        idx = self.pixels(subsets)
+        f = self.image.ravel().take(idx)
+        f -= self.mean[subsets, None]
+        return f, self.gx.ravel().take(idx), self.gy.ravel().take(idx)
+
+    def blocks(self, subsets: np.ndarray) -> list[np.ndarray]:
+        """``subsets`` split into blocks of about :data:`BLOCK_PIXELS` pixels."""
+        per = max(1, BLOCK_PIXELS // self.grid.subset**2)
+        return [subsets[i:i + per] for i in range(0, len(subsets), per)]
+
+    def pixels(self, subsets: np.ndarray) -> np.ndarray:
+        """Flat indices of the pixels of ``subsets`` (subsets x pixels)."""
+        return self.base[subsets, None] + self.offsets[None, :]
+
+
+def _compose(p: np.ndarray, dp: np.ndarray) -> np.ndarray:
+    """Parameters of ``W(p) o W(dp)^-1`` for affine warps (rows of 6 parameters)."""
+    a11, a12, a21, a22 = 1 + p[:, 1], p[:, 2], p[:, 4], 1 + p[:, 5]
+    b11, b12, b21, b22 = 1 + dp[:, 1], dp[:, 2], dp[:, 4], 1 + dp[:, 5]
+    det = b11 * b22 - b12 * b21
+    i11, i12, i21, i22 = b22 / det, -b12 / det, -b21 / det, b11 / det  # inverse of B
+    tx = -(i11 * dp[:, 0] + i12 * dp[:, 3])
+    ty = -(i21 * dp[:, 0] + i22 * dp[:, 3])
+    out = np.empty_like(p)
+    out[:, 1] = a11 * i11 + a12 * i21 - 1
+    out[:, 2] = a11 * i12 + a12 * i22
+    out[:, 4] = a21 * i11 + a22 * i21
+    out[:, 5] = a21 * i12 + a22 * i22 - 1
+    out[:, 0] = p[:, 0] + a11 * tx + a12 * ty
+    out[:, 3] = p[:, 3] + a21 * tx + a22 * ty
+    return out
+
+
+def _extent(p: np.ndarray, half: float) -> tuple[np.ndarray, np.ndarray]:
+    """Half-widths in x and y of the warped subset's pixel centres."""
+    return ((np.abs(1 + p[:, 1]) + np.abs(p[:, 2])) * half,
+            (np.abs(p[:, 4]) + np.abs(1 + p[:, 5])) * half)
+
+
+def _icgn(ref: Reference, frame: Frame, subsets: np.ndarray, p: np.ndarray) -> FrameResult:
+    """Solve ``subsets`` from the start parameters ``p``."""
+    settings = ref.settings
+    grid = ref.grid
+    rows, cols = grid.shape
+    half = grid.half
+    p = p.copy()
+    n = len(subsets)
+    zncc = np.full(n, np.nan)
+    iterations = np.zeros(n, dtype=np.int32)
+    increment = np.full(n, np.nan)
+    status = np.full(n, VALID, dtype=np.int8)
+    status[ref.textureless[subsets]] = TEXTURELESS
+    active = np.flatnonzero(status == VALID)
+    xc, yc = grid.xc[subsets], grid.yc[subsets]
+    for _ in range(settings.max_iterations):
+        if not len(active):
+            break
+        pa = p[active]
+        cx, cy = xc[active] + pa[:, 0], yc[active] + pa[:, 3]
+        ex, ey = _extent(pa, half)
+        inside = ((cx - ex >= -0.5) & (cx + ex <= cols - 0.5) & (cy - ey >= -0.5)
+                  & (cy + ey <= rows - 0.5))
+        if not inside.all():
+            status[active[~inside]] = np.where(np.isfinite(cx[~inside] + cy[~inside]),
+                                               LEFT_IMAGE, NOT_CONVERGED)
+            active, pa, cx, cy = active[inside], pa[inside], cx[inside], cy[inside]
+            if not len(active):
+                break
+        sub = subsets[active]
+        points = np.empty((2, len(active), len(ref.dx)))
+        np.multiply(pa[:, 4, None], ref.dx, out=points[0])
+        points[0] += (1 + pa[:, 5, None]) * ref.dy
+        points[0] += cy[:, None]
+        np.multiply(1 + pa[:, 1, None], ref.dx, out=points[1])
+        points[1] += pa[:, 2, None] * ref.dy
+        points[1] += cx[:, None]
+        g = bspline.sample(frame.coeffs, points, settings.order)
+        g -= g.mean(axis=1)[:, None]
+        dg = np.sqrt(np.einsum("ij,ij->i", g, g))
+        f, fx, fy = ref.subset_data(sub)
+        df = ref.spread[sub]
+        flat = ~(dg > 0)
+        dg[flat] = 1.0
+        zncc[active] = np.einsum("ij,ij->i", f, g) / (df * dg)
+        g *= -(df / dg)[:, None]
+        g += f  # the residual e_i = (f_i - f_m) - (df / dg) (g_i - g_m)
+        b = np.concatenate([(fx * g) @ ref.moments, (fy * g) @ ref.moments], axis=1)
+        dp = -np.einsum("aij,aj->ai", ref.hinv[sub], b)
+        p[active] = _compose(pa, dp)
+        iterations[active] += 1
+        step = np.sqrt(dp[:, 0] ** 2 + dp[:, 3] ** 2
+                       + half**2 * (dp[:, 1] ** 2 + dp[:, 2] ** 2 + dp[:, 4] ** 2
+                                    + dp[:, 5] ** 2))
+        increment[active] = step
+        status[active[flat]] = LOW_ZNCC
+        lost = ~(step < grid.subset / 2)  # beyond any linearisation: a lost subset
+        status[active[lost & ~flat]] = NOT_CONVERGED
+        done = (step < settings.tolerance) | flat | lost
+        active = active[~done]
+    status[active] = NOT_CONVERGED
+    status[(status == VALID) & ~(zncc >= settings.zncc_min)] = LOW_ZNCC
+    return FrameResult(p, zncc, iterations, increment, status)
+
+
+def _integer_shift(ref: Reference, frame: Frame, subsets: np.ndarray, prior: np.ndarray
+                   ) -> tuple[np.ndarray, np.ndarray]:
+    """Integer (u, v) of each subset by phase correlation around the prior shift (px).
+
+    The reference subset is correlated with the window of the deformed image of the same
+    size displaced by the rounded prior; the peak of the inverse transform of the
+    normalised cross-power spectrum is the remaining integer shift (less than half a
+    subset). Both windows are zero-padded to a fast FFT length. Also returns which windows
+    the prior puts (partly) outside the image: those are moved inside and their shift is
+    not to be trusted.
+    """
+    from scipy import fft
+
+    grid = ref.grid
+    rows, cols = grid.shape
+    s = grid.subset
+    n = fft.next_fast_len(s, real=True)
+    col0, row0 = grid.first_pixel()
+    col0, row0 = col0[subsets], row0[subsets]
+    wx = col0 + np.rint(prior[:, 0]).astype(np.int64)
+    wy = row0 + np.rint(prior[:, 1]).astype(np.int64)
+    outside = (wx < 0) | (wx > cols - s) | (wy < 0) | (wy > rows - s)
+    wx, wy = np.clip(wx, 0, cols - s), np.clip(wy, 0, rows - s)
+    f = ref.image.ravel().take(ref.pixels(subsets)).reshape(-1, s, s)
+    g = frame.image.ravel().take((wy * cols + wx)[:, None] + ref.offsets).reshape(-1, s, s)
+    f -= f.mean(axis=(1, 2), keepdims=True)
+    g -= g.mean(axis=(1, 2), keepdims=True)
+    cross = np.conj(fft.rfft2(f, s=(n, n))) * fft.rfft2(g, s=(n, n))
+    magnitude = np.abs(cross)
+    cross /= magnitude + 1e-12 * magnitude.max(axis=(1, 2), keepdims=True) + 1e-300
+    peak = fft.irfft2(cross, s=(n, n)).reshape(len(subsets), -1).argmax(axis=1)
+    ky, kx = np.divmod(peak, n)
+    ky = np.where(ky > n // 2, ky - n, ky)
+    kx = np.where(kx > n // 2, kx - n, kx)
+    return np.column_stack([wx - col0 + kx, wy - row0 + ky]).astype(float), outside
+
+
+def coarse_guess(ref: Reference, frame: Frame) -> np.ndarray:
+    """Start parameters (subsets x 6): each region's integer rigid shift by phase
+    correlation of the whole region (:func:`skimage.registration.phase_cross_correlation`)."""
+    from skimage.registration import phase_cross_correlation
+
+    grid = ref.grid
+    p = np.zeros((grid.size, 6))
+    top = round(grid.y.min() - grid.half)
+    bottom = round(grid.y.max() + grid.half) + 1
+    for r in np.unique(grid.region):
+        mine = grid.region == r
+        left = round(grid.xc[mine].min() - grid.half)
+        right = round(grid.xc[mine].max() + grid.half) + 1
+        shift, _, _ = phase_cross_correlation(ref.image[top:bottom, left:right],
+                                              frame.image[top:bottom, left:right],
+                                              normalization="phase")
+        p[mine, 0] = -shift[1]
+        p[mine, 3] = -shift[0]
+    return p
+
+
+def _solve(ref: Reference, frame: Frame, subsets: np.ndarray, guess: np.ndarray
+           ) -> FrameResult:
+    """Integer FFT check of the guess, then IC-GN, block by block."""
+    result = FrameResult.empty(len(subsets))
+    for block in ref.blocks(np.arange(len(subsets))):
+        sub = subsets[block]
+        start = guess[block].copy()
+        shift, outside = _integer_shift(ref, frame, sub, start[:, [0, 3]])
+        jumped = np.any(shift != np.rint(start[:, [0, 3]]), axis=1) & ~outside
+        start[jumped, 0] = shift[jumped, 0]
+        start[jumped, 3] = shift[jumped, 1]
+        result.put(block, _icgn(ref, frame, sub, start))
+    return result
+
+
+def _check_regions(ref: Reference, result: FrameResult, label: str) -> None:
+    """Flag footprints crossing into a neighbouring region; refuse all-rejected regions."""
+    grid = ref.grid
+    valid = result.valid
+    order = sorted(np.unique(grid.region), key=lambda r: grid.regions[r].x_min)
+    moved = {}
+    for r in order:
+        mine = valid & (grid.region == r)
+        if not mine.any():
+            counts = np.bincount(result.status[grid.region == r], minlength=6)
+            reasons = ", ".join(f"{counts[k]} {STATUS_MEANINGS[k]}" for k in range(1, 6)
+                                if counts[k])
+            raise ValueError(f"{label}: region {grid.regions[r].name!r}: all "
+                             f"{int(counts.sum())} subsets rejected ({reasons}); is the "
+                             "region textureless or the motion too large?")
+        moved[r] = float(np.median(result.p[mine, 0]))
+    ex, _ = _extent(result.p, grid.half)
+    x_low = grid.xc + result.p[:, 0] - ex  # footprint [x_low, x_high + 1), pixel edges
+    x_high = grid.xc + result.p[:, 0] + ex + 1
+    for left, right in itertools.pairwise(order):
+        a, b = grid.regions[left], grid.regions[right]
+        crossed = ((grid.region == left) & (x_high > b.x_min + moved[right])) | \
+                  ((grid.region == right) & (x_low < a.x_max + moved[left]))
+        result.status[valid & crossed] = LEFT_REGION
+
+
+def correlate_frame(ref: Reference, frame: Frame, guess: np.ndarray | None, *,
+                    label: str) -> FrameResult:
+    """Correlate every subset of ``ref.grid`` in ``frame``.
+
+    ``guess``: start parameters (subsets x 6), e.g. the previous frame's solution; None
+    starts from :func:`coarse_guess`. Subsets that fail from a given guess are solved again
+    from the coarse guess (a jump of the motion between frames). ``label`` names the frame
+    in errors.
+    """
+    n = ref.grid.size
+    everything = np.arange(n)
+    coarse = guess is None
+    start = coarse_guess(ref, frame) if coarse else np.asarray(guess, dtype=float)
+    result = _solve(ref, frame, everything, start)
+    retry = np.flatnonzero(np.isin(result.status, _RETRY))
+    if len(retry) and not coarse:
+        again = _solve(ref, frame, retry, coarse_guess(ref, frame)[retry])
+        spent = result.iterations[retry] + again.iterations
+        better = again.valid
+        result.put(retry[better], FrameResult(*(getattr(again, name)[better] for name in
+                                                ("p", "zncc", "iterations", "increment",
+                                                 "status"))))
+        result.iterations[retry] = spent  # both attempts count
+    _check_regions(ref, result, label)
+    return result
+
+
+def next_guess(ref: Reference, previous: FrameResult,
+               before: FrameResult | None = None) -> np.ndarray:
+    """Start parameters from the previous frame(s).
+
+    A subset valid in the previous frame starts from its solution there, moved on by its
+    change since the frame ``before`` (linear extrapolation) if it was valid there too and
+    moved by less than :data:`TREND_LIMIT` pixels: a steady motion, not a jump. Elsewhere
+    the median translation of the subset's region in the previous frame, no gradients.
+    """
+    guess = previous.p.copy()
+    valid = previous.valid
+    if before is not None:
+        change = previous.p - before.p
+        steady = valid & before.valid & (np.hypot(change[:, 0], change[:, 3]) < TREND_LIMIT)
+        guess[steady] += change[steady]
+    for r in np.unique(ref.grid.region):
+        mine = ref.grid.region == r
+        fill = mine & ~valid
+        if fill.any():
+            guess[fill] = 0.0
+            good = mine & valid
+            if good.any():
+                guess[fill, 0] = np.median(previous.p[good, 0])
+                guess[fill, 3] = np.median(previous.p[good, 3])
+    return guess
+
+
+def correlate_sequence(reference: np.ndarray, images: Iterable[tuple[str, np.ndarray]],
+                       grid: SubsetGrid, settings: Settings, *, incremental: bool
+                       ) -> list[FrameResult]:
+    """Correlate each (label, image) of ``images`` with ``reference`` on ``grid``.
+
+    ``incremental``: each frame starts from the previous frame's solution (else every frame
+    starts from :func:`coarse_guess`). ``images`` may be any iterable (e.g. a generator that
+    reads one file at a time).
+    """
+    ref = Reference(reference, grid, settings)
+    results: list[FrameResult] = []
+    for label, image in images:
+        if np.shape(image) != grid.shape:
+            raise ValueError(f"{label}: image has shape {np.shape(image)}, the reference "
+                             f"{grid.shape}")
+        frame = prepare(image, settings)
+        guess = None
+        if incremental and results:
+            guess = next_guess(ref, results[-1], results[-2] if len(results) > 1 else None)
+        results.append(correlate_frame(ref, frame, guess, label=label))
+    return results
