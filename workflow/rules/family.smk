@@ -17,7 +17,7 @@ from contactlab.studies.family import (
     use_variant,
     variant_config,
 )
-from contactlab.studies import manifest, shared
+from contactlab.studies import cluster, manifest, shared
 from contactlab.study import STUDIES_ENV, PROVENANCE_ENV, coerce
 
 _FAMILY_FILE = next((str(f) for f in workflow.config_settings.configfiles
@@ -58,7 +58,8 @@ FAMILY_TARGETS = [f for m in _MODULES.values() for f in m.STUDY_TARGETS]
 
 
 shared.attach(workflow, SHARED_RULES, _MODULES[VARIANTS[0].name].config)
-RUN_STUDIES = [{"results": m.RESULTS, "targets": m.STUDY_TARGETS,
+cluster.install(workflow)  # why a Slurm job failed, in the run's own output
+RUN_STUDIES = [{"logs": m.LOGS, "targets": m.STUDY_TARGETS,
                 "all_rules": ["all", f"{v.prefix}__all"], **m.PROVENANCE}
                for v, m in zip(VARIANTS, _MODULES.values(), strict=True)]
 

@@ -1,11 +1,13 @@
 # Studies side by side: the study's final targets, the record each run leaves in the study's
-# folder (study.json: targets, what each was made with; read by `contactlab studies list`),
+# log folder (study.json: targets, what each was made with; read by `contactlab studies list`),
 # and the inputs all studies share, built once under a lock before a run plans them
 # (contactlab.studies.manifest, contactlab.studies.shared). In a family run
 # (workflow/rules/family.smk) this file is read once per variant; the handlers and the
 # shared-input hook are then the family's.
 
-from contactlab.studies import manifest, shared
+import os
+
+from contactlab.studies import cluster, manifest, shared
 from contactlab.studies.family import SHARED_RULES
 
 #: every final result of the study and its report page (the inputs of rule `all`)
@@ -14,10 +16,12 @@ STUDY_TARGETS = [*ALL_TARGETS, result("report/index.html")]
 CONFIG_FILES = manifest.run_config_files(workflow)
 
 
-if workflow.modifier.is_main_snakefile():
-    RUN_STUDIES = [{"results": RESULTS, "targets": STUDY_TARGETS, "all_rules": ["all"],
+# (the run that builds the shared inputs for another leaves no record: it is not a study's)
+if workflow.modifier.is_main_snakefile() and not os.environ.get(shared.BUILDING_ENV):
+    RUN_STUDIES = [{"logs": LOGS, "targets": STUDY_TARGETS, "all_rules": ["all"],
                     **PROVENANCE}]
     shared.attach(workflow, SHARED_RULES, config)
+    cluster.install(workflow)  # why a Slurm job failed, in the run's own output
 
     onsuccess:
         manifest.record_runs(workflow, RUN_STUDIES, CONFIG_FILES, success=True)

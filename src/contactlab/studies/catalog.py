@@ -2,7 +2,7 @@
 
 The studies are the default study (``results/``), each ``config/studies/<file>.yaml`` (its
 ``study`` key names it), each variant of each ``config/families/<family>.yaml``, and any
-study that left a record (``study.json``, :mod:`contactlab.studies.manifest`) under
+study that left a record (``logs/study.json``, :mod:`contactlab.studies.manifest`) under
 ``results/studies/`` although its config file is gone.
 
 For each, from files only (no Snakemake, no numpy unless a result changed since its record):
@@ -37,7 +37,7 @@ from contactlab.config_check import ConfigError, load_yaml_file
 from contactlab.studies.effective import finish, load_schema, merged_config
 from contactlab.studies.family import FamilyError, split_family, variant_config
 from contactlab.studies.manifest import netcdf_provenance, read_manifest
-from contactlab.study import changes, config_sha256, git_commit, results_dir
+from contactlab.study import changes, config_sha256, git_commit, logs_dir, results_dir
 
 STUDIES_DIR = "config/studies"
 FAMILIES_DIR = "config/families"
@@ -52,6 +52,11 @@ class StudyRecord:
     config_file: str | None = None
     family: str | None = None
     manifest: dict[str, Any] | None = None
+
+    @property
+    def logs(self) -> str:
+        """The study's log folder, where its record is."""
+        return logs_dir(None if self.name == "default" else self.name)
 
     @property
     def kind(self) -> str:
@@ -118,14 +123,14 @@ def discover(root: str | os.PathLike[str] = ".") -> dict[str, StudyRecord]:
             found.setdefault(variant.study, StudyRecord(
                 variant.study, results_dir(variant.study), _relative(path, root),
                 variant.family))
-    for path in sorted((root / "results/studies").glob("**/study.json")):
-        folder = _relative(path.parent, root)
+    for path in sorted((root / "results/studies").glob("**/logs/study.json")):
+        folder = _relative(path.parent.parent, root)
         name = folder.removeprefix("results/studies/")
         if name not in found:
             found[name] = StudyRecord(name, f"{folder}/", None,
                                       name.split("/")[0] if "/" in name else None)
     for record in found.values():
-        record.manifest = read_manifest(root / record.results)
+        record.manifest = read_manifest(root / record.logs)
     return found
 
 

@@ -170,7 +170,10 @@ def expand_grid(family: str, grid: Mapping[str, Any], source: str = "the family 
                 parts.append(name)
             else:
                 label = labels[key]
-                text = format_value(value)
+                try:
+                    text = format_value(value)
+                except FamilyError as exc:
+                    raise FamilyError(f"{source}: grid.{key}: {exc}") from None
                 parts.append(f"{label}-{text}" if label[-1].isdigit() else f"{label}{text}")
         name = "_".join(parts)
         try:

@@ -1,7 +1,10 @@
-"""The record a run leaves in its study's folder: ``<results>/study.json``.
+"""The record a run leaves in its study's log folder: ``<logs>/study.json``.
 
-Written by the Snakefile's ``onsuccess`` and ``onerror`` handlers after every run that
-executed jobs (not after dry runs, nor after runs with nothing to do), atomically. It holds
+The log folder is ``logs/`` for the default study and ``results/studies/<name>/logs/`` for a
+named one (:func:`contactlab.study.logs_dir`): the record sits beside the run's logs, not
+among the results (it is no rule's output, and holds times). Written by the Snakefile's
+``onsuccess`` and ``onerror`` handlers after every run that executed jobs (not after dry
+runs, nor after runs with nothing to do), atomically. It holds
 
 - the run: study name, config hash and git commit, contactlab version, the config files and
   ``--config`` values it was started with (so that the catalog can compute what the same
@@ -30,22 +33,22 @@ from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-#: File name of the record inside a study's results folder.
+#: File name of the record inside a study's log folder.
 MANIFEST = "study.json"
 #: Version of the record's layout.
 FORMAT = 1
 
 
-def manifest_path(results: str | os.PathLike[str]) -> Path:
-    """The record's path in the study's results folder ``results``."""
-    return Path(results) / MANIFEST
+def manifest_path(logs: str | os.PathLike[str]) -> Path:
+    """The record's path in the study's log folder ``logs``."""
+    return Path(logs) / MANIFEST
 
 
-def read_manifest(results: str | os.PathLike[str]) -> dict[str, Any] | None:
-    """The record of the study whose results folder is ``results``, or None if there is none
-    or it cannot be read."""
+def read_manifest(logs: str | os.PathLike[str]) -> dict[str, Any] | None:
+    """The record of the study whose log folder is ``logs``, or None if there is none or it
+    cannot be read."""
     try:
-        data = json.loads(manifest_path(results).read_text(encoding="utf-8"))
+        data = json.loads(manifest_path(logs).read_text(encoding="utf-8"))
     except (OSError, ValueError):
         return None
     return data if isinstance(data, dict) and data.get("format") == FORMAT else None
@@ -114,15 +117,16 @@ def write_json(data: Mapping[str, Any], path: str | os.PathLike[str]) -> Path:
     return path
 
 
-def record_run(results: str, *, study: str, config_sha256: str, git_commit: str,
+def record_run(logs: str, *, study: str, config_sha256: str, git_commit: str,
                version: str, config_files: Sequence[str], config_overrides: Mapping[str, Any],
                targets: Sequence[str], confirmed: Iterable[str], success: bool,
                root: str | os.PathLike[str] = ".", when: str | None = None) -> Path:
-    """Update the record of the study in ``results`` (relative to ``root``) after a run.
+    """Update the record of the study in its log folder ``logs`` (relative to ``root``)
+    after a run.
 
     Parameters
     ----------
-    results : the study's results folder (``results/`` or ``results/studies/<name>/``).
+    logs : the study's log folder (``logs/`` or ``results/studies/<name>/logs/``).
     study, config_sha256, git_commit, version : the run's provenance.
     config_files, config_overrides : the run's ``--configfile`` list (paths relative to
         ``root``) and ``--config`` values, as given.
@@ -131,7 +135,7 @@ def record_run(results: str, *, study: str, config_sha256: str, git_commit: str,
         run confirms them.
     success : whether the run succeeded.
     """
-    path = Path(root) / manifest_path(results)
+    path = Path(root) / manifest_path(logs)
     old = read_manifest(path.parent) or {}
     run = {"config_sha256": config_sha256, "git_commit": git_commit}
     data = {
@@ -167,7 +171,7 @@ def record_runs(workflow: Any, studies: Sequence[Mapping[str, Any]], config_file
     """The Snakefile's ``onsuccess``/``onerror`` handler: :func:`record_run` for each study of
     the run (a family run has one per variant).
 
-    Each of ``studies`` gives ``study``, ``results``, ``config_sha256``, ``git_commit``,
+    Each of ``studies`` gives ``study``, ``logs``, ``config_sha256``, ``git_commit``,
     ``targets`` and ``all_rules`` (the rule names that ask for all its targets). A run with
     ``--until`` or ``--omit-from`` confirms no target.
     """
@@ -178,7 +182,7 @@ def record_runs(workflow: Any, studies: Sequence[Mapping[str, Any]], config_file
     for study in studies:
         confirmed = [] if partial else requested_targets(
             dag.targets, study["all_rules"], study["targets"])
-        record_run(study["results"], study=study["study"], config_sha256=study["config_sha256"],
+        record_run(study["logs"], study=study["study"], config_sha256=study["config_sha256"],
                    git_commit=study["git_commit"], version=__version__,
                    config_files=config_files,
                    config_overrides=dict(workflow.config_settings.config),

@@ -69,13 +69,15 @@ def build_command(files: Sequence[str], configfile: str, cores: int) -> list[str
 
 
 def build_missing(files: Sequence[str], config: Mapping[str, Any], cores: int = 1,
-                  root: str | os.PathLike[str] = ".", lock: str = LOCK) -> bool:
+                  root: str | os.PathLike[str] = ".", lock: str = LOCK,
+                  what: str = "the demo data") -> bool:
     """Build the missing ``files`` (shared inputs) in a Snakemake run of their own.
 
     The run gets ``config`` (the effective config of the run that asks, without its study
     name: the shared inputs' values are the same in every study) as its only config file,
     and runs while :data:`LOCK` is held, so that runs asking at the same moment build them
-    once. Its output goes to this process's stderr. Returns whether a build ran; raises
+    once. Its output goes to this process's stderr, headed by a line naming ``what``.
+    Returns whether a build ran; raises
     SharedInputsError if it failed.
     """
     if not missing(files, root):
@@ -88,9 +90,8 @@ def build_missing(files: Sequence[str], config: Mapping[str, Any], cores: int = 
         configfile.write_text(json.dumps({k: v for k, v in config.items()
                                           if k not in STUDY_KEYS}, default=str),
                               encoding="utf-8")
-        print("Building the inputs all studies share (" + ", ".join(
-            sorted({str(Path(f).parent) for f in files})) + ") in a run of their own, one "
-            "run at a time:", file=sys.stderr, flush=True)
+        print(f"Building the inputs all studies share ({what}) in a run of their own, one "
+              "run at a time:", file=sys.stderr, flush=True)
         try:
             run = subprocess.run(
                 build_command(files, str(configfile.relative_to(root)), max(1, cores)),
@@ -98,6 +99,9 @@ def build_missing(files: Sequence[str], config: Mapping[str, Any], cores: int = 
                 stdout=2)
         finally:
             configfile.unlink(missing_ok=True)
+            # Snakemake removes .snakemake/locks/ as a whole when a run ends; the asking run
+            # has not written its locks yet and expects the folder
+            (root / ".snakemake" / "locks").mkdir(parents=True, exist_ok=True)
         if run.returncode != 0:
             raise SharedInputsError(
                 f"building the shared inputs failed (exit status {run.returncode}); the "
@@ -119,7 +123,8 @@ def attach(workflow: Any, rule_names: Sequence[str], config: Mapping[str, Any]) 
         if is_real_run(workflow):
             outputs = [str(f) for name in names for f in workflow.get_rule(name).output]
             settings = workflow.resource_settings
-            build_missing(outputs, config, cores=settings.local_cores or settings.cores or 1)
+            build_missing(outputs, config, cores=settings.local_cores or settings.cores or 1,
+                          what=", ".join(f"rule {name}" for name in names))
         return []
 
     for name in names:
