@@ -221,7 +221,11 @@ def render_text(diff: StudyDiff) -> str:
                         [[r.key, r.at or "-", r.units, *_cells(r)] for r in diff.results])
     notes = [f"{q}: {n} point(s) not in every study (grids differ), not compared"
              for q, n in diff.not_common.items()]
-    notes += [f"{q}: not compared, missing in {', '.join(s)}" for q, s in diff.missing.items()]
+    lacking: dict[tuple[str, ...], list[str]] = {}
+    for q, names in diff.missing.items():
+        lacking.setdefault(tuple(names), []).append(q)
+    notes += [f"not compared, no result in {', '.join(names)}: {', '.join(qs)}"
+              for names, qs in lacking.items()]
     if notes:
         lines += ["", *notes]
     return "\n".join(lines) + "\n"
