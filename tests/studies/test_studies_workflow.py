@@ -84,7 +84,7 @@ def test_list_diff_and_compare_studies_made_here(e2e_copy: Path, snakemake_many,
     assert "receding.line.lambda" in (folder / "tables" / "parameters.csv").read_text()
     missing = snakemake(work, "-j1", "results/compare/u/index.html")
     assert missing.returncode != 0
-    assert "compares studies not built yet: nowhere" in missing.stderr
+    assert "compares studies with none of the results it shows: nowhere" in missing.stderr
 
 
 @pytest.mark.slow

@@ -98,20 +98,27 @@ class StudiesNotBuilt(FileNotFoundError):
 
 def compare_page_inputs(compares: Mapping[str, Mapping[str, Any]], run_studies: Sequence[str]):
     """Input function of the ``compare_page`` rule: the result files the page of the
-    ``{name}`` wildcard reads. StudiesNotBuilt, naming the studies and how to build them, if
-    a study that this run does not build (``run_studies``) lacks them."""
+    ``{name}`` wildcard reads -- all of them for the studies this run builds
+    (``run_studies``), those that exist for the others (the page notes what a study lacks).
+    StudiesNotBuilt, naming them and how to build them, for studies that have none."""
 
     def inputs(wildcards: Any) -> list[str]:
         spec = compares[wildcards.name]
-        absent = [s for s in spec["studies"] if s not in run_studies and not all(
-            Path(f).exists() for f in page_inputs([s], spec["quantities"]))]
+        files, absent = [], []
+        for study in spec["studies"]:
+            wanted = page_inputs([study], spec["quantities"])
+            have = wanted if study in run_studies else [f for f in wanted if Path(f).exists()]
+            files += have
+            if not have:
+                absent.append(study)
         if absent:
             raise StudiesNotBuilt(
-                f"config/compare/{wildcards.name}.yaml compares studies not built yet: "
-                f"{', '.join(absent)}. Build each first (snakemake -j2 all --configfile "
-                "config/studies/<file>.yaml; the default study: snakemake -j2 all), or just "
-                f"the files the page reads: {', '.join(page_inputs(absent, spec['quantities']))}")
-        return page_inputs(spec["studies"], spec["quantities"])
+                f"config/compare/{wildcards.name}.yaml compares studies with none of the "
+                f"results it shows: {', '.join(absent)}. Build each first (snakemake -j2 all "
+                "--configfile config/studies/<file>.yaml; the default study: snakemake -j2 "
+                "all), or just the files the page reads: "
+                f"{', '.join(page_inputs(absent, spec['quantities']))}")
+        return files
 
     return inputs
 
