@@ -117,6 +117,24 @@ def test_a_family_plans_every_variant_with_the_profiles_resources(
 
 
 @pytest.mark.slow
+def test_shipped_families_are_valid_and_plan_under_their_folder(
+        workflow_copy: Path, repo: Path, snakemake_many) -> None:
+    families = sorted((repo / "config" / "families").glob("*.yaml"))
+    assert families
+    runs = snakemake_many(workflow_copy, [[f"config/families/{p.name}", "-n", "all"]
+                                          for p in families])
+    for path, run in zip(families, runs, strict=True):
+        assert run.returncode == 0, (path.name, run.stderr[-3000:])
+        family = re.search(r"^family: (\S+)", path.read_text(), re.M).group(1)
+        outputs = [f for line in re.findall(r"^\s+output: (.+)$", run.stdout, re.M)
+                   for f in line.split(", ")]
+        shared = ("results/demo/", "results/surfaces/demo_scans/")
+        assert outputs and all(f.startswith((f"results/studies/{family}/", *shared))
+                               for f in outputs)
+        assert f"results/studies/{family}/compare/index.html" in outputs
+
+
+@pytest.mark.slow
 def test_a_small_family_built_end_to_end(e2e_copy: Path, snakemake) -> None:
     work = e2e_copy
     family = _family(work)
