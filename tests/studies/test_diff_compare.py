@@ -105,3 +105,20 @@ def test_compare_files_are_checked(repo: Path, tmp_path: Path) -> None:
     bad.write_text("studies: [default, x]\nquantities: [line.q]\n")
     with pytest.raises(ConfigError, match=r"quantities\[0\]: unknown quantity 'line.q'"):
         read_compare_file(bad, repo)
+
+
+def test_the_report_page_lists_the_comparison_pages(repo: Path, tmp_path: Path) -> None:
+    from contactlab.report.index import build_index
+    from contactlab.studies.compare import index_links
+
+    links = index_links("results/report", repo)
+    assert links == [("Friction: a finer gap grid and the line load's map scale",
+                      "../compare/friction/index.html")]
+    section = tmp_path / "sections" / "10_s.html"
+    section.parent.mkdir()
+    section.write_text("<section id='s'><h2>S</h2>\n</section>\n")
+    page = build_index([section], tmp_path / "index.html", "T", comparisons=links,
+                       date="2026-01-01").read_text()
+    assert "<a href='../compare/friction/index.html'>Friction: a finer gap grid" in page
+    assert "comparisons" not in build_index([section], tmp_path / "plain.html", "T",
+                                            date="2026-01-01").read_text()
