@@ -108,12 +108,16 @@ def test_a_family_plans_every_variant_with_the_profiles_resources(
         assert f"results/studies/lam/{v}/report/index.html" in outputs
 
     # the Slurm profile's resources and groups reach the renamed rules
-    cluster = snakemake(work, family, "-n", "--profile", "workflow/profiles/slurm", "--",
+    cluster = snakemake(work, family, "-n", "--profile", "workflow/profiles/slurm",
+                        "--forceall", "--",
                         "results/studies/lam/lambda3.0_n30/receding/line.nc")
     assert cluster.returncode == 0, cluster.stderr[-3000:]
     chunk = re.search(r"rule lambda3_0_n30__receding_line_chunk:\n(?:\s+.+\n)+?\s+resources: "
                       r"(.+)", cluster.stdout)
     assert chunk and "mem_mb=500," in chunk.group(1) and "runtime=5" in chunk.group(1)
+    # the two chunks in one Slurm job of the profile's group
+    assert re.search(r"Group job sweep \(jobs in lexicogr\. order\):\n(?:\s*\n)*(?:.*\n)*?"
+                     r"\s+rule lambda3_0_n30__receding_line_chunk:", cluster.stdout)
 
 
 @pytest.mark.slow

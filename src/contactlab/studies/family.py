@@ -224,8 +224,10 @@ def use_variant(workflow: Any, variant: Variant, config: dict[str, Any], snakefi
     """Instantiate the study workflow (``snakefile``) for one variant, as a Snakemake
     module with the variant's ``config``, its rules renamed ``<prefix>__<rule>``.
 
-    The profile's per-rule settings (``set-resources``, ``set-threads``, ``groups``) are
-    copied to the renamed rules first: Snakemake looks them up by the rule's final name.
+    The profile's per-rule settings follow the renamed rules: Snakemake looks them up by
+    the rule's final name, ``set-resources`` and ``set-threads`` while the Snakefile is read
+    (copied to the new names first), ``groups`` once the run starts (the renamed rules fall
+    back to their written name).
     The rules of the shared inputs (:data:`SHARED_RULES`) are kept under their own names
     from the first variant only (``shared_rules``) and left out of the others.
     """
@@ -234,15 +236,52 @@ def use_variant(workflow: Any, variant: Variant, config: dict[str, Any], snakefi
     for table in (resources._parsed_overwrite_resources, resources._parsed_overwrite_threads):
         for rule in [r for r in table if "__" not in r]:
             table.setdefault(prefix + rule, table[rule])
-    groups = workflow.group_settings
-    groups.overwrite_groups = {
-        **dict(groups.overwrite_groups),
-        **{prefix + r: g for r, g in groups.overwrite_groups.items() if "__" not in r}}
     workflow.module(variant.prefix, snakefile=snakefile, config=config)
     module = workflow.modules[variant.prefix]
     module.use_rules(["*"], f"{prefix}*", exclude_rules=list(SHARED_RULES))
     if shared_rules:
         module.use_rules(list(SHARED_RULES))
+    # the profile's groups reach Snakemake only after the Snakefile is read: the renamed
+    # rules look theirs up under their own name and, failing that, the name they were
+    # written with
+    grouped = _grouped_rule_class()
+    for rule in workflow.rules:
+        if rule.name.startswith(prefix) and not isinstance(rule, grouped):
+            rule.__class__ = grouped
+            rule.written_name = rule.name[len(prefix):]
+
+
+def _grouped_rule_class() -> type:
+    """Snakemake's Rule with a ``group`` that falls back to the profile's group of the rule
+    name as written (``written_name``) for a variant's renamed rule."""
+    global _GROUPED
+    if _GROUPED is None:
+        from snakemake.rules import Rule
+
+        class VariantRule(Rule):
+            """A rule of a family's variant, renamed ``<variant>__<rule>``."""
+
+            written_name: str
+
+            @property
+            def group(self):
+                if not self.workflow.non_local_exec_or_dryrun:
+                    return None
+                groups = self.workflow.group_settings.overwrite_groups
+                for name in (self.name, self.written_name):
+                    if groups.get(name) is not None:
+                        return groups[name]
+                return self._group
+
+            @group.setter
+            def group(self, group):
+                self._group = group
+
+        _GROUPED = VariantRule
+    return _GROUPED
+
+
+_GROUPED: type | None = None
 
 
 def rename_localrules(workflow: Any, variants: Sequence[Variant]) -> list[str]:
