@@ -3,8 +3,9 @@
 The first study is the reference: for each other study, the absolute change (``B - A``) and
 the relative change (``(B - A) / |A|``) of every number that differs. Parameters are the
 leaves of the effective configs (:mod:`contactlab.studies.catalog`); results are the
-headline quantities (:mod:`contactlab.studies.headline`), compared at the coordinate points
-all the studies have (studies on different grids meet where their grids do).
+headline quantities (:mod:`contactlab.studies.headline`), each study compared with the
+first at the coordinate points both have (studies on different grids meet where their grids
+do; a study without the quantity shows '-').
 
 :func:`diff_studies` computes the comparison; :func:`render_text`, :func:`render_json` and
 :func:`render_csv` print it; :func:`studies_diff` is ``contactlab studies diff A B [...]
@@ -66,14 +67,23 @@ class StudyDiff:
     missing: dict[str, list[str]] = field(default_factory=dict)
 
 
-def flatten(config: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
-    """The leaves of a nested config as dotted keys (lists are leaves)."""
-    out: dict[str, Any] = {}
-    for key, value in config.items():
-        if isinstance(value, Mapping) and value:
-            out.update(flatten(value, f"{prefix}{key}."))
+def flatten(configs: Sequence[Mapping[str, Any]], prefix: str = "") -> list[dict[str, Any]]:
+    """The leaves of nested configs as dotted keys, one dict per config, split alike: a key
+    is a branch where it holds a mapping in every config that has it, else a leaf (lists
+    are leaves; a range given as a mapping in one study and a list in another is one leaf).
+    """
+    out: list[dict[str, Any]] = [{} for _ in configs]
+    for key in dict.fromkeys(k for c in configs for k in c):
+        values = [c.get(key) for c in configs]
+        present = [v for v in values if v is not None]
+        if present and all(isinstance(v, Mapping) and v for v in present):
+            for target, sub in zip(out, flatten([v or {} for v in values], f"{prefix}{key}."),
+                                   strict=True):
+                target.update(sub)
         else:
-            out[f"{prefix}{key}"] = value
+            for target, value in zip(out, values, strict=True):
+                if value is not None:
+                    target[f"{prefix}{key}"] = value
     return out
 
 
@@ -130,8 +140,8 @@ def diff_studies(names: Sequence[str], root: str | os.PathLike[str] = ".",
     records = find_studies(names, root)
     schema = load_schema(root)
     diff = StudyDiff(list(names))
-    configs = [flatten({k: v for k, v in study_configs(r, root, schema)[0].items()
-                        if k != "study"}) for r in records]
+    configs = flatten([{k: v for k, v in study_configs(r, root, schema)[0].items()
+                        if k != "study"} for r in records])
     for key in sorted(set().union(*configs)):
         values = [c.get(key) for c in configs]
         if all(same(values[0], v) for v in values[1:]):
@@ -148,15 +158,18 @@ def diff_studies(names: Sequence[str], root: str | os.PathLike[str] = ".",
         lacking = [n for n, h in zip(names, have, strict=True) if h is None]
         if lacking:
             diff.missing[q.id] = lacking
-            continue
-        common = set(have[0]["points"]).intersection(*(h["points"] for h in have[1:]))
-        everywhere = set().union(*(h["points"] for h in have))
+        if have[0] is None or len(lacking) == len(names) - 1:
+            continue  # nothing to compare with the reference
+        # each study against the reference, where both have the point
+        others = [h for h in have[1:] if h is not None]
+        common = [p for p in have[0]["points"] if any(p in h["points"] for h in others)]
+        everywhere = set().union(*(h["points"] for h in have if h is not None))
         if len(everywhere) > len(common):
             diff.not_common[q.id] = len(everywhere) - len(common)
-        for at in (p for p in have[0]["points"] if p in common):
-            values = [h["points"][at] for h in have]
+        for at in common:
+            values = [None if h is None else h["points"].get(at) for h in have]
             diff.results_compared += 1
-            if all(same(values[0], v, rtol) for v in values[1:]):
+            if all(v is None or same(values[0], v, rtol) for v in values[1:]):
                 diff.results_equal += 1
                 continue
             absolute, relative = changes_against(values)
@@ -219,12 +232,13 @@ def render_text(diff: StudyDiff) -> str:
     if diff.results:
         lines += _table(["quantity", "at", "units", *_columns(diff)],
                         [[r.key, r.at or "-", r.units, *_cells(r)] for r in diff.results])
-    notes = [f"{q}: {n} point(s) not in every study (grids differ), not compared"
+    notes = [f"{q}: {n} point(s) not in the reference and another study (grids differ), "
+             "not compared"
              for q, n in diff.not_common.items()]
     lacking: dict[tuple[str, ...], list[str]] = {}
     for q, names in diff.missing.items():
         lacking.setdefault(tuple(names), []).append(q)
-    notes += [f"not compared, no result in {', '.join(names)}: {', '.join(qs)}"
+    notes += [f"no result in {', '.join(names)} ('-' above): {', '.join(qs)}"
               for names, qs in lacking.items()]
     if notes:
         lines += ["", *notes]
