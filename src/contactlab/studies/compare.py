@@ -32,6 +32,8 @@ COMPARE_DIR = "config/compare"
 SCHEMA = "workflow/schemas/compare.schema.yaml"
 #: Panels of a two-dimensional quantity (one per value of its second coordinate) at most.
 MAX_PANELS = 4
+#: Marker shapes of the studies in a figure, in order.
+MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "h")
 
 
 def read_compare_file(path: str | os.PathLike[str], root: str | os.PathLike[str] = "."
@@ -143,8 +145,12 @@ def overlay_figure(q, data: Sequence[Any], labels: Sequence[str]):
     import numpy as np
 
     colours = plt.get_cmap("tab10")
-    present = [(d, lab, colours(i % 10)) for i, (d, lab) in enumerate(zip(data, labels,
-                                                                          strict=True))
+    # hollow markers of their own shape, larger for the earlier studies: curves that
+    # coincide stay visible one inside the other
+    style = [{"color": colours(i % 10), "marker": MARKERS[i % len(MARKERS)],
+              "mfc": "none", "ms": 4 + 2.5 * (len(data) - 1 - i), "lw": 1.0}
+             for i in range(len(data))]
+    present = [(d, lab, st) for d, lab, st in zip(data, labels, style, strict=True)
                if d is not None]
     first = present[0][0]
     units = first.attrs.get("units", "")
@@ -152,8 +158,8 @@ def overlay_figure(q, data: Sequence[Any], labels: Sequence[str]):
     legend_height = 0.17 * len(present) + 0.15
     if first.ndim == 0:
         fig, ax = plt.subplots(figsize=(6.5, 3.2 + legend_height))
-        for i, (d, lab, colour) in enumerate(present):
-            ax.plot([i], [float(d.values)], "o", color=colour, label=lab)
+        for i, (d, lab, st) in enumerate(present):
+            ax.plot([i], [float(d.values)], ls="none", label=lab, **st)
         ax.set_xticks(range(len(present)), [lab.split(":")[0] for _, lab, _ in present])
         ax.set_ylabel(ylabel)
     else:
@@ -171,12 +177,11 @@ def overlay_figure(q, data: Sequence[Any], labels: Sequence[str]):
         fig, axes = plt.subplots(1, len(panels), squeeze=False, sharey=True,
                                  figsize=(max(6.5, 3.4 * len(panels)), 3.4 + legend_height))
         for ax, panel in zip(axes[0], panels, strict=True):
-            for d, lab, colour in present:
+            for d, lab, st in present:
                 line = d if panel is None else d.sel({panel[0]: panel[1]})
                 x = line[dim].values if dim in line.coords else np.arange(line.size)
                 numeric = np.asarray(x).dtype.kind in "fiu"
-                ax.plot(x if numeric else np.arange(len(x)), line.values, "o-", ms=3,
-                        color=colour, label=lab)
+                ax.plot(x if numeric else np.arange(len(x)), line.values, label=lab, **st)
                 if not numeric:
                     ax.set_xticks(np.arange(len(x)), [str(v) for v in x], rotation=45,
                                   ha="right")
