@@ -1,5 +1,7 @@
 # contactlab workflow: surfaces, contact stiffness, asperity models, receding contacts, report.
 # Run `snakemake -j2 all`; see README.md for the DAG, single targets and parameter studies.
+# With a family file (`--configfile config/families/<family>.yaml`) one run builds every
+# variant of the family: workflow/rules/family.smk instantiates this file once per variant.
 
 from snakemake.exceptions import WorkflowError
 from snakemake.utils import min_version
@@ -19,34 +21,37 @@ except ConfigError as exc:
 configfile: "config/config.yaml"
 
 
-report: "workflow/report/workflow.rst"
+if "family" in config:
 
+    include: "workflow/rules/family.smk"
 
-include: "workflow/rules/common.smk"
-include: "workflow/rules/surfaces.smk"
-include: "workflow/rules/receding.smk"
-include: "workflow/rules/asperity.smk"
-include: "workflow/rules/stiffness.smk"
-include: "workflow/rules/stiffness_published.smk"
-include: "workflow/rules/prediction.smk"
-include: "workflow/rules/fe.smk"
-include: "workflow/rules/report.smk"
+else:
 
+    report: "workflow/report/workflow.rst"
 
-# files the config names that neither exist nor are results of the rules above
-try:
-    check_files(config, _SOURCES, made=ALL_TARGETS)
-except ConfigError as exc:
-    raise WorkflowError(str(exc)) from None
+    include: "workflow/rules/common.smk"
+    include: "workflow/rules/surfaces.smk"
+    include: "workflow/rules/receding.smk"
+    include: "workflow/rules/asperity.smk"
+    include: "workflow/rules/stiffness.smk"
+    include: "workflow/rules/stiffness_published.smk"
+    include: "workflow/rules/prediction.smk"
+    include: "workflow/rules/fe.smk"
+    include: "workflow/rules/report.smk"
+    include: "workflow/rules/studies.smk"
+    include: "workflow/rules/compare.smk"
 
+    # files the config names that neither exist nor are results of the rules above
+    try:
+        check_files(config, _SOURCES, made=ALL_TARGETS)
+    except ConfigError as exc:
+        raise WorkflowError(str(exc)) from None
 
-localrules:
-    all,
+    localrules:
+        all,
 
-
-rule all:
-    """Every result of the default study and the report page."""
-    default_target: True
-    input:
-        ALL_TARGETS,
-        result("report/index.html"),
+    rule all:
+        """Every result of the study and its report page."""
+        default_target: True
+        input:
+            STUDY_TARGETS,

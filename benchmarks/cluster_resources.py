@@ -15,7 +15,11 @@ study are kept in ``docs/cluster/benchmarks/``; this script turns them into the
     python benchmarks/cluster_resources.py [docs/cluster/benchmarks]
 
 prints a table of the measurements and the YAML block; tests/test_slurm_profile.py checks
-that the profile holds exactly these numbers.
+that the profile holds exactly these numbers. In the profile each number is the first
+attempt's: a job that fails (Slurm cancelled it at its time limit, killed it for memory) is
+retried (``retries``) with twice the time and memory of the attempt before
+(:func:`scaled`: ``<number> * 2 ** (attempt - 1)``, an expression Snakemake evaluates with
+the job's ``attempt``).
 """
 
 from __future__ import annotations
@@ -73,6 +77,23 @@ def derived(folder: Path = MEASURED) -> dict[str, dict[str, int]]:
             for rule, rows in sorted(measurements(folder).items())}
 
 
+#: How a resource grows from one attempt of a job to the next (Snakemake's ``attempt``,
+#: 1 for the first).
+GROWTH = "2 ** (attempt - 1)"
+
+
+def scaled(value: int) -> str:
+    """A first attempt's resource as the profile's expression: doubled at each retry."""
+    return f"{value} * {GROWTH}"
+
+
+def profile_entries(folder: Path = MEASURED) -> dict[str, dict[str, str]]:
+    """The profile's ``set-resources`` block: :func:`derived` numbers as :func:`scaled`
+    expressions."""
+    return {rule: {key: scaled(value) for key, value in res.items()}
+            for rule, res in derived(folder).items()}
+
+
 def main(argv: list[str]) -> None:
     folder = Path(argv[0]) if argv else MEASURED
     print(f"{'job':42s} {'wall s':>8s} {'cpu s':>8s} {'max_rss MB':>11s}")
@@ -80,8 +101,8 @@ def main(argv: list[str]) -> None:
         for r in rows:
             print(f"{r['job']:42s} {r['s']:8.1f} {r['cpu_time']:8.2f} {r['max_rss']:11.1f}")
     print("\nset-resources:")
-    for rule, res in derived(folder).items():
-        print(f"  {rule}: {{mem_mb: {res['mem_mb']}, runtime: {res['runtime']}}}")
+    for rule, res in profile_entries(folder).items():
+        print(f'  {rule}: {{mem_mb: "{res["mem_mb"]}", runtime: "{res["runtime"]}"}}')
 
 
 if __name__ == "__main__":

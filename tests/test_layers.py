@@ -13,7 +13,9 @@ of its own layer and of the layers below it, never above:
 2. report toolkit: ``report`` (``report.section``, ``report.index``) -- sections, tables,
    figures, the page; it imports the ground floor only, no science;
 3. report builders: a branch's ``report`` module (or ``report_<part>``), e.g.
-   ``stiffness.report_raw``, ``receding.gap.report``;
+   ``stiffness.report_raw``, ``receding.gap.report``; and ``studies`` (studies side by
+   side: records, catalog, diff, comparison pages, families), which reads configs and
+   result files and uses the report toolkit, no science;
 4. command line: ``cli``, ``cliutil``, ``command``, ``__main__``, every
    ``<branch>....cli`` (and ``receding.options``, the options the receding commands
    share) and ``report.cli``;
@@ -59,6 +61,8 @@ def layer(module: str) -> int:
         return 4
     if parts[1:2] == ["report"]:
         return 2
+    if parts[1:2] == ["studies"]:
+        return 3
     if len(parts) > 2 and parts[1] in BRANCHES:
         last = parts[-1]
         return 3 if last == "report" or last.startswith("report_") else 1

@@ -13,6 +13,7 @@ import os
 import re
 import shutil
 import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -122,3 +123,67 @@ def test_study_through_slurm_equals_the_local_run(
         xr.testing.assert_allclose(a, b, rtol=1e-12, atol=0)
         assert _attrs(a) == _attrs(b), target
 
+
+
+@pytest.mark.slow
+def test_a_chunk_cancelled_at_its_time_limit_is_retried_and_explained(
+        e2e_copy: Path, slurm_cluster, e2e_run: Path, tmp_path: Path) -> None:
+    """A sweep chunk given one minute is cancelled by Slurm "DUE TO TIME LIMIT"; the profile
+    retries it with twice the time, the retry finishes, the run's output says why the first
+    attempt failed and where its log is, and the result equals the local run's.
+
+    The first attempt is made too slow for its minute by a ``contactlab`` first on PATH that
+    sleeps before its first line sweep (a chunk that long would cost minutes of CPU); Slurm's
+    cancellation, the retry and the report are the real ones. Snakemake runs as users run it,
+    in a process of its own.
+    """
+    cluster = e2e_copy
+    wrapper = tmp_path / "bin" / "contactlab"
+    wrapper.parent.mkdir()
+    wrapper.write_text(
+        "#!/bin/sh\n"
+        "# the first line sweep outlasts its time limit; every other command runs at once\n"
+        f'case " $* " in *" line-sweep "*) mkdir "{tmp_path}/slowed" 2>/dev/null && sleep 900;;'
+        " esac\n"
+        f'exec "{Path(sys.executable).parent / "contactlab"}" "$@"\n')
+    wrapper.chmod(0o755)
+    env = {k: v for k, v in os.environ.items() if k != "SLURM_CONF"}
+    env["PATH"] = os.pathsep.join([str(wrapper.parent), str(Path(sys.executable).parent),
+                                   env.get("PATH", "")])
+    run = subprocess.run(
+        [sys.executable, "-m", "snakemake", "--profile", "workflow/profiles/slurm",
+         "--configfile", "config/e2e.yaml", "--slurm-init-seconds-before-status-checks", "2",
+         "--seconds-between-status-checks", "2",
+         # the chunk's first attempt gets one minute, as in the profile each retry doubles it;
+         # one chunk per Slurm job (still a group job, whose failures Snakemake reports
+         # without the executor's message)
+         "--set-resources", "receding_line_sweep:runtime=1 * 2 ** (attempt - 1)",
+         "--group-components", "sweep=1", "--", "results/receding/line.nc"],
+        cwd=cluster, env=env, capture_output=True, text=True, check=False)
+    log = run.stdout + run.stderr
+    assert run.returncode == 0, log[-4000:]
+    assert (tmp_path / "slowed").is_dir()
+
+    jobs = list(_slurm_jobs(log))
+    queue = subprocess.run(["squeue", "--states=all", "--noheader", "--format=%i|%T|%l",
+                            "--jobs", ",".join(jobs)],
+                           capture_output=True, text=True, check=True, env=env).stdout
+    states = [tuple(line.split("|")) for line in queue.splitlines()]
+    # two chunks, the slowed one cancelled at its minute and retried with two
+    timed_out = [job for job, state, _ in states if state == "TIMEOUT"]
+    assert sorted((state, limit) for _, state, limit in states) == [
+        ("COMPLETED", "1:00"), ("COMPLETED", "2:00"), ("TIMEOUT", "1:00")], states
+    assert "Trying to restart job" in log
+    # Snakemake's own lines for the failed group say "message: None"; ours says why
+    explained = re.search(rf"Slurm job {timed_out[0]} \(group sweep: receding_line_sweep\) "
+                          r"failed: TIMEOUT: Slurm cancelled it at its time limit \(1:00, ran "
+                          r"[\d:]+\); it needs a larger runtime.*? Slurm log: (\S+)\.", log)
+    assert explained, log[-4000:]
+    assert Path(explained.group(1)).name == f"{timed_out[0]}.log"
+    assert Path(explained.group(1)).exists()
+
+    target = "results/receding/line.nc"
+    with xr.open_dataset(e2e_run / target) as a, xr.open_dataset(cluster / target) as b:
+        a, b = _timing_free(a.load()), _timing_free(b.load())
+    xr.testing.assert_allclose(a, b, rtol=1e-12, atol=0)
+    assert _attrs(a) == _attrs(b)

@@ -3,6 +3,8 @@
 A study is a config file of overrides with a name (``study: <name>``), merged by Snakemake
 onto ``config/config.yaml``. The default study (no name) writes to ``results/`` and
 ``logs/``; a named study writes everything, logs included, under ``results/studies/<name>/``.
+A study of a family (``config/families/<family>.yaml``, :mod:`contactlab.studies.family`)
+is named ``<family>/<variant>`` and lives under ``results/studies/<family>/<variant>/``.
 Only the standard library is imported: the Snakefile loads this at every start-up.
 """
 
@@ -13,12 +15,17 @@ import json
 import os
 import re
 import subprocess
-from collections.abc import Mapping
+import sys
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 #: Study names become directory names: letters, digits, '_' and '-', starting with a letter.
 STUDY_NAME = re.compile(r"[A-Za-z][A-Za-z0-9_-]{0,63}")
+
+#: A family's variant names (the part after ``<family>/``): letters, digits, '_', '-', '.',
+#: '+', starting with a letter or digit (values such as ``lambda3.5`` or ``tol1e-08``).
+VARIANT_NAME = re.compile(r"[A-Za-z0-9][A-Za-z0-9_.+-]{0,99}")
 
 #: Environment variables through which a workflow run hands its provenance to the jobs.
 PROVENANCE_ENV = {
@@ -27,13 +34,20 @@ PROVENANCE_ENV = {
     "git_commit": "CONTACTLAB_GIT_COMMIT",
 }
 
+#: Environment variable holding the provenance of every study of a run (JSON: study name ->
+#: config hash and commit), for runs that build several studies at once (a family).
+STUDIES_ENV = "CONTACTLAB_STUDIES"
+
 
 def check_study_name(name: str) -> str:
-    """Return ``name`` if it is a valid study name, else raise ValueError saying what is allowed."""
-    if not STUDY_NAME.fullmatch(name):
+    """Return ``name`` if it is a valid study name (``<name>`` or ``<family>/<variant>``),
+    else raise ValueError saying what is allowed."""
+    family, _, variant = name.partition("/")
+    if not STUDY_NAME.fullmatch(family) or ("/" in name and not VARIANT_NAME.fullmatch(variant)):
         raise ValueError(
             f"study name {name!r}: use 1-64 letters, digits, '_' or '-', starting with a "
-            "letter (it becomes the folder results/studies/<name>/)")
+            "letter (it becomes the folder results/studies/<name>/); a family's study is "
+            "<family>/<variant>, the variant of letters, digits, '_', '-', '.' or '+'")
     return name
 
 
@@ -148,16 +162,55 @@ def git_commit(directory: str | os.PathLike[str]) -> str:
     return f"{commit}-dirty" if dirty else commit
 
 
-def provenance() -> dict[str, str]:
-    """Provenance of the running job, from the variables the workflow set (empty if none)."""
-    return {key: os.environ[var] for key, var in PROVENANCE_ENV.items() if var in os.environ}
+def study_of_command(argv: Sequence[str], studies: Sequence[str]) -> str | None:
+    """The one study of ``studies`` whose folder (``results/studies/<name>/``) the command
+    line ``argv`` names, or None if it names none or several."""
+    named = {name for name in studies if name != "default"
+             for arg in argv if f"{results_dir(name)}" in arg}
+    # a family's variant folder lies inside the family's folder: keep the deepest names
+    named = {name for name in named
+             if not any(other != name and other.startswith(f"{name}/") for other in named)}
+    return named.pop() if len(named) == 1 else None
+
+
+def provenance(argv: Sequence[str] | None = None) -> dict[str, str]:
+    """Provenance of the running job, from the variables the workflow set (empty if none).
+
+    When the run builds several studies (:data:`STUDIES_ENV` lists more than one), the job's
+    study is the one whose folder its command line (``argv``, default ``sys.argv``) names.
+    """
+    values = {key: os.environ[var] for key, var in PROVENANCE_ENV.items() if var in os.environ}
+    try:
+        table = json.loads(os.environ.get(STUDIES_ENV, "{}"))
+    except json.JSONDecodeError:
+        table = {}
+    if len(table) > 1:
+        study = study_of_command(sys.argv if argv is None else argv, list(table))
+        if study is not None:
+            values = {"study": study, **table[study]}
+    return values
 
 
 def export_provenance(study: str | None, config: Mapping[str, Any],
                       directory: str | Path) -> dict[str, str]:
-    """Set the provenance variables for the jobs of this run; return them."""
+    """Set the provenance variables for the jobs of this run; return them.
+
+    A study sets the per-run variables (:data:`PROVENANCE_ENV`) and starts the table of
+    :data:`STUDIES_ENV` with itself; a family's variant (``<family>/<variant>``) only adds
+    itself to that table, beside the family's other variants.
+    """
     values = {"study": study or "default", "config_sha256": config_sha256(config),
               "git_commit": git_commit(directory)}
-    for key, var in PROVENANCE_ENV.items():
-        os.environ[var] = values[key]
+    entry = {k: values[k] for k in ("config_sha256", "git_commit")}
+    if "/" in values["study"]:
+        try:
+            table = json.loads(os.environ.get(STUDIES_ENV, "{}"))
+        except json.JSONDecodeError:
+            table = {}
+        table[values["study"]] = entry
+    else:
+        table = {values["study"]: entry}
+        for key, var in PROVENANCE_ENV.items():
+            os.environ[var] = values[key]
+    os.environ[STUDIES_ENV] = json.dumps(table, sort_keys=True)
     return values

@@ -24,6 +24,7 @@ from contactlab.published import (
     surfaces_of_tests,
 )
 from contactlab.rulehelpers import demo_data_files, table_files
+from contactlab.studies.family import name_clash
 from contactlab.study import changes, coerce, export_provenance, logs_dir, results_dir
 from contactlab.surfaces.sheet import check_demo_scan_surfaces, read_surface_sheet
 from contactlab.testsheet import (
@@ -63,6 +64,10 @@ except ConfigError as exc:
 validate(config, "../schemas/config.schema.yaml")  # fills in the schema's defaults
 
 STUDY = config.get("study")  # absent: the default study
+# a study may not share its folder with a family's (results/studies/<name>/)
+_CLASH = name_clash(STUDY, ".", family=False) if STUDY and "/" not in STUDY else None
+if _CLASH:
+    raise WorkflowError(f"invalid configuration in {_config_files()}: {_CLASH}")
 RESULTS = results_dir(STUDY)
 LOGS = logs_dir(STUDY)
 
@@ -88,7 +93,7 @@ if _SHARED:
         "the demo data are shared by all studies, so their seeds are set in config/config.yaml only"
     )
 # the jobs inherit the study name, config hash and commit through the environment
-export_provenance(STUDY, config, workflow.basedir)
+PROVENANCE = export_provenance(STUDY, config, workflow.basedir)
 
 # the transcribed thesis tables the rules read; fe.problems.*.ddt_file is checked in the
 # Snakefile once every rule file has added its results

@@ -161,11 +161,25 @@ def contents(fragments: list[Fragment]) -> str:
     return "\n".join(out)
 
 
+def comparison_links(comparisons: list[tuple[str, str]]) -> str:
+    """The list of comparison pages of studies (title, link relative to the page), or
+    nothing if there are none."""
+    if not comparisons:
+        return ""
+    items = "".join(f"<li><a href='{html.escape(href)}'>{html.escape(title)}</a></li>"
+                    for title, href in comparisons)
+    return ("<p>Comparisons of studies side by side (config/compare/; each is built once "
+            "its studies are, <code>snakemake -j1 compare</code>):</p>\n"
+            f"<ul class='comparisons'>{items}</ul>\n")
+
+
 def build_index(sections: list[str | os.PathLike[str]], out: str | os.PathLike[str],
                 title: str, intro: str = "", provenance: dict[str, str] | None = None,
-                changes: dict[str, list] | None = None, date: str | None = None) -> Path:
-    """Write the report page: run metadata, introduction, contents and the sections in
-    the order given, grouped by part."""
+                changes: dict[str, list] | None = None, date: str | None = None,
+                comparisons: list[tuple[str, str]] | None = None) -> Path:
+    """Write the report page: run metadata, the comparison pages of studies
+    (``comparisons``: title and link relative to the page), introduction, contents and the
+    sections in the order given, grouped by part."""
     fragments = [read_fragment(p) for p in sections]
     body, part = [], None
     for f in fragments:
@@ -180,6 +194,7 @@ def build_index(sections: list[str | os.PathLike[str]], out: str | os.PathLike[s
         f"<title>{html.escape(title)}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n"
         f"<header>\n<h1>{html.escape(title)}</h1>\n"
         + run_header(provenance or {}, changes or {}, date)
+        + comparison_links(comparisons or [])
         + introduction(fragments, intro)
         + "</header>\n<div class='layout'>\n"
         + contents(fragments)

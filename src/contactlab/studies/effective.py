@@ -1,0 +1,101 @@
+"""A study's effective config and its hash, from the config files alone.
+
+A run's config is built by Snakemake and the Snakefile's start-up (``workflow/rules/
+common.smk``): ``config/config.yaml``, then each ``--configfile`` in order, then the
+``--config`` values, merged key by key (lists replaced whole); strings coerced to the
+schema's types (:func:`contactlab.study.coerce`); the schema's defaults filled in as
+``snakemake.utils.validate`` does; the hash is :func:`contactlab.study.config_sha256` of
+the result. This module repeats those steps without Snakemake, so that the catalog can say
+what a run would use now. Only the standard library, PyYAML and jsonschema are imported.
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+from contactlab.config_check import load_yaml_file
+from contactlab.study import coerce, config_sha256
+
+#: The default study's config file and the config schema, relative to the repository root.
+DEFAULT_CONFIG = "config/config.yaml"
+SCHEMA = "workflow/schemas/config.schema.yaml"
+
+
+def merge(base: Mapping[str, Any], override: Mapping[str, Any]) -> dict[str, Any]:
+    """``base`` updated by ``override`` as Snakemake merges config files: mappings key by
+    key, anything else (lists included) replaced whole. Neither argument is changed."""
+    out = copy.deepcopy(dict(base))
+    for key, value in override.items():
+        if isinstance(value, Mapping) and isinstance(out.get(key), Mapping):
+            out[key] = merge(out[key], value)
+        elif isinstance(value, Mapping):
+            out[key] = merge({}, value)
+        else:
+            out[key] = copy.deepcopy(value)
+    return out
+
+
+def fill_defaults(config: dict[str, Any], schema: Mapping[str, Any]) -> dict[str, Any]:
+    """Validate ``config`` against ``schema`` and fill in the schema's defaults in place, as
+    ``snakemake.utils.validate(config, schema, set_default=True)`` does (a default enters
+    only an object that exists; a nested block needs its own ``default: {}``).
+
+    Raises ``jsonschema.ValidationError`` if ``config`` is invalid.
+    """
+    from jsonschema import Draft202012Validator, validators
+
+    check_properties = Draft202012Validator.VALIDATORS["properties"]
+
+    def set_defaults(validator, properties, instance, subschema):
+        for name, prop in properties.items():
+            if "default" in prop:
+                instance.setdefault(name, prop["default"])
+        yield from check_properties(validator, properties, instance, subschema)
+
+    filling = validators.extend(Draft202012Validator, {"properties": set_defaults})
+    # Snakemake reads the schema afresh for each validation: its default objects are not
+    # shared between configs
+    filling(copy.deepcopy(dict(schema))).validate(config)
+    return config
+
+
+def load_schema(root: str | Path = ".") -> dict[str, Any]:
+    """The config schema of the repository at ``root``."""
+    return load_yaml_file(Path(root) / SCHEMA)
+
+
+def merged_config(config_files: Sequence[str | Path], overrides: Mapping[str, Any] | None = None,
+                  root: str | Path = ".") -> dict[str, Any]:
+    """``config/config.yaml``, then ``config_files`` (paths relative to ``root`` unless
+    absolute; ``config/config.yaml`` itself is skipped if listed), then ``overrides`` (the
+    ``--config`` values), merged; not yet coerced or filled in."""
+    root = Path(root)
+    config = load_yaml_file(root / DEFAULT_CONFIG)
+    for name in config_files:
+        path = Path(name) if Path(name).is_absolute() else root / name
+        if path.resolve() == (root / DEFAULT_CONFIG).resolve():
+            continue
+        config = merge(config, load_yaml_file(path))
+    return merge(config, overrides or {})
+
+
+def finish(config: Mapping[str, Any], schema: Mapping[str, Any]) -> dict[str, Any]:
+    """A merged config as a run uses it: coerced to the schema's types, defaults filled in."""
+    return fill_defaults(coerce(dict(config), schema), schema)
+
+
+def effective_config(config_files: Sequence[str | Path], overrides: Mapping[str, Any] | None = None,
+                     root: str | Path = ".", schema: Mapping[str, Any] | None = None
+                     ) -> dict[str, Any]:
+    """The effective config of a run given ``config_files`` (its ``--configfile`` list) and
+    ``overrides`` (its ``--config`` values), in the repository at ``root``."""
+    schema = load_schema(root) if schema is None else schema
+    return finish(merged_config(config_files, overrides, root), schema)
+
+
+def effective_sha256(config: Mapping[str, Any]) -> str:
+    """The hash a run records as ``config_sha256`` for this effective config."""
+    return config_sha256(config)
