@@ -71,7 +71,7 @@ def test_every_command_has_a_description_examples_and_every_option_help() -> Non
         missing += [f"{declaration.path} {o.flag}: no help" for o in declaration.options
                     if not o.help]
     assert not missing, missing
-    assert len(groups()) == 7 and len(declared()) >= 44
+    assert len(groups()) == 8 and len(declared()) >= 48
 
 
 def test_rule_and_command_names_match(repo: Path) -> None:
@@ -297,6 +297,13 @@ MINIMAL: dict[str, list[str]] = {
     ],
     "report": [
         "index results/report/sections/10_surfaces.html --out {tmp}/report/index.html",
+    ],
+    "studies": [
+        "list",
+        "diff default fine_friction",
+        "compare --spec config/compare/friction.yaml --out {tmp}/compare/index.html",
+        "family-page --family lambda --grid '{{\"receding.line.lambda\": [3.5, 4.0]}}' "
+        "--studies default line_lambda --quantities line.a --out {tmp}/family/index.html",
     ],
 }
 

@@ -29,6 +29,7 @@ COMMAND_MODULES: tuple[str, ...] = (
     "contactlab.receding.cli",
     "contactlab.fe.cli",
     "contactlab.report.cli",
+    "contactlab.studies.cli",
 )
 
 DESCRIPTION = ("Contact mechanics of rough interfaces and receding contacts: one command "

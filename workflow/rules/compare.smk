@@ -6,11 +6,10 @@
 #   snakemake -j1 results/compare/<name>/index.html
 # Read by the run's own Snakefile only (not once per variant of a family).
 
+from contactlab.rulehelpers import command_args
 from contactlab.studies.compare import (
     compare_files,
-    compare_page_from_file,
     compare_page_inputs,
-    family_page,
     page_inputs,
     read_compare_file,
 )
@@ -39,9 +38,8 @@ if workflow.modifier.is_main_snakefile():
             name="|".join(COMPARES) or "(?!)",
         log:
             "logs/compare/{name}.log",
-        run:
-            compare_page_from_file(input.spec, output.page)
-            Path(log[0]).write_text(f"wrote {output.page}\n", encoding="utf-8")
+        shell:
+            "contactlab studies compare --spec {input.spec:q} --out {output.page:q} 2> {log:q}"
 
     rule compare:
         """Every comparison page of config/compare/ (their studies built first)."""
@@ -69,13 +67,18 @@ if workflow.modifier.is_main_snakefile():
                 figures=directory(f"results/studies/{FAMILY}/compare/figures"),
                 tables=directory(f"results/studies/{FAMILY}/compare/tables"),
             params:
-                studies=[v.study for v in VARIANTS],
-                quantities=FAMILY_QUANTITIES,
+                args=command_args(
+                    "studies family-page",
+                    None,
+                    family=FAMILY,
+                    grid=FAMILY_GRID,
+                    studies=[v.study for v in VARIANTS],
+                    quantities=FAMILY_QUANTITIES,
+                ),
             log:
                 f"results/studies/{FAMILY}/logs/compare.log",
-            run:
-                family_page(FAMILY, FAMILY_GRID, params.studies, params.quantities, output.page)
-                Path(log[0]).write_text(f"wrote {output.page}\n", encoding="utf-8")
+            shell:
+                "contactlab studies family-page {params.args:q} --out {output.page:q} 2> {log:q}"
 
         localrules:
             family_compare_page,
