@@ -84,15 +84,15 @@ def test_every_layout_of_result_file_passes_a_cf_checker(e2e_run: Path, branch: 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("branch", sorted(BRANCH_RULES))
-def test_every_parameter_reaches_its_jobs_and_only_them(e2e_run: Path, snakemake_many,
+def test_every_parameter_reaches_its_jobs_and_only_them(e2e_run: Path, snakemake,
                                                          branch: str) -> None:
     """Each config leaf, changed within the schema, reruns jobs of its branch only, with the
     new value on a command line (tests/config_walk.py)."""
     config = yaml.safe_load((e2e_run / "config" / "e2e.yaml").read_text())
     validate(config, str(e2e_run / "workflow/schemas/config.schema.yaml"))  # + defaults
     schema = yaml.safe_load((e2e_run / "workflow/schemas/config.schema.yaml").read_text())
-    failures = check_all(config, schema, branch, lambda overrides: snakemake_many(
-        e2e_run, [["-n", "-p", "--config", override, "--", "all"] for override in overrides]))
+    failures = check_all(config, schema, branch,
+                         lambda *args: snakemake(e2e_run, "-n", "-p", *args, "--", "all"))
     assert not failures, "\n".join(failures)
 
 
