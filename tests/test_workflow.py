@@ -206,6 +206,7 @@ def test_nested_command_line_overrides_take_the_schema_types(workflow_copy: Path
     assert len([c for c in run.stdout.splitlines() if "receding gap-sweep" in c]) == 1
 
 
+@pytest.mark.slow
 def test_study_files_validate_and_plan_under_their_folder(workflow_copy: Path, repo: Path,
                                                           snakemake) -> None:
     """Every shipped example study is valid and plans its jobs under results/studies/<name>/."""
