@@ -14,17 +14,14 @@ from pathlib import Path
 
 import pytest
 
+from contactlab.blas import one_thread_by_default
+
 REPO = Path(__file__).resolve().parents[1]
 
 #: One BLAS/OpenMP thread in the test processes and the commands they start, as the solver
-#: rules give their jobs: xdist runs one worker per core, and each worker's BLAS threads
-#: spinning beside the other worker's cost ~10 % of a session's CPU.
-for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"):
-    os.environ.setdefault(_variable, "1")
-if "numpy" in sys.modules:  # a plugin loaded it first: BLAS has read the variables already
-    from threadpoolctl import threadpool_limits
-
-    threadpool_limits(1)
+#: rules give their jobs: xdist runs one worker per core, and two workers' BLAS threads
+#: cost ~6 % more CPU in the branches' tests (contactlab.blas).
+one_thread_by_default()
 
 #: Tests run away from any Slurm cluster of the host (see the file's comment);
 #: tests/test_slurm.py lifts this for its own cluster.
