@@ -1,4 +1,6 @@
-"""Shared fixtures: the repository root and a scratch copy of the workflow."""
+"""Shared fixtures: the repository root, scratch copies of the workflow, Snakemake runs in
+them (each a plain ``python -m snakemake`` process whose jobs are the installed
+``contactlab`` command) and the session's end-to-end run (docs/testing.md)."""
 
 from __future__ import annotations
 
