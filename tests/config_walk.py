@@ -7,6 +7,15 @@ nested-override coercion is exercised too) and a dry run lists the jobs that wou
 their commands. The parameter passes when some job of its own branch reruns, no job of
 another branch does, and the new value is on a rerun job's command line (so it lands in that
 result's ``history``).
+
+Each dry run is a Snakemake process (~1.3 CPU-s), so parameters share one where that
+decides each of them alike (:func:`check_all`): those whose new value is a word found on no
+command line of the unchanged study, and differs from the others' in the run, are changed
+together; such a word on a command line of that run came from its parameter. Any parameter
+a shared run leaves undecided (the run failed or replanned another branch, or its word is
+missing), and those without a word of their own (flags, dropped list items, job layout),
+gets a dry run of its own, which gives the verdict and its message
+(tests/test_config_walk.py shows both find the same faults).
 """
 
 from __future__ import annotations
@@ -30,6 +39,9 @@ BRANCH_RULES = {
 ALWAYS = ("report_index", "all")
 #: Leaves that name files or the shared demo inputs, not parameters of a computation.
 SKIP = {"surfaces.sheet"}
+
+#: A walked parameter: (branch, key path, new value, the word expected on a command line).
+Case = tuple[str, list[str], Any, str]
 
 
 def _schema_node(schema: Mapping[str, Any], keys: list[str]) -> Mapping[str, Any]:
@@ -89,7 +101,7 @@ def changed(value: Any, node: Mapping[str, Any]) -> tuple[Any, str] | None:
 
 
 def walk(config: Mapping[str, Any], schema: Mapping[str, Any]
-         ) -> Iterator[tuple[str, list[str], Any, str]]:
+         ) -> Iterator[Case]:
     """(branch, key path, new value, expected text) of every walked leaf."""
     def visit(node: Any, keys: list[str]) -> Iterator[tuple[list[str], Any]]:
         sub = _schema_node(schema, keys)
@@ -128,26 +140,71 @@ def planned(output: str) -> tuple[set[str], str]:
     return rules, output
 
 
+def command_words(output: str) -> set[str]:
+    """The words of the shell commands a dry run with -p prints (its ``Shell command:``
+    lines): runs of characters between blanks, quotes and the punctuation of options and
+    lists (``--f 0.3 0.5``, ``--x=2.5``, ``[1, 2]``)."""
+    commands = re.findall(r"^Shell command: (.*)$", output, re.M)
+    return set(re.findall(r"[^\s'\",=:;{}\[\]()]+", "\n".join(commands)))
+
+
+
+def shared_runs(cases: list[Case], unchanged: set[str]) -> tuple[list[list[Case]], list[Case]]:
+    """Cases that can share dry runs, grouped so that each group's words are distinct and
+    none is among ``unchanged`` (the words of every job's command in the unchanged study);
+    and the cases that need a dry run of their own."""
+    groups: list[list[Case]] = []
+    alone: list[Case] = []
+    for case in cases:
+        text = case[3]
+        if not text or text in unchanged:
+            alone.append(case)
+            continue
+        group = next((g for g in groups if all(other[3] != text for other in g)), None)
+        if group is None:
+            groups.append([case])
+        else:
+            group.append(case)
+    return groups, alone
+
+
 def check_all(config: dict, schema: Mapping[str, Any], branch: str,
-              dry_runs: Callable[[list[str]], list[subprocess.CompletedProcess[str]]]
-              ) -> list[str]:
+              dry_run: Callable[..., subprocess.CompletedProcess[str]]) -> list[str]:
     """Walk every parameter of ``branch``; return one line per parameter that fails its
     check.
 
-    ``dry_runs`` takes the ``--config`` overrides and returns the dry runs' outputs.
+    ``dry_run(*args)`` runs ``snakemake -n -p *args -- all`` in the finished study. One run
+    with ``--forceall`` lists every job's command; then one run per group of
+    :func:`shared_runs`, and one per parameter that needs its own.
     """
     cases = list(walk(config, schema))
     assert len(cases) > 40, f"only {len(cases)} parameters walked"
     cases = [case for case in cases if case[0] == branch]
     assert cases, f"no parameter of {branch} walked"
-    runs = dry_runs([f"{branch}={json.dumps(_set(config, keys, value)[branch])}"
-                     for branch, keys, value, _ in cases])
-    failures = (_failure(case, run) for case, run in zip(cases, runs, strict=True))
+    everything = dry_run("--forceall")
+    assert everything.returncode == 0, everything.stderr[-3000:]
+    groups, alone = shared_runs(cases, command_words(everything.stdout))
+
+    def override(changes: list[Case]) -> str:
+        section = config
+        for _, keys, value, _ in changes:
+            section = _set(section, keys, value)
+        return f"{branch}={json.dumps(section[branch])}"
+
+    for group in groups:
+        run = dry_run("--config", override(group))
+        rules, _ = planned(run.stdout)
+        own = {r for r in rules if r.startswith(BRANCH_RULES[branch])}
+        if run.returncode != 0 or not own or rules - own - set(ALWAYS):
+            alone.extend(group)  # undecided: each on its own says which and why
+            continue
+        found = command_words(run.stdout)
+        alone.extend(case for case in group if case[3] not in found)
+    failures = (_failure(case, dry_run("--config", override([case]))) for case in alone)
     return [failure for failure in failures if failure]
 
 
-def _failure(case: tuple[str, list[str], Any, str],
-             run: subprocess.CompletedProcess[str]) -> str | None:
+def _failure(case: Case, run: subprocess.CompletedProcess[str]) -> str | None:
     """Why a parameter's dry run fails the check, or None."""
     branch, keys, value, text = case
     name = ".".join(keys)

@@ -1,33 +1,29 @@
-"""Shared fixtures: the repository root and a scratch copy of the workflow."""
+"""Shared fixtures: the repository root, scratch copies of the workflow, Snakemake runs in
+them (each a plain ``python -m snakemake`` process whose jobs are the installed
+``contactlab`` command) and the session's end-to-end run (docs/testing.md)."""
 
 from __future__ import annotations
 
-import atexit
 import fcntl
 import json
 import os
 import shutil
 import subprocess
 import sys
-import tempfile
 import threading
 from collections.abc import Callable
 from pathlib import Path
 
 import pytest
-from contactlab_forks import SOCKET_VARIABLE, write_launcher
+
+from contactlab.blas import one_thread_by_default
 
 REPO = Path(__file__).resolve().parents[1]
 
 #: One BLAS/OpenMP thread in the test processes and the commands they start, as the solver
-#: rules give their jobs: xdist runs one worker per core, and each worker's BLAS threads
-#: spinning beside the other worker's cost ~10 % of a session's CPU.
-for _variable in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"):
-    os.environ.setdefault(_variable, "1")
-if "numpy" in sys.modules:  # a plugin loaded it first: BLAS has read the variables already
-    from threadpoolctl import threadpool_limits
-
-    threadpool_limits(1)
+#: rules give their jobs: xdist runs one worker per core, and two workers' BLAS threads
+#: cost ~6 % more CPU in the branches' tests (contactlab.blas).
+one_thread_by_default()
 
 #: Tests run away from any Slurm cluster of the host (see the file's comment);
 #: tests/test_slurm.py lifts this for its own cluster.
@@ -99,111 +95,20 @@ def workflow_copy(tmp_path: Path) -> Path:
 SNAKEMAKE_ARGS = ("--scheduler", "greedy", "--configfile", "config/e2e.yaml")
 
 
-class _ContactlabForks:
-    """A tests/contactlab_forks.py server, started at first use, and the ``contactlab``
-    launcher that hands the rules' commands to it."""
-
-    def __init__(self) -> None:
-        self._server: subprocess.Popen[str] | None = None
-        self.folder = Path()
-
-    def folder_and_socket(self) -> tuple[Path, Path]:
-        """The launcher's folder (to put first on PATH) and the server's socket."""
-        if self._server is None or self._server.poll() is not None:
-            self._start()
-        return self.folder, self.folder / "socket"
-
-    def _start(self) -> None:
-        self.folder = Path(tempfile.mkdtemp(prefix="contactlab-forks-"))
-        atexit.register(shutil.rmtree, self.folder, True)
-        write_launcher(self.folder, str(Path(sys.executable).parent / "contactlab"))
-        # a hash seed of its own even if the environment fixes one (test_results_files.py)
-        seed = int.from_bytes(os.urandom(4), "little") % (2**32 - 1) + 1
-        self._server = subprocess.Popen(
-            [sys.executable, str(REPO / "tests" / "contactlab_forks.py"),
-             str(self.folder / "socket")], stdout=subprocess.PIPE, text=True,
-            stdin=subprocess.PIPE,  # closes when this process ends, and so ends the server
-            env={**os.environ, "PYTHONHASHSEED": str(seed)})
-        atexit.register(self._server.kill)
-        assert self._server.stdout is not None
-        if self._server.stdout.readline().strip() != "ready":
-            raise RuntimeError("tests/contactlab_forks.py did not start; its errors "
-                               "are above")
-
-    def close(self) -> None:
-        if self._server is not None:
-            self._server.kill()
-
-
-#: ``CONTACTLAB_REAL_JOBS=1`` runs every job of the tests as a fresh ``contactlab`` process
-REAL_JOBS = os.environ.get("CONTACTLAB_REAL_JOBS", "") not in ("", "0")
-
-
-def _environment(jobs: _ContactlabForks | None) -> dict[str, str]:
-    """This environment first on PATH (the rules call ``contactlab``); each request to
-    the fork server carries it, so a test's changes to os.environ reach its command.
-    With ``jobs``, its ``contactlab`` launcher comes first on PATH: each job runs in a fork
-    of a process that has the package loaded."""
+def _environment() -> dict[str, str]:
+    """This process's environment with its Python environment first on PATH, as
+    ``make`` runs the workflow: the rules call the installed ``contactlab``."""
     env = dict(os.environ)
-    path = [str(Path(sys.executable).parent), env.get("PATH", "")]
-    if jobs is not None:
-        folder, socket = jobs.folder_and_socket()
-        path.insert(0, str(folder))
-        env[SOCKET_VARIABLE] = str(socket)
-    env["PATH"] = os.pathsep.join(path)
+    env["PATH"] = os.pathsep.join([str(Path(sys.executable).parent), env.get("PATH", "")])
     return env
 
 
-class _SnakemakeForks:
-    """A tests/snakemake_forks.py process, started at first use, whose jobs run in the
-    forks of their own :class:`_ContactlabForks` server."""
-
-    def __init__(self) -> None:
-        self._server: subprocess.Popen[str] | None = None
-        self.jobs = _ContactlabForks()
-
-    def run(self, workdir: Path, commands: list[list[str]], parallel: int = 1,
-            real_jobs: bool = False) -> list[subprocess.CompletedProcess[str]]:
-        if self._server is None or self._server.poll() is not None:
-            self._server = subprocess.Popen(
-                [sys.executable, str(REPO / "tests" / "snakemake_forks.py")],
-                stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
-            atexit.register(self._server.kill)
-        assert self._server.stdin is not None and self._server.stdout is not None
-        argvs = [[*SNAKEMAKE_ARGS, *args] for args in commands]
-        env = _environment(None if real_jobs or REAL_JOBS else self.jobs)
-        self._server.stdin.write(json.dumps({"cwd": str(workdir), "env": env,
-                                             "commands": argvs, "parallel": parallel}) + "\n")
-        self._server.stdin.flush()
-        answer = self._server.stdout.readline()
-        if not answer:
-            raise RuntimeError("tests/snakemake_forks.py ended; its errors are above")
-        return [subprocess.CompletedProcess(["snakemake", *argv], run["returncode"],
-                                            run["stdout"], run["stderr"])
-                for argv, run in zip(argvs, json.loads(answer), strict=True)]
-
-    def close(self) -> None:
-        if self._server is not None:
-            self._server.kill()
-        self.jobs.close()
-
-
-#: the servers of this pytest worker's tests (the end-to-end run has its own)
-_FORKS = _SnakemakeForks()
-
-
-def run_snakemake(workdir: Path, *args: str, real_jobs: bool = False
-                  ) -> subprocess.CompletedProcess[str]:
-    """Snakemake on the end-to-end config in ``workdir`` (a fork of a process that has
-    Snakemake loaded: tests/snakemake_forks.py); its jobs in forks of a process that has
-    contactlab loaded (tests/contactlab_forks.py) unless ``real_jobs``."""
-    return _FORKS.run(workdir, [list(args)], real_jobs=real_jobs)[0]
-
-
-def run_snakemake_many(workdir: Path, commands: list[list[str]]
-                       ) -> list[subprocess.CompletedProcess[str]]:
-    """:func:`run_snakemake` for each argument list, two at a time."""
-    return _FORKS.run(workdir, commands, parallel=2)
+def run_snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]:
+    """``python -m snakemake`` on the end-to-end config in ``workdir``, as a user runs it:
+    a fresh process, no standard input, its output captured."""
+    return subprocess.run([sys.executable, "-m", "snakemake", *SNAKEMAKE_ARGS, *args],
+                          cwd=workdir, env=_environment(), stdin=subprocess.DEVNULL,
+                          capture_output=True, text=True, check=False)
 
 
 @pytest.fixture
@@ -218,19 +123,6 @@ def snakemake() -> Callable[..., subprocess.CompletedProcess[str]]:
     return run_snakemake
 
 
-@pytest.fixture
-def job_environment() -> Callable[[bool], dict[str, str]]:
-    """The environment :func:`run_snakemake` gives its jobs: ``job_environment(True)`` with
-    the tests' ``contactlab`` launcher first on PATH, ``job_environment(False)`` without."""
-    return lambda forked: _environment(_FORKS.jobs if forked else None)
-
-
-@pytest.fixture
-def snakemake_many() -> Callable[..., list[subprocess.CompletedProcess[str]]]:
-    """:func:`run_snakemake_many`, for tests that plan many variants of one workflow."""
-    return run_snakemake_many
-
-
 def _build_e2e_run(root: Path, wait: bool) -> None:
     """Build the end-to-end run under ``root`` unless built, holding ``root``'s lock; if
     another process holds the lock, wait for it or, unless ``wait``, return at once."""
@@ -243,11 +135,7 @@ def _build_e2e_run(root: Path, wait: bool) -> None:
         if not status.exists():
             shutil.rmtree(work, ignore_errors=True)
             work.mkdir()
-            forks = _SnakemakeForks()  # its own processes: see test_results_files.py
-            try:
-                run = forks.run(limit_test_sheet(copy_workflow(work)), [["-j2", "all"]])[0]
-            finally:
-                forks.close()
+            run = run_snakemake(limit_test_sheet(copy_workflow(work)), "-j2", "all")
             status.write_text(json.dumps({"returncode": run.returncode,
                                           "stderr": run.stderr[-3000:]}))
 

@@ -70,9 +70,8 @@ def test_small_targets_rebuild_byte_identical(e2e_copy: Path, e2e_run: Path,
                                               snakemake) -> None:
     """The targets built on their own, in another directory, equal the end-to-end run's.
 
-    The jobs run in forks of another process than the end-to-end run's (conftest.py): a
-    result that depended on the process (its string hash seed orders sets, for one) would
-    differ."""
+    Every job is a process of its own with its own string hash seed: a result that depended
+    on the process (a set's order, for one) would differ."""
     workflow_copy = e2e_copy
     run = snakemake(workflow_copy, "-j2", *TARGETS)
     assert run.returncode == 0, run.stderr[-3000:]

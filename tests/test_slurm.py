@@ -92,11 +92,10 @@ def test_study_through_slurm_equals_the_local_run(
     # everything they depend on, so not rebuilt), they spare the chain two Slurm rounds
     for demo in ("results/demo", "results/surfaces/demo_scans"):
         shutil.copytree(local / demo, cluster / demo)
-    # the profile as users run it; only the status polls are made quicker for the test.
-    # Each job runs as a fresh process under slurmstepd (not in the tests' forks).
+    # the profile as users run it; only the status polls are made quicker for the test
     run = snakemake(cluster, "--profile", "workflow/profiles/slurm",
                     "--slurm-init-seconds-before-status-checks", "2",
-                    "--seconds-between-status-checks", "2", "--", *TARGETS, real_jobs=True)
+                    "--seconds-between-status-checks", "2", "--", *TARGETS)
     log = run.stdout + run.stderr
     assert run.returncode == 0, log[-3000:]
 

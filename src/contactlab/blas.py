@@ -1,35 +1,47 @@
-"""One BLAS thread per job: the one place where the thread limit is set.
+"""One BLAS thread per job: the one home of the thread limit.
 
 The receding root finders solve hundreds of systems of 100-200 unknowns, the rough-contact
 prediction convolves grids of a few hundred cells a side: BLAS threads only add overhead at
-that size and, on a machine busy with other jobs, spin against each other (figures in
-``docs/testing.md``). Parallelism comes from running jobs side by side.
+that size and, on a machine busy with other jobs, spin against each other.
+Parallelism comes from running jobs side by side.
+
+Two ways: :func:`one_thread_by_default` for a whole process and those it starts (the
+libraries read :data:`THREAD_VARIABLES` when they load; the ``contactlab`` command calls
+it before a command imports numpy), :func:`single_thread` around a solver's loop whatever
+the process was started with. Only the standard library is imported at the top.
 """
 
 from __future__ import annotations
 
 import contextlib
 import os
-from collections.abc import Iterator
+import sys
+from collections.abc import Iterator, MutableMapping
 from functools import lru_cache
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     from threadpoolctl import ThreadpoolController
 
-#: The environment that gives BLAS and OpenMP one thread when set before numpy loads.
-ONE_THREAD = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+#: The variables OpenBLAS (numpy's and scipy's BLAS) and OpenMP read for their thread
+#: count when they load.
+THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS")
 
 
-def one_thread_environment() -> None:
-    """Set :data:`ONE_THREAD` in this process's environment, keeping values the user set.
+def one_thread_by_default(environ: MutableMapping[str, str] = os.environ) -> None:
+    """One BLAS and OpenMP thread in this process and the processes it starts, unless
+    ``environ`` sets a count (a user's setting stays).
 
-    The ``contactlab`` command calls it before a command imports numpy, so every job of the
-    workflow runs its BLAS on one thread (jobs run side by side instead); a user who wants
-    more sets the variables.
+    Call it before numpy is imported; if numpy is loaded already, its BLAS is limited to
+    one thread at run time instead (when the environment did not set a count).
     """
-    for name, value in ONE_THREAD.items():
-        os.environ.setdefault(name, value)
+    unset = [name for name in THREAD_VARIABLES if name not in environ]
+    for name in unset:
+        environ[name] = "1"
+    if unset and "numpy" in sys.modules:  # BLAS has read the variables already
+        from threadpoolctl import threadpool_limits
+
+        threadpool_limits(1)
 
 
 @lru_cache(maxsize=1)

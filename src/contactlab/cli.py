@@ -16,7 +16,7 @@ import sys
 from collections.abc import Sequence
 
 from contactlab import __version__
-from contactlab.blas import one_thread_environment
+from contactlab.blas import one_thread_by_default
 from contactlab.cliutil import Parser
 from contactlab.command import Command, Group
 from contactlab.progress import configure_logging
@@ -84,7 +84,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     if problems:
         print(f"contactlab {declaration.path}: error: {'; '.join(problems)}", file=sys.stderr)
         return 2
-    one_thread_environment()
+    one_thread_by_default()
     try:
         args.func(args)
     except USER_ERRORS as exc:

@@ -178,6 +178,7 @@ def test_study_rule_helpers() -> None:
     assert rulehelpers.study_files(_fe(dict(study, enabled=False))) == []
 
 
+@pytest.mark.slow
 def test_coarse_study_end_to_end(tmp_path: Path) -> None:
     """The line load with far-field edges on three coarse meshes and three domains, as the
     rules run it; the far-field model agrees with the DDT and its series are recorded."""

@@ -42,6 +42,7 @@ def test_cli_solve_json(capsys: pytest.CaptureFixture[str]) -> None:
         assert "contactlab: error:" in capsys.readouterr().err
 
 
+@pytest.mark.slow
 def test_sweeps_gather_profile_report(tmp_path: Path) -> None:
     c0, c1 = tmp_path / "l0.nc", tmp_path / "l1.nc"
     assert main(["receding", "line-sweep", "--f", "0.5", "--n", "40", *LINE, "--chaise",

@@ -65,7 +65,8 @@ def compare_sweep(new: dict[str, list], ref: dict[str, list], where: str) -> lis
     return bad
 
 
-@pytest.mark.parametrize("group", GROUPS)
+@pytest.mark.parametrize(
+    "group", [pytest.param(g, marks=pytest.mark.slow) if g == "sweeps" else g for g in GROUPS])
 def test_solutions_match_the_reference(group: str) -> None:
     new, ref = compute(group), REFERENCE[group]
     assert sorted(new) == sorted(ref)

@@ -166,6 +166,7 @@ def test_cli_summarize_published(tmp_path, repo) -> None:
     assert bad.value.code == 2
 
 
+@pytest.mark.slow
 def test_report_section_from_published_steps(tmp_path, repo) -> None:
     seq = tmp_path / "seq.nc"
     assert main(["surfaces", "seq", "--tests", str(repo / "config/tests.csv"),

@@ -46,6 +46,7 @@ def _placeholders(snakemake, workdir: Path, target: str) -> None:
     assert "Nothing to be done" in again.stdout + again.stderr, again.stdout[-2000:]
 
 
+@pytest.mark.slow
 def test_tenth_test_reruns_only_its_jobs_and_the_summaries(workflow_copy: Path,
                                                           snakemake) -> None:
     target = "results/report/sections/21_stiffness_raw.html"

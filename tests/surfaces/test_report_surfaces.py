@@ -15,6 +15,7 @@ from contactlab.surfaces.seq import add_beta_n, add_scan_seq, seq_dataset
 from contactlab.testsheet import read_test_sheet
 
 
+@pytest.mark.slow
 def test_section_has_every_table_and_picture(processed: pd.DataFrame, repo: Path,
                                               tmp_path: Path) -> None:
     work = processed.attrs["work"]

@@ -61,6 +61,7 @@ def write_bad_scans(data: Path) -> None:
     write_demo_scan(heights, 1.0, 1.0, data / "holey.x3p")
 
 
+@pytest.mark.slow
 def test_real_scans_evaluated_and_refused_ones_listed_with_their_reason(
         workflow_copy: Path, snakemake, repo: Path) -> None:
     """Real instrument files in the surface sheet (issue 22), in one job, with two bad

@@ -1,0 +1,119 @@
+"""The workflow's start-up checks of the configuration, called as functions.
+
+``workflow/rules/common.smk`` merges the config files, coerces the ``--config`` values
+(:func:`contactlab.study.coerce`) and checks them (:func:`contactlab.config_check.check_config`);
+the Snakefile reads ``config/config.yaml`` with :func:`contactlab.config_check.load_yaml_file`.
+These tests call the same functions on the same inputs as the workflow tests' dry runs, without
+a Snakemake process each; ``tests/test_workflow.py`` keeps a few real runs that show the
+messages reach the user as one line.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Any
+
+import pytest
+from config_walk import _set, walk
+
+from contactlab.config_check import ConfigError, check_config, load_yaml_file, parse_yaml
+from contactlab.study import coerce
+
+
+def _schema(repo: Path) -> dict[str, Any]:
+    return parse_yaml((repo / "workflow/schemas/config.schema.yaml").read_text())
+
+
+def _problems(repo: Path, e2e_text: str, overrides: dict[str, Any] | None = None) -> str:
+    """What the workflow's start-up says of ``config/config.yaml`` with ``config/e2e.yaml``
+    (``e2e_text``) and ``--config`` ``overrides``: "" when nothing."""
+    from snakemake.utils import update_config
+
+    base = load_yaml_file(repo / "config" / "config.yaml")
+    e2e = parse_yaml(e2e_text)
+    schema = _schema(repo)
+    extra = coerce(dict(overrides or {}), schema)
+    config: dict[str, Any] = json.loads(json.dumps(base))
+    update_config(config, e2e)
+    update_config(config, extra)
+    try:
+        check_config(coerce(config, schema), schema,
+                     [("config/config.yaml", base), ("config/e2e.yaml", e2e),
+                      ("--config", extra)])
+    except ConfigError as exc:
+        return str(exc)
+    return ""
+
+
+def test_the_shipped_configs_pass(repo: Path) -> None:
+    assert _problems(repo, (repo / "tests" / "e2e_config.yaml").read_text()) == ""
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "expected"),
+    [
+        ("report:", "reprot: {}\nreport:", ["config/e2e.yaml: reprot: unknown key"]),
+        ("tests: config/tests.csv", "tests: 42",
+         ["config/e2e.yaml: tests: 42 is not of type 'string'"]),
+        ("w: [1.0, 2.5]", "w: {start: 5.0, stop: 1.0, step: 0.25}",
+         ["config/e2e.yaml: receding.gap.w:", "is an empty range"]),
+        ("level: coarse, convergence: [coarse, medium]",
+         "level: ultra, convergence: [coarse, medium]",
+         ["config/e2e.yaml: fe.problems.gap.level: \"ultra\" is not a mesh level; fe.levels "
+          "defines coarse, medium"]),
+    ],
+    ids=["unknown-key", "wrong-type", "empty-range", "unknown-mesh-level"],
+)
+def test_a_bad_value_is_named_with_its_file_and_key(repo: Path, old: str, new: str,
+                                                   expected: list[str]) -> None:
+    text = (repo / "tests" / "e2e_config.yaml").read_text()
+    assert old in text
+    message = _problems(repo, text.replace(old, new, 1))
+    for words in expected:
+        assert words in message, (words, message)
+
+
+def test_a_bad_command_line_value_is_blamed_on_the_command_line(repo: Path) -> None:
+    from snakemake.cli import parse_config
+
+    text = (repo / "tests" / "e2e_config.yaml").read_text()
+    message = _problems(repo, text, parse_config(['receding={"line": {"lambda": "abc"}}']))
+    assert "--config: receding.line.lambda: 'abc' is not of type 'number'" in message
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [("", "config.yaml: the config file is empty"),
+     ("tests: [config/tests.csv\n", "config.yaml, line 1 (noticed at line 2): not valid YAML"),
+     ("- tests\n", "config.yaml: a config file maps keys to values at its top level")],
+    ids=["empty", "yaml-syntax", "a-list"],
+)
+def test_a_broken_config_file_is_named_with_its_line(tmp_path: Path, text: str,
+                                                     expected: str) -> None:
+    (tmp_path / "config.yaml").write_text(text)
+    with pytest.raises(ConfigError, match="^" + str(tmp_path)) as info:
+        load_yaml_file(tmp_path / "config.yaml")
+    assert expected in str(info.value)
+    assert "\n" not in str(info.value)
+
+
+def test_every_walked_parameter_returns_from_the_command_line_with_its_type(
+        repo: Path) -> None:
+    """The config walk (tests/config_walk.py) passes each changed section back with
+    ``--config``, where Snakemake reads nested values as strings: each comes back as the
+    value it was, and the changed config passes the start-up checks."""
+    from snakemake.cli import parse_config
+    from snakemake.utils import validate
+
+    config = parse_yaml((repo / "tests" / "e2e_config.yaml").read_text())
+    validate(config, str(repo / "workflow/schemas/config.schema.yaml"))  # + defaults
+    schema = _schema(repo)
+    cases = list(walk(config, schema))
+    assert len(cases) > 80
+    for branch, keys, value, _ in cases:
+        changed = _set(config, keys, value)
+        override = f"{branch}={json.dumps(changed[branch])}"
+        back = coerce(parse_config([override]), schema)[branch]
+        assert back == changed[branch], (keys, value)
+        check_config(changed, schema, [("config/e2e.yaml", config), ("--config", back)])
