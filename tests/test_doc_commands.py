@@ -40,7 +40,7 @@ def words_after_configfile(text: str) -> list[str]:
     taken = []
     for match in _OPTION.finditer(text):
         for word in match.group(1).split():
-            end = "`" in word or word.endswith(")")
+            end = "`" in word or word.endswith((")", ";"))
             word = word.split("`")[0].rstrip("),;:")
             if word.startswith(("-", "#")) or not word:
                 break

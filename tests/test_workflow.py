@@ -167,7 +167,7 @@ def test_single_target_builds_only_its_ancestors(workflow_copy: Path, snakemake)
           "RU2,ground,rough_specimen,B,RU2_pad,B,-8,20"),
          ["config/tests.csv", "line 3 (test RU2)", "max_normal_load_kN", "-8"]),
         (("config/config.yaml", "tests: config/tests.csv", "tests: [config/tests.csv"),
-         ["config/config.yaml", "line 5", "YAML"]),
+         ["config/config.yaml", "line 10", "YAML"]),
     ],
     ids=["unknown-key", "negative-load", "yaml-syntax"],
 )
