@@ -86,8 +86,9 @@ class StiffnessLaw:
                 "stated pressure instead")
 
     def measured(self, *, T: float, E: float, nu: float, c: float) -> Interface:
-        """The dimensionless measured law of a layer (E [kN/mm^2], nu, c [mm]) under the
-        load per thickness T [kN/mm^2]: C, C_T = C/Cc at p = T, pi0 = p0/T."""
+        """The dimensionless measured law (eqs 2.4, 2.7: k_n = beta_n (p + p0), k_t0 =
+        Cc k_n) of a layer (E [kN/mm^2], nu, c [mm]) under the load per thickness T
+        [kN/mm^2]: C, C_T = C/Cc at p = T, pi0 = p0/T."""
         self._check_edge()
         if not (np.isfinite(T) and T > 0):
             raise ValueError(f"load per thickness T must be positive, got {T}")
@@ -148,9 +149,9 @@ PAIR_LAWS = ("measured", "linearised")
 def pair_law(name: str, spec: dict, summary: xr.Dataset | None, *, key: str,
              normal_direction: str, tangential_direction: str, cc_basis: str
              ) -> tuple[StiffnessLaw, float, str]:
-    """The law, mean pressure [kN/mm^2] and kind (``measured`` or ``linearised``) of the
-    tested pair ``name`` of a layer study, checked for the pressures a receding contact
-    meets (0 at its edges up to about twice the mean).
+    """The law (eqs 2.4, 2.7), mean pressure [kN/mm^2] and kind (``measured`` or
+    ``linearised``) of the tested pair ``name`` of a layer study, checked for the pressures
+    a receding contact meets (0 at its edges up to about twice the mean).
 
     ``spec``: ``from_test`` (a test of the stiffness ``summary``, read as
     :func:`law_from_summary` reads it) or the fit's numbers :data:`FIT_KEYS` (thesis units,

@@ -204,7 +204,8 @@ def sweep_rough(problem: str, f_values: Sequence[float], C_values: Sequence[floa
                 lam: float, e_extra: float, refine_max_n: int, interface: str = "linear",
                 pi0: float | None = None) -> xr.Dataset:
     """``problem`` over the compliance: dims (f, ct_ratio, C) for the line load and
-    (f, w_hat, ct_ratio, C) for a patch (``w_values``), C_T = ct_ratio * C.
+    (f, w_hat, ct_ratio, C) for a patch (``w_values``), C_T = ct_ratio * C: the lift-off
+    problems of chs 6-7 (eqs 6.3-6.32, 7.1-7.39) on a compliant interface.
 
     ``interface`` ``linear`` (C, C_T constant) or ``measured`` (the thesis's law with
     p0/T = ``pi0``, C and C_T at p = T). C = 0 is the smooth interface (solved by the
