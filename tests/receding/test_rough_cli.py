@@ -119,10 +119,12 @@ def _bad(summary: Path, out: Path) -> list[tuple[list[str], list[str]]]:
         (["receding", "solve", "--problem", "gap", "--f", "0.5", "--w-hat", "2",
           "--interface-compliance", "1"],
          ["--interface-compliance does not apply to --problem gap"]),
+        (["fe", "rough", "--problem", "line", "--compliance", "-0.5", "--compliance-t", "1",
+          "--out", str(out)], ["--compliance -0.5", ">= 0"]),
     ]
 
 
-@pytest.mark.parametrize("case", range(12))
+@pytest.mark.parametrize("case", range(13))
 def test_bad_input_names_the_key_and_value(case: int, tmp_path: Path, summary_file: Path,
                                            capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "out.nc"
