@@ -33,7 +33,8 @@ ROOT = Path(__file__).resolve().parents[1]
 MEASURED = ROOT / "docs" / "cluster" / "benchmarks"
 #: rule names, longest first, so that a file name maps to the rule that wrote it
 RULES = sorted(["receding_gap_sweep", "receding_line_sweep", "receding_patch_sweep",
-                "fe_receding", "fe_receding_study", "fe_asperity",
+                "receding_rough_sweep", "receding_rough_pairs",
+                "fe_receding", "fe_receding_study", "fe_asperity", "fe_rough",
                 "asperity_bem",
                 "asperity_grid_bem", "asperity_transverse", "prediction_pair", "stiffness_demo",
                 "stiffness_process", "surfaces_demo_scans", "surfaces_texture"],

@@ -33,8 +33,9 @@ BRANCH_RULES = {
     "stiffness": ("stiffness_", "prediction_summarize", "prediction_report"),
     "prediction": ("prediction_",),
     "asperity": ("asperity_", "fe_asperity"),
-    # the FE cross-checks solve the line load and the patch with the receding settings
-    "receding": ("receding_", "fe_compare", "fe_report"),
+    # the FE cross-checks solve the line load and the patch with the receding settings, and
+    # the rough-interface comparison takes its runs from receding.rough.fe
+    "receding": ("receding_", "fe_compare", "fe_report", "fe_rough"),
 }
 ALWAYS = ("report_index", "all")
 #: Leaves that name files or the shared demo inputs, not parameters of a computation.

@@ -231,6 +231,15 @@ MINIMAL: dict[str, list[str]] = {
         "report-line-patch --line {tmp}/line.nc --patches {tmp}/uniform.nc --profiles "
         "{tmp}/line_profile.nc {tmp}/patch_profile.nc --report-dir {tmp}/report "
         "--out {tmp}/report/line_patch.html",
+        "solve --problem uniform --f 0.3 --w-hat 1 --interface-compliance 1",
+        "rough-sweep --problem line --f 0.5 --out {tmp}/rough_line_0.nc",
+        "rough-gather {tmp}/rough_line_0.nc --out {tmp}/rough_line.nc",
+        "rough-profile --problem line --f 0.5 --C 1 --out {tmp}/rough_profile.nc",
+        # the default pairs name SU3, not among the run's tests; one layer keeps it seconds
+        "rough-pairs --summary results/stiffness/summary.nc --pairs "
+        "'{{\"S3\": {{\"from_test\": \"S3\"}}}}' --c 1 --out {tmp}/rough_pairs.nc",
+        "report-rough --sweeps {tmp}/rough_line.nc --profiles {tmp}/rough_profile.nc "
+        "--pairs {tmp}/rough_pairs.nc --report-dir {tmp}/report --out {tmp}/report/rough.html",
     ],
     "surfaces": [
         "demo-scans --sheet config/e2e_surfaces.csv --out-dir {tmp}/scans",
@@ -293,6 +302,10 @@ MINIMAL: dict[str, list[str]] = {
         "asperity --yield-stress 3000 --h-contact 1 --normal-increments 2 "
         "--tangential-increments 1 --out {tmp}/sy3000.nc",
         "asperity-gather {tmp}/sy3000.nc --out {tmp}/asperity_plastic.nc",
+        # a compliant run on the coarse mesh of fe.levels and its comparison with the DDT
+        "rough --problem line --compliance 1 --compliance-t 1.2 --level coarse "
+        "--out {tmp}/rough_line.nc",
+        "rough-compare {tmp}/rough_line.nc --out {tmp}/rough_compare.nc",
         "report --results {tmp}/gap.nc --report-dir {tmp}/report --out {tmp}/report/fe.html",
     ],
     "report": [

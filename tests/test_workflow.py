@@ -221,3 +221,26 @@ def test_study_files_validate_and_plan_under_their_folder(workflow_copy: Path, r
         files = [f for line in outputs for f in line.split(", ")]
         shared = ("results/demo/", "results/surfaces/demo_scans/")
         assert files and all(f.startswith((f"results/studies/{name}/", *shared)) for f in files)
+
+
+def test_rough_interface_section_plans_its_jobs(workflow_copy: Path, snakemake) -> None:
+    """A dry run of section 52 plans the sweep chunks, gathers, profiles, tested pairs (with
+    the stiffness summary they read) and the FE runs with their comparison, each FE run
+    given C_T explicitly (= the DDT's, C/m at receding.rough.nu); without the FE branch no
+    FE job and no FE figure."""
+    target = "results/report/sections/52_receding_rough.html"
+    run = snakemake(workflow_copy, "-n", "-p", target)
+    assert run.returncode == 0, run.stderr[-3000:]
+    rules = planned_rules(run)
+    assert {"receding_rough_sweep", "receding_rough_gather", "receding_rough_profile",
+            "receding_rough_pairs", "receding_report_rough", "fe_rough", "fe_rough_compare",
+            "stiffness_summarize"} <= rules
+    fe_runs = [c for c in run.stdout.splitlines() if "contactlab fe rough " in c]
+    assert fe_runs and all("--compliance 1.0 --compliance-t 1.2142857142857" in c
+                           for c in fe_runs)
+    assert "--summary results/stiffness/summary.nc" in run.stdout
+    off = snakemake(workflow_copy, "-n", "-p", "--config", "fe={'enabled': False}", "--",
+                    target)
+    assert off.returncode == 0, off.stderr[-3000:]
+    assert not {r for r in planned_rules(off) if r.startswith("fe_")}
+    assert "receding_rough_fe.png" not in off.stdout and "--fe " not in off.stdout

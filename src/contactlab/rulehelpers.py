@@ -149,6 +149,67 @@ def liftoff_profile_point(points: Sequence[Mapping[str, float]], name: str
     raise ValueError(f"no receding.patches.profiles entry named {name!r}")
 
 
+def rough_ct_ratio(rough: Mapping[str, Any]) -> float:
+    """C_T / C of a rough-interface run that takes one ratio (profiles, FE runs): the first
+    of ``receding.rough.ct_ratios``, or 1/m with Mindlin's m at ``receding.rough.nu``."""
+    from contactlab.receding.core.interface import mindlin_ratio
+
+    ratios = rough["ct_ratios"]
+    return float(ratios[0]) if ratios else 1.0 / mindlin_ratio(float(rough["nu"]))
+
+
+def rough_profile_name(point: Mapping[str, Any]) -> str:
+    """File stem of a rough-interface profile: ``line_f0.5_C1`` or ``uniform_w1_f0.3_C1``."""
+    where = f"_w{point['w']:g}" if point["problem"] != "line" else ""
+    return f"{point['problem']}{where}_f{point['f']:g}_C{point['C']:g}"
+
+
+def rough_profile_point(points: Sequence[Mapping[str, Any]], name: str) -> dict[str, Any]:
+    """The options of ``receding rough-profile`` for the configured profile named ``name``."""
+    for point in points:
+        if rough_profile_name(point) == name:
+            values = {"problem": point["problem"], "f": point["f"], "C": point["C"]}
+            if point["problem"] != "line":
+                if "w" not in point:
+                    raise ValueError(f"receding.rough.profiles entry {dict(point)}: a "
+                                     f"{point['problem']} patch needs w")
+                values["w_hat"] = point["w"]
+            return values
+    raise ValueError(f"no receding.rough.profiles entry named {name!r}")
+
+
+def rough_pairs_summary(rough: Mapping[str, Any], results: str = "results/") -> list[str]:
+    """The stiffness summary ``receding rough-pairs`` reads, when a pair is ``from_test``."""
+    tests = rough["pairs"]["tests"].values()
+    return [f"{results}stiffness/summary.nc"] if any("from_test" in t for t in tests) else []
+
+
+def rough_fe_runs(config: Mapping[str, Any], results: str = "results/") -> list[str]:
+    """<results>fe/rough/<problem>_C<C>_h<h>.nc: the FE runs of the rough-interface
+    comparison (``receding.rough.fe``; none unless ``fe.enabled``)."""
+    spec = config["receding"]["rough"]["fe"]
+    if not config["fe"]["enabled"]:
+        return []
+    return [f"{results}fe/rough/{problem}_C{C:g}_h{h:g}.nc" for problem in spec["problems"]
+            for C in spec["C"] for h in spec["h"]]
+
+
+def rough_fe_run(config: Mapping[str, Any], problem: str, C: str, h: str) -> dict[str, Any]:
+    """The values of one ``fe rough`` run that are not config values: the problem, C, C_T
+    (:func:`rough_ct_ratio` times C, passed explicitly so the DDT side reads the same from
+    the run), h/c and the level name ``h<h>``."""
+    rough = config["receding"]["rough"]
+    spec = rough["fe"]
+    cs = {f"{float(v):g}": float(v) for v in spec["C"]}
+    hs = {f"{float(v):g}": float(v) for v in spec["h"]}
+    if problem not in spec["problems"] or C not in cs or h not in hs:
+        raise ValueError(f"fe rough run {problem}_C{C}_h{h} is not in receding.rough.fe "
+                         f"(problems {spec['problems']}, C {sorted(cs)}, h {sorted(hs)})")
+    compliance = cs[C]
+    return {"problem": problem, "compliance": compliance,
+            "compliance_t": compliance * rough_ct_ratio(rough), "h": hs[h], "level": f"h{h}"}
+
+
 # --------------------------------------------------------------------------- finite elements
 
 

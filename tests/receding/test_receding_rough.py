@@ -364,3 +364,31 @@ def test_no_stick_zone_on_a_normally_compliant_interface() -> None:
     assert point["a"] == 0.0 and point["regime"] == 1
     smooth = solve_line(0.05, 100, 3.5, 5.0)
     assert smooth.regime == "no_stick" and point["b"] > smooth.b
+
+
+def test_default_sweep_meets_the_smooth_limit_at_its_stiffest_point() -> None:
+    """The workflow's default sweep (the schema's receding.rough): at its stiffest compliant
+    point (smallest C > 0) a, b and K_T of the line load and the patch are within 1e-4 of
+    the smooth interface's at every default f, and the differences grow with C over the
+    next two compliances (converging to the smooth answer as C -> 0)."""
+    from contactlab.command import schema_default
+
+    rough = "receding.rough"
+    C = sorted(float(c) for c in schema_default(f"{rough}.C"))
+    small = [0.0, *[c for c in C if c > 0][:3]]
+    f = schema_default(f"{rough}.f")
+    ratio = 1.0 / mindlin_ratio(schema_default(f"{rough}.nu"))
+    for problem, section, w in (("line", "line", None), ("uniform", "patches",
+                                                         schema_default(f"{rough}.w"))):
+        lam, e = ((schema_default("receding.line.lambda"), schema_default("receding.line.e"))
+                  if problem == "line" else (schema_default("receding.patches.lambda_b"),
+                                             schema_default("receding.patches.e_minus_w")))
+        ds = sweep_rough(problem, f, small, ct_ratios=[ratio], w_values=w,
+                         n=schema_default(f"{rough}.{section}.n"), lam=lam, e_extra=e,
+                         refine_max_n=schema_default(f"{rough}.{section}.refine_max_n"))
+        assert int(ds.attrs["summary_solved"]) == ds["b"].size, ds.attrs["unsolved"]
+        diff = np.stack([np.abs(ds[k] - ds[k].sel(C=0.0)).max([d for d in ds[k].dims
+                                                                if d != "C"]).values
+                         for k in ("a", "b", "K_T")])
+        assert np.all(diff[:, 1] < 1e-4), (problem, diff)
+        assert np.all(np.diff(diff[:, 1:], axis=1) > 0), (problem, diff)

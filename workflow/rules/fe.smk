@@ -167,6 +167,45 @@ rule fe_asperity_gather:
         " 2> {log:q}"
 
 
+rule fe_rough:
+    """One receding-contact model on a compliant (rough) interface: C, C_T (= the DDT's) and h."""
+    output:
+        result("fe/rough/{problem}_C{C}_h{h}.nc"),
+    wildcard_constraints:
+        problem="line|uniform",
+        C=r"[0-9.e-]+",
+        h=r"[0-9.e-]+",
+    params:
+        args=lambda wc: command_args(
+            "fe rough", config, **rulehelpers.rough_fe_run(config, wc.problem, wc.C, wc.h)
+        ),
+    priority: 10
+    log:
+        logs("fe/rough_{problem}_C{C}_h{h}.log"),
+    benchmark:
+        logs("benchmarks/fe_rough_{problem}_C{C}_h{h}.tsv"),
+    threads: 1
+    shell:
+        "contactlab fe rough {params.args:q} --threads {threads:q} --out {output:q} 2> {log:q}"
+
+
+rule fe_rough_compare:
+    """results/fe/rough_compare.nc: the rough-interface runs' b and a (h -> 0 with three or
+    more meshes) against the DDT at the same C, C_T (report table receding_rough_fe.csv)."""
+    input:
+        rulehelpers.rough_fe_runs(config, RESULTS),
+    output:
+        result("fe/rough_compare.nc"),
+    params:
+        args=lambda wc: command_args("fe rough-compare", config),
+    log:
+        logs("fe/rough_compare.log"),
+    benchmark:
+        logs("benchmarks/fe_rough_compare.tsv"),
+    shell:
+        "contactlab fe rough-compare {params.args:q} {input:q} --out {output:q} 2> {log:q}"
+
+
 rule fe_report:
     """Report section: FE against DDT (Figs 8.3-8.19), agreement and convergence, Fig. 3.8."""
     input:
@@ -211,6 +250,8 @@ if FE_ON:
     ALL_TARGETS.extend(FE_CONVERGENCE)
     ALL_TARGETS.extend(FE_STUDY)
     ALL_TARGETS.extend([result("fe/asperity_plastic.nc")] if FE_ASPERITY else [])
+    if rulehelpers.rough_fe_runs(config, RESULTS):
+        ALL_TARGETS.append(result("fe/rough_compare.nc"))
     REPORT_SECTIONS.append(result("report/sections/70_fe.html"))
 
 
@@ -218,6 +259,7 @@ if FE_ON:
 # Snakemake process itself instead of queueing as jobs of their own.
 localrules:
     fe_compare,
+    fe_rough_compare,
     fe_convergence,
     fe_study,
     fe_asperity_gather,

@@ -12,6 +12,10 @@ from contactlab.rulehelpers import (
     liftoff_profile_point,
     patch_shape,
     pdf_files,
+    rough_fe_runs,
+    rough_pairs_summary,
+    rough_profile_name,
+    rough_profile_point,
     sweep_values,
 )
 
@@ -429,6 +433,150 @@ ALL_TARGETS.extend(
 REPORT_SECTIONS.append(result("report/sections/51_receding_line_patch.html"))
 
 
+# ---- A rough (compliant) interface (future work 8): the lift-off problems swept over the
+# compliance C (chunks of f per problem, gathered), profiles beside the smooth interface,
+# the tested pairs' laws under a layer, and the report section with the FE comparison
+# (results/fe/rough_compare.nc, made in fe.smk when fe.enabled).
+
+ROUGH = config["receding"]["rough"]
+ROUGH_CHUNKS = list(range(min(ROUGH["chunks"], len(ROUGH["f"]))))
+ROUGH_PROFILES = [rough_profile_name(p) for p in ROUGH["profiles"]]
+ROUGH_FE = [result("fe/rough_compare.nc")] if rough_fe_runs(config, RESULTS) else []
+ROUGH_FIGURES = [
+    *[result(f"report/figures/receding_rough_{p}.png") for p in ROUGH["problems"]],
+    *[result(f"report/figures/receding_rough_{name}.png")
+      for name in ("pairs", "tractions", "displacements")],
+    *([result("report/figures/receding_rough_fe.png")] if ROUGH_FE else []),
+]
+
+
+rule receding_rough_sweep:
+    """a, b, K_T of one problem on a linear compliant interface over C, one chunk of f."""
+    output:
+        temp(result("receding/chunks/rough_{problem}_{chunk}.nc")),
+    wildcard_constraints:
+        problem="line|uniform|hertz|punch",
+        chunk=r"\d+",
+    params:
+        args=lambda wc: command_args(
+            "receding rough-sweep",
+            config,
+            problem=wc.problem,
+            f=chunk_values(ROUGH["f"], wc.chunk, len(ROUGH_CHUNKS)),
+        ),
+    # long jobs first, so that none of them starts last (greedy scheduler)
+    priority: 10
+    log:
+        logs("receding/rough_{problem}_{chunk}.log"),
+    benchmark:
+        logs("benchmarks/receding_rough_sweep_{problem}_{chunk}.tsv"),
+    shell:
+        "contactlab receding rough-sweep {params.args:q} --out {output:q} 2> {log:q}"
+
+
+rule receding_rough_gather:
+    """results/receding/rough/<problem>.nc: one problem over (f, w/c, C_T/C, C)."""
+    input:
+        lambda wc: expand(result("receding/chunks/rough_{problem}_{chunk}.nc"),
+                          problem=wc.problem, chunk=ROUGH_CHUNKS),
+    output:
+        result("receding/rough/{problem}.nc"),
+    wildcard_constraints:
+        problem="line|uniform|hertz|punch",
+    log:
+        logs("receding/rough_gather_{problem}.log"),
+    benchmark:
+        logs("benchmarks/receding_rough_gather_{problem}.tsv"),
+    shell:
+        "contactlab receding rough-gather {input:q} --out {output:q} 2> {log:q}"
+
+
+rule receding_rough_profile:
+    """Tractions and relative displacements on a rough interface beside the smooth one."""
+    output:
+        result("receding/rough/profiles/{point}.nc"),
+    params:
+        args=lambda wc: command_args(
+            "receding rough-profile", config, **rough_profile_point(ROUGH["profiles"], wc.point)
+        ),
+    log:
+        logs("receding/rough_profile_{point}.log"),
+    benchmark:
+        logs("benchmarks/receding_rough_profile_{point}.tsv"),
+    shell:
+        "contactlab receding rough-profile {params.args:q} --out {output:q} 2> {log:q}"
+
+
+rule receding_rough_pairs:
+    """The tested pairs' measured and linearised laws under a layer of thickness c."""
+    input:
+        summary=rough_pairs_summary(ROUGH, RESULTS),
+    output:
+        result("receding/rough/pairs.nc"),
+    params:
+        args=lambda wc: command_args("receding rough-pairs", config),
+        summary=lambda wc, input: ["--summary", *input.summary] if input.summary else [],
+    log:
+        logs("receding/rough_pairs.log"),
+    benchmark:
+        logs("benchmarks/receding_rough_pairs.tsv"),
+    shell:
+        "contactlab receding rough-pairs {params.args:q} {params.summary:q} --out {output:q}"
+        " 2> {log:q}"
+
+
+rule receding_report_rough:
+    """Report section: a, b, K_T over the compliance, tested pairs, profiles, FE against DDT."""
+    input:
+        sweeps=expand(result("receding/rough/{problem}.nc"), problem=ROUGH["problems"]),
+        profiles=expand(result("receding/rough/profiles/{p}.nc"), p=ROUGH_PROFILES),
+        pairs=result("receding/rough/pairs.nc"),
+        fe=ROUGH_FE,
+    output:
+        section=result("report/sections/52_receding_rough.html"),
+        tables=report_tables(
+            "Receding contacts",
+            *[
+                result(f"report/tables/receding_rough_{name}.csv")
+                for name in (
+                    "smooth_limit",
+                    "summary",
+                    "sweep",
+                    "pairs",
+                    "profile_points",
+                    "fe",
+                )
+            ],
+        ),
+        figures=report(
+            ROUGH_FIGURES,
+            caption="../report/receding_rough.rst",
+            category="Receding contacts",
+        ),
+        pdfs=pdf_files(*ROUGH_FIGURES),
+    params:
+        fe=lambda wc, input: ["--fe", *input.fe] if input.fe else [],
+        report_dir=lambda wildcards, output: Path(output.section).parent.parent,
+    log:
+        logs("report/receding_rough.log"),
+    benchmark:
+        logs("benchmarks/receding_report_rough.tsv"),
+    shell:
+        "contactlab receding report-rough --sweeps {input.sweeps:q}"
+        " --profiles {input.profiles:q} --pairs {input.pairs:q} {params.fe:q}"
+        " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
+
+
+ALL_TARGETS.extend(
+    [
+        *expand(result("receding/rough/{problem}.nc"), problem=ROUGH["problems"]),
+        *expand(result("receding/rough/profiles/{p}.nc"), p=ROUGH_PROFILES),
+        result("receding/rough/pairs.nc"),
+    ]
+)
+REPORT_SECTIONS.append(result("report/sections/52_receding_rough.html"))
+
+
 # Seconds-long gathers, light solves and reports: on a cluster they run in the
 # Snakemake process itself instead of queueing as jobs of their own.
 localrules:
@@ -442,3 +590,6 @@ localrules:
     receding_line_profile,
     receding_patch_profile,
     receding_report_line_patch,
+    receding_rough_gather,
+    receding_rough_profile,
+    receding_report_rough,

@@ -21,6 +21,8 @@ EXAMPLES = """\
   contactlab fe compare --problem uniform --run run.nc --ddt-n 50 --out uniform.nc
   contactlab fe convergence gap_coarse.nc gap_medium.nc --out convergence_gap.nc
   contactlab fe study --problem line line_*.nc --out study_line.nc
+  contactlab fe rough --problem line --compliance 1 --compliance-t 1.2143 --h 0.05 --out r.nc
+  contactlab fe rough-compare r.nc --out rough_compare.nc
   contactlab fe asperity --yield-stress 3000 --out results/fe/asperity/sy3000.nc
   contactlab fe asperity-gather sy0.nc sy3000.nc --bem single.nc --out asperity_plastic.nc
 Needs CalculiX `ccx` (Debian package calculix-ccx). Receding-contact lengths are in units
@@ -46,11 +48,10 @@ def _element_size(h: float | None, level: str) -> float:
     return float(levels[level])
 
 
-def _receding(args: argparse.Namespace) -> None:
+def _model(args: argparse.Namespace) -> tuple:
+    """The receding-contact model and its strip-on-block geometry from the options."""
     from contactlab.fe.deck import RecedingModel
     from contactlab.fe.mesh2d import StripBlockGeometry
-    from contactlab.fe.receding import run_receding
-    from contactlab.io import stamp, write_netcdf
 
     h = _element_size(args.h, args.level)
     # the line load has no patch edge w, and only far-field edges use the passes
@@ -63,6 +64,14 @@ def _receding(args: argparse.Namespace) -> None:
         length=args.length, thickness=1.0, depth=args.depth, h=h, x_fine=args.x_fine,
         layer_rows=_layer_rows(h, args.layer_rows), growth=args.growth,
     )
+    return model, geom
+
+
+def _receding(args: argparse.Namespace) -> None:
+    from contactlab.fe.receding import run_receding
+    from contactlab.io import stamp, write_netcdf
+
+    model, geom = _model(args)
     ds = run_receding(model, geom, level=args.level, threads=args.threads, keep=args.keep)
     stamp(
         ds,
@@ -71,6 +80,67 @@ def _receding(args: argparse.Namespace) -> None:
         history=args.history,
     )
     write_netcdf(ds, args.out)
+
+
+def _rough(args: argparse.Namespace) -> None:
+    for flag, value in (("--compliance", args.compliance),
+                        ("--compliance-t", args.compliance_t)):
+        if not (value >= 0 and value < float("inf")):
+            raise ValueError(f"{flag} {value:g}: a compliance number must be finite and >= 0 "
+                             "(a positive interface stiffness)")
+    from contactlab.fe.rough import run_rough
+    from contactlab.io import stamp, write_netcdf
+
+    model, geom = _model(args)
+    ds = run_rough(model, geom, args.compliance, args.compliance_t, level=args.level,
+                   threads=args.threads, keep=args.keep)
+    stamp(
+        ds,
+        title=f"FE solution (CalculiX) of the receding contact problem '{args.problem}' on a "
+              f"compliant interface, C = {args.compliance:g}, C_T = {args.compliance_t:g}",
+        source="plane-strain strip on block, gmsh mesh, CalculiX ccx, penalty contact of "
+               "stiffness k_n and stick slope k_t per unit area (contactlab.fe.rough)",
+        history=args.history,
+    )
+    write_netcdf(ds, args.out)
+
+
+def _rough_compare(args: argparse.Namespace) -> None:
+    import logging
+
+    import numpy as np
+
+    from contactlab.fe.rough import ddt_curves, rough_ddt, rough_table
+    from contactlab.io import load_datasets, stamp, write_netcdf
+
+    runs = load_datasets(args.runs, "FE run")
+    others = sorted({str(r.attrs.get("problem")) for r in runs} - set(FARFIELD_PROBLEMS))
+    if others:
+        raise ValueError(f"fe rough-compare: runs of the {', '.join(others)} problem; only "
+                         f"{', '.join(FARFIELD_PROBLEMS)} have a rough DDT")
+    settings = {"n": {"line": args.n_line, "uniform": args.n_patch},
+                "refine_max_n": {"line": args.refine_max_n_line,
+                                 "uniform": args.refine_max_n_patch},
+                "lam": {"line": args.lam, "uniform": args.lam_b},
+                "e_extra": {"line": args.e, "uniform": args.e_minus_w}}
+    table = rough_table(runs, rough_ddt(**settings))
+    for i in range(table.sizes["row"]):
+        logging.getLogger(__name__).info(
+            "%s C = %g %s: DDT %.4f, FE %.4f, rel. diff. %+.2f %%",
+            table["problem"].values[i], float(table["compliance"][i]),
+            table["quantity"].values[i], float(table["ddt"][i]), float(table["fe"][i]),
+            100 * float(table["rel_diff"][i]))
+    out = table.merge(ddt_curves(table, points=args.curve_points, **settings))
+    sizes = sorted({round(float(r["h"]), 12) for r in runs}, reverse=True)
+    out.attrs.update(h=np.asarray(sizes), meshes=len(sizes),
+                     fe_value="Richardson limit of the finest three meshes" if len(sizes) >= 3
+                     else "finest mesh", **{f"{k}_{p}": v for k, d in settings.items()
+                                            for p, v in d.items()})
+    stamp(out, title="Compliant-interface transition points: FE (CalculiX) against the "
+                     "distributed dislocations", source="contactlab fe rough runs, "
+                     "contactlab.fe.rough.rough_table; DDT contactlab.receding.liftoff.rough",
+          history=args.history, inputs=runs)
+    write_netcdf(out, args.out)
 
 
 def _compare(args: argparse.Namespace) -> None:
@@ -221,6 +291,40 @@ def _ccx() -> tuple[Option, ...]:
             Option("--keep", "keep the ccx work directory here", default=None))
 
 
+def _model_options() -> tuple[Option, ...]:
+    """The model, mesh and solver options of ``fe receding`` and ``fe rough``."""
+    return (
+        Option("--f", "friction coefficient f", float, key=_by_problem("f")),
+        Option("--w-hat", "gap or patch half-width w/c", float,
+               key=_by_problem("w_hat", PATCH_PROBLEMS), only=PATCH_PROBLEMS),
+        Option("--h", "interface element size h/c (default: that of --level in "
+               "fe.levels)", float, default=None),
+        Option("--length", "strip length of the half model over c (the full strip is "
+               "twice as long)", float, key=_by_problem("length")),
+        Option("--depth", "block depth over c", float, key=_by_problem("depth")),
+        Option("--x-fine", "end of the uniform interface mesh over c", float,
+               key=_by_problem("x_fine")),
+        Option("--edges", "block far edge free on rollers (Fig. 8.1), encastre, or "
+               "displaced as the half-plane under the net load (farfield; line, uniform)",
+               choices=("roller", "encastre", "farfield"), key=_by_problem("edges")),
+        Option("--young", "Young's modulus E (results are normalised)", float,
+               unit="N/mm^2", key=_by_problem("young")),
+        Option("--poisson", "Poisson's ratio", float, default=0.3),
+        Option("--layer-rows", "element rows through the strip (default: about 0.4 c/h, "
+               ">= 8)", int, default=None),
+        Option("--growth", "element growth ratio away from the fine mesh", float,
+               default=1.15),
+        Option("--increments", "load increments", int, key="fe.increments"),
+        Option("--level", "mesh level: a name of fe.levels, whose h/c the run takes "
+               "unless --h is given; recorded with the result", key=_by_problem("level")),
+        Option("--farfield-passes", "solves with farfield edges: 1 = Flamant's field of "
+               "the net load; each further pass imposes the half-plane's field of the "
+               "previous pass's interface tractions", int,
+               key=dict.fromkeys(FARFIELD_PROBLEMS, "fe.farfield_passes"),
+               only=FARFIELD_PROBLEMS),
+    )
+
+
 COMMANDS = (
     Command(
         NAME, "receding", "run one plane-strain receding-contact model",
@@ -228,36 +332,43 @@ COMMANDS = (
                     "contact model (sec. 8.2): interface tractions, separation and slip.",
         options=(
             _problem("gap (Fig. 8.1), line load (Fig. 8.7) or uniform patch (Fig. 8.13)"),
-            Option("--f", "friction coefficient f", float, key=_by_problem("f")),
-            Option("--w-hat", "gap or patch half-width w/c", float,
-                   key=_by_problem("w_hat", PATCH_PROBLEMS), only=PATCH_PROBLEMS),
-            Option("--h", "interface element size h/c (default: that of --level in "
-                   "fe.levels)", float, default=None),
-            Option("--length", "strip length of the half model over c (the full strip is "
-                   "twice as long)", float, key=_by_problem("length")),
-            Option("--depth", "block depth over c", float, key=_by_problem("depth")),
-            Option("--x-fine", "end of the uniform interface mesh over c", float,
-                   key=_by_problem("x_fine")),
-            Option("--edges", "block far edge free on rollers (Fig. 8.1), encastre, or "
-                   "displaced as the half-plane under the net load (farfield; line, uniform)",
-                   choices=("roller", "encastre", "farfield"), key=_by_problem("edges")),
-            Option("--young", "Young's modulus E (results are normalised)", float,
-                   unit="N/mm^2", key=_by_problem("young")),
-            Option("--poisson", "Poisson's ratio", float, default=0.3),
-            Option("--layer-rows", "element rows through the strip (default: about 0.4 c/h, "
-                   ">= 8)", int, default=None),
-            Option("--growth", "element growth ratio away from the fine mesh", float,
-                   default=1.15),
-            Option("--increments", "load increments", int, key="fe.increments"),
-            Option("--level", "mesh level: a name of fe.levels, whose h/c the run takes "
-                   "unless --h is given; recorded with the result", key=_by_problem("level")),
-            Option("--farfield-passes", "solves with farfield edges: 1 = Flamant's field of "
-                   "the net load; each further pass imposes the half-plane's field of the "
-                   "previous pass's interface tractions", int,
-                   key=dict.fromkeys(FARFIELD_PROBLEMS, "fe.farfield_passes"),
-                   only=FARFIELD_PROBLEMS),
+            *_model_options(),
             *_ccx(), out_option()),
         run=_receding, select="problem"),
+    Command(
+        NAME, "rough", "run one receding-contact model on a compliant (rough) interface",
+        description="As `fe receding`, with the interface's normal and tangential "
+                    "stiffness per unit area given as the compliance numbers C = (2 mu/"
+                    "(kappa + 1))/(c k_n) and C_T (k_t): CalculiX penalty contact of slope "
+                    "k_n and stick slope k_t; b and a read off the interface displacements.",
+        options=(
+            Option("--problem", "line load (Fig. 8.7) or uniform patch (Fig. 8.13)",
+                   choices=FARFIELD_PROBLEMS),
+            Option("--compliance", "normal compliance number C (0: the hard penalty)", float),
+            Option("--compliance-t", "tangential compliance number C_T (0: the smooth "
+                   "models' stick slope)", float),
+            *_model_options(), *_ccx(), out_option()),
+        run=_rough, select="problem"),
+    Command(
+        NAME, "rough-compare", "compliant-interface FE runs against the DDT",
+        description="b and a of `fe rough` runs (per problem and C over their meshes, "
+                    "Richardson-extrapolated to h -> 0 with three or more) against the "
+                    "distributed-dislocation solution at the same C, C_T, f and w/c, and "
+                    "the DDT's b and a over C.",
+        options=(Option("runs", "outputs of `fe rough`", input_file, nargs="+"),
+                 Option("--n-line", "DDT Gauss-Chebyshev points N, line load", int,
+                        key="receding.rough.line.n"),
+                 Option("--n-patch", "DDT Gauss-Chebyshev points N, patch", int,
+                        key="receding.rough.patches.n"),
+                 Option("--refine-max-n-line", "largest N of a DDT point failing a check, "
+                        "line load", int, key="receding.rough.line.refine_max_n"),
+                 Option("--refine-max-n-patch", "largest N of a DDT point failing a check, "
+                        "patch", int, key="receding.rough.patches.refine_max_n"),
+                 *(Option(o.flag, f"DDT: {o.help}", o.type, key=o.key)
+                   for o in (*line_options(), *patch_options())),
+                 Option("--curve-points", "points of the DDT curves over C", int, default=9),
+                 out_option()),
+        run=_rough_compare),
     Command(
         NAME, "compare", "FE against the distributed-dislocation solution",
         description="Transition points and interface profiles of an FE run beside the "

@@ -148,13 +148,15 @@ def rough_table(runs: Sequence[xr.Dataset], ddt: DdtSolver) -> xr.Dataset:
     """FE against DDT: one row per case and transition point.
 
     Columns ``problem``, ``compliance``, ``quantity`` (b, the contact extent, and a/a3),
-    ``ddt`` (from the callable ``ddt``, :data:`DdtSolver`), ``fe`` (the h -> 0 limit of the
-    case's mesh series, :func:`mesh_series`, or its finest mesh), ``rel_diff`` = (fe -
-    ddt)/ddt, and ``fe_finest``, ``fe_uncertainty``, ``h_finest``, ``compliance_t``.
+    ``ddt`` (from the callable ``ddt``, :data:`DdtSolver`; an ``admissible`` entry of its
+    answer is kept as ``ddt_admissible``), ``fe`` (the h -> 0 limit of the case's mesh
+    series, :func:`mesh_series`, or its finest mesh), ``rel_diff`` = (fe - ddt)/ddt, and
+    ``fe_finest``, ``fe_uncertainty``, ``h_finest``, ``compliance_t``, ``f``, ``w_hat``.
     """
     series = mesh_series(runs)
     n = series.sizes["row"]
     ddt_values = np.full(n, np.nan)
+    ddt_ok = np.ones(n, dtype=np.int8)
     cache: dict[tuple, Mapping[str, float]] = {}
     for i in range(n):
         key = tuple(series[k].values[i].item() for k in
@@ -163,6 +165,7 @@ def rough_table(runs: Sequence[xr.Dataset], ddt: DdtSolver) -> xr.Dataset:
             cache[key] = ddt(*key)
         quantity = str(series["quantity"].values[i])
         ddt_values[i] = float(cache[key]["b" if quantity == "b" else "a"])
+        ddt_ok[i] = int(cache[key].get("admissible", 1))
     value = series["value"].values
     has = np.isfinite(value)
     finest_index = np.where(has.any(axis=1), value.shape[1] - 1 - np.argmax(has[:, ::-1],
@@ -176,11 +179,14 @@ def rough_table(runs: Sequence[xr.Dataset], ddt: DdtSolver) -> xr.Dataset:
         {
             "problem": series["problem"], "compliance": series["compliance"],
             "compliance_t": series["compliance_t"], "quantity": series["quantity"],
+            "f": series["f"], "w_hat": series["w_hat"],
             "ddt": (one, ddt_values, {"long_name": "transition point over c, distributed "
                                       "dislocations", "units": "1"}),
             "fe": (one, fe, {"long_name": "transition point over c, finite elements (h -> 0)",
                              "units": "1"}),
             "rel_diff": (one, rel, {"long_name": "(fe - ddt) / ddt", "units": "1"}),
+            "ddt_admissible": (one, ddt_ok, {"long_name": "the DDT solution holds every "
+                                             "contact check (1) or not", "units": "1"}),
             "fe_finest": (one, finest, {"long_name": "transition point over c on the "
                                         "finest mesh", "units": "1"}),
             "fe_uncertainty": (one, series["uncertainty"].values,
@@ -192,3 +198,59 @@ def rough_table(runs: Sequence[xr.Dataset], ddt: DdtSolver) -> xr.Dataset:
         attrs={"title": "compliant-interface transition points: FE against DDT",
                "source": "contactlab.fe.rough.rough_table"},
     )
+
+
+def rough_ddt(*, n: Mapping[str, int], refine_max_n: Mapping[str, int],
+              lam: Mapping[str, float], e_extra: Mapping[str, float]) -> DdtSolver:
+    """The DDT side of :func:`rough_table`: the compliant-interface solution of the same
+    problem (:func:`contactlab.receding.liftoff.rough.rough_point`, linear law, C and C_T as
+    given) at N = ``n[problem]``, refined up to ``refine_max_n[problem]`` if a contact check
+    fails; ``lam`` and ``e_extra`` per problem (the line load's lambda and e, a patch's
+    lambda_b and e - w). A point that does not converge gives NaN."""
+    from contactlab.receding.liftoff.rough import rough_point
+
+    def ddt(problem: str, compliance: float, compliance_t: float, f: float,
+            w_hat: float) -> dict[str, float]:
+        rec = rough_point(problem, f, 0.0 if problem == "line" else w_hat, compliance,
+                          compliance_t, n=n[problem], lam=lam[problem],
+                          e_extra=e_extra[problem], refine_max_n=refine_max_n[problem])
+        return {"b": float(rec["b"]), "a": float(rec["a"]),
+                "admissible": float(rec["admissible"])}
+
+    return ddt
+
+
+def ddt_curves(table: xr.Dataset, *, points: int, n: Mapping[str, int],
+               refine_max_n: Mapping[str, int], lam: Mapping[str, float],
+               e_extra: Mapping[str, float]) -> xr.Dataset:
+    """b and a of the DDT over C (``points`` log-spaced from a third of the smallest to three
+    times the largest C of ``table``) for each problem of the FE comparison ``table``, at
+    its f, w/c and C_T/C (:func:`contactlab.receding.liftoff.rough.sweep_rough`): variables
+    ``curve_b``, ``curve_a`` on (``curve_problem``, ``curve_C``)."""
+    from contactlab.receding.liftoff.rough import sweep_rough
+
+    problems = list(dict.fromkeys(str(p) for p in table["problem"].values))
+    C = table["compliance"].values
+    grid = np.geomspace(C[C > 0].min() / 3.0, C.max() * 3.0, points) if (C > 0).any() \
+        else np.array([0.0])
+    b = np.full((len(problems), grid.size), np.nan)
+    a = np.full_like(b, np.nan)
+    for i, problem in enumerate(problems):
+        rows = np.flatnonzero(table["problem"].values == problem)
+        ratios = table["compliance_t"].values[rows] / np.where(C[rows] > 0, C[rows], np.nan)
+        ratio = float(np.nanmedian(ratios)) if np.isfinite(ratios).any() else 0.0
+        f, w = float(table["f"].values[rows[0]]), float(table["w_hat"].values[rows[0]])
+        sweep = sweep_rough(problem, [f], grid, ct_ratios=[ratio],
+                            w_values=None if problem == "line" else [w], n=n[problem],
+                            lam=lam[problem], e_extra=e_extra[problem],
+                            refine_max_n=refine_max_n[problem])
+        ok = (sweep["converged"] == 1).values.ravel()
+        b[i] = np.where(ok, sweep["b"].values.ravel(), np.nan)
+        a[i] = np.where(ok, sweep["a"].values.ravel(), np.nan)
+    dims = ("curve_problem", "curve_C")
+    return xr.Dataset(
+        {"curve_b": (dims, b, {"long_name": "end of contact b/c, DDT", "units": "1"}),
+         "curve_a": (dims, a, {"long_name": "end of the stick zone a/c, DDT", "units": "1"})},
+        coords={"curve_problem": ("curve_problem", np.array(problems, dtype=object)),
+                "curve_C": ("curve_C", grid, {"long_name": "compliance number C of the DDT "
+                                              "curve", "units": "1"})})

@@ -2,7 +2,8 @@
 
 The group, ``receding solve`` for any problem, and the commands of the two problems: the
 gap problem of ch. 5 (:mod:`contactlab.receding.gap.cli`, ``gap-...``) and the lifting-off
-problems of chs 6-7 (:mod:`contactlab.receding.liftoff.cli`, ``line-...``, ``patch-...``).
+problems of chs 6-7 (:mod:`contactlab.receding.liftoff.cli`, ``line-...``, ``patch-...``),
+also on a rough interface (:mod:`contactlab.receding.rough.cli`, ``rough-...``).
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from contactlab.command import Command, Group, Option
 from contactlab.receding.gap import cli as gap_cli
 from contactlab.receding.liftoff import cli as liftoff_cli
 from contactlab.receding.options import GAP, LINE, NAME, PATCHES, line_options, patch_options
+from contactlab.receding.rough import cli as rough_cli
 
 EXAMPLES = """\
   contactlab receding solve --problem gap --f 0.5 --w-hat 2.5
@@ -25,6 +27,10 @@ EXAMPLES = """\
   contactlab receding line-sweep --f 0.5 0.3 --out line.nc
   contactlab receding patch-sweep --problem uniform --f 0.3 --w-hat 1 --out x.nc
   contactlab receding patch-profile --problem uniform --f 0.3 --w-hat 1 --out p.nc
+  contactlab receding solve --problem line --f 0.5 --interface-compliance 1 --json
+  contactlab receding rough-sweep --problem line --f 0.5 --C 0 0.1 1 --out rough.nc
+  contactlab receding rough-profile --problem uniform --w-hat 1 --f 0.3 --C 1 --out rp.nc
+  contactlab receding rough-pairs --summary results/stiffness/summary.nc --out pairs.nc
 Lengths are in units of the layer thickness c (w/c, x/c), tractions in units of the
 applied pressure or load; N is the number of Gauss-Chebyshev points. Options left out
 take the config schema's defaults (workflow/schemas/config.schema.yaml), shown in each
@@ -66,6 +72,15 @@ SOLVE = Command(
         Option("--stick-zone-limit", "stick zone (units of c) below which an unresolved one "
                "is solved in its limit of zero width; 0: never", float,
                key=_by_problem("stick_zone_limit")),
+        Option("--interface-compliance", "normal compliance number C = (2 mu/(kappa + 1)) "
+               "/ (c k_n) of a rough interface of normal stiffness k_n per unit area "
+               "(0 or absent: smooth)", float, default=None, only=liftoff_cli.PROBLEMS),
+        Option("--interface-compliance-t", "tangential compliance number C_T (k_t in place "
+               "of k_n; absent: C/m, Mindlin's m = 2(1 - nu)/(2 - nu))", float, default=None,
+               only=liftoff_cli.PROBLEMS),
+        Option("--nu", "Poisson's ratio of Mindlin's m (C_T when not given)", float,
+               key=dict.fromkeys(liftoff_cli.PROBLEMS, "receding.rough.nu"),
+               only=liftoff_cli.PROBLEMS),
         Option("--json", "print one JSON object", kind="flag", default=False),
     ),
     run=_solve, select="problem")
@@ -75,4 +90,5 @@ GROUP = Group(
     description="Frictional receding contacts of an elastic layer on a half-plane by "
                 "distributed dislocations (thesis chs 4-7): the gap problem (ch. 5), the "
                 "line load (ch. 6) and pressure patches (ch. 7).",
-    examples=EXAMPLES, commands=(SOLVE, *gap_cli.COMMANDS, *liftoff_cli.COMMANDS))
+    examples=EXAMPLES, commands=(SOLVE, *gap_cli.COMMANDS, *liftoff_cli.COMMANDS,
+                                          *rough_cli.COMMANDS))

@@ -86,8 +86,9 @@ class StiffnessLaw:
                 "stated pressure instead")
 
     def measured(self, *, T: float, E: float, nu: float, c: float) -> Interface:
-        """The dimensionless measured law of a layer (E [kN/mm^2], nu, c [mm]) under the
-        load per thickness T [kN/mm^2]: C, C_T = C/Cc at p = T, pi0 = p0/T."""
+        """The dimensionless measured law (eqs 2.4, 2.7: k_n = beta_n (p + p0), k_t0 =
+        Cc k_n) of a layer (E [kN/mm^2], nu, c [mm]) under the load per thickness T
+        [kN/mm^2]: C, C_T = C/Cc at p = T, pi0 = p0/T."""
         self._check_edge()
         if not (np.isfinite(T) and T > 0):
             raise ValueError(f"load per thickness T must be positive, got {T}")
@@ -138,3 +139,86 @@ def law_from_summary(ds: xr.Dataset, test: str, *, normal_direction: str,
         f=_value(ds, "f", test, tangential_direction=tangential_direction),
         source=f"{test} ({normal_direction} normal fit, {tangential_direction} f, Cc on "
                f"the {cc_basis} Kn)")
+
+
+#: The keys of a tested pair's law given by its fit's numbers (``StiffnessLaw.from_fit``).
+FIT_KEYS = ("beta_n_per_um", "P0_kN", "area_mm2", "cc", "f")
+PAIR_LAWS = ("measured", "linearised")
+
+
+def pair_law(name: str, spec: dict, summary: xr.Dataset | None, *, key: str,
+             normal_direction: str, tangential_direction: str, cc_basis: str
+             ) -> tuple[StiffnessLaw, float, str]:
+    """The law (eqs 2.4, 2.7), mean pressure [kN/mm^2] and kind (``measured`` or
+    ``linearised``) of the tested pair ``name`` of a layer study, checked for the pressures
+    a receding contact meets (0 at its edges up to about twice the mean).
+
+    ``spec``: ``from_test`` (a test of the stiffness ``summary``, read as
+    :func:`law_from_summary` reads it) or the fit's numbers :data:`FIT_KEYS` (thesis units,
+    :meth:`StiffnessLaw.from_fit`); ``law`` (default ``measured``); ``pressure`` (default
+    for ``from_test``: the test's max normal load over its nominal area). Every refusal
+    is a ValueError naming ``key.name`` and the value at fault: a non-positive stiffness
+    (beta_n <= 0, Cc <= 0, or k_n <= 0 at the pressure), f < 0, a measured law whose
+    stiffness is <= 0 at the low pressures of the contact edge (p0 <= 0), an unknown test.
+    """
+    where = f"{key}.{name}"
+    spec = dict(spec)
+    kind = spec.pop("law", "measured")
+    if kind not in PAIR_LAWS:
+        raise ValueError(f"{where}.law = {kind!r}: use one of {', '.join(PAIR_LAWS)}")
+    pressure = spec.pop("pressure", None)
+    test = spec.pop("from_test", None)
+    if test is not None:
+        extra = sorted(set(spec) & set(FIT_KEYS))
+        if extra:
+            raise ValueError(f"{where}: from_test = {test!r} and the fit's numbers "
+                             f"{', '.join(extra)} both given; give one")
+        if summary is None:
+            raise ValueError(f"{where}.from_test = {test!r} needs a stiffness summary "
+                             "(results/stiffness/summary.nc; --summary)")
+        tests = [str(t) for t in summary["test"].values]
+        if str(test) not in tests:
+            raise ValueError(f"{where}.from_test = {test!r}: no such test in the stiffness "
+                             f"summary (tests: {', '.join(tests)})")
+        try:
+            law = law_from_summary(summary, str(test), normal_direction=normal_direction,
+                                   tangential_direction=tangential_direction,
+                                   cc_basis=cc_basis)
+        except ValueError as exc:
+            raise ValueError(f"{where}.from_test = {test!r}: {exc}") from None
+        if pressure is None:
+            load = float(summary["max_normal_load_kN"].sel(test=test))
+            area = float(summary["nominal_area_mm2"].sel(test=test))
+            pressure = load / area
+    else:
+        missing = [k for k in FIT_KEYS if k not in spec]
+        if missing:
+            raise ValueError(f"{where}: give from_test or all of {', '.join(FIT_KEYS)} "
+                             f"(missing {', '.join(missing)})")
+        for k in ("beta_n_per_um", "area_mm2", "cc"):
+            value = float(spec[k])
+            if not (np.isfinite(value) and value > 0):
+                raise ValueError(f"{where}.{k} = {value:g}: must be positive (a positive "
+                                 "stiffness)")
+        if not (np.isfinite(float(spec["f"])) and float(spec["f"]) >= 0):
+            raise ValueError(f"{where}.f = {float(spec['f']):g}: friction coefficient must "
+                             "be >= 0")
+        if pressure is None:
+            raise ValueError(f"{where}: the fit's numbers need the pressure [kN/mm^2]")
+        law = StiffnessLaw.from_fit(**{k: float(spec[k]) for k in FIT_KEYS},
+                                    source=f"{name} (fit numbers)")
+    pressure = float(pressure)
+    if not (np.isfinite(pressure) and pressure > 0):
+        raise ValueError(f"{where}.pressure = {pressure:g}: must be positive (kN/mm^2)")
+    if not law.f >= 0:
+        raise ValueError(f"{where}: friction coefficient f = {law.f:g} must be >= 0")
+    k_p = float(law.k_n(pressure))
+    if not k_p > 0:
+        raise ValueError(f"{where}: normal stiffness k_n = {k_p:.4g} kN/mm^3 <= 0 at the "
+                         f"pressure {pressure:g} kN/mm^2 ({law.source})")
+    if kind == "measured" and not law.p0 > 0:
+        raise ValueError(
+            f"{where}.law = 'measured': {law.source}: p0 = -P0/An = {law.p0:.4g} kN/mm^2, "
+            f"so the stiffness k_n = beta_n (p + p0) is <= 0 for p <= {-law.p0:.4g} "
+            "kN/mm^2, which the edge of the contact meets; use law: linearised")
+    return law, pressure, kind

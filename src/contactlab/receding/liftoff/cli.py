@@ -44,26 +44,30 @@ def solve_problem(problem: str, f: float, w_hat: float | None, n: int, *,
                   lam: float | None = None, e: float | None = None,
                   lam_b: float | None = None, e_minus_w: float | None = None,
                   chaise: bool = False, stick_zone_limit: float,
-                  refine_max_n: int | None = None) -> Any:
+                  refine_max_n: int | None = None, interface: Any = None) -> Any:
     """One solution of a named problem.
 
     The line load needs ``lam`` and ``e`` (sec. 6.4), a patch ``w_hat``, ``lam_b`` and
     ``e_minus_w`` (sec. 7.4; lambda_a follows from w). ``chaise`` solves the
     bounded-bounded-only model of Chaise et al. instead of the preformed one.
     ``refine_max_n``: raise N up to it while the solution fails the contact checks.
+    ``interface``: a rough interface (:mod:`contactlab.receding.core.interface`; None:
+    smooth).
     """
     if problem not in PROBLEMS:
         raise ValueError(f"unknown problem {problem!r}; use one of {', '.join(PROBLEMS)}")
-    check_memory("--n", n, liftoff_memory(n))
+    rough = {} if interface is None else {"interface": interface}
+    scale = 1.0 if interface is None else 4.0  # the compliant densities and bridges
+    check_memory("--n", n, scale * liftoff_memory(n))
     if refine_max_n is not None and refine_max_n > n:
-        check_memory("--refine-max-n", refine_max_n, liftoff_memory(refine_max_n))
+        check_memory("--refine-max-n", refine_max_n, scale * liftoff_memory(refine_max_n))
     if problem == "line":
         from contactlab.receding.liftoff.line import solve_line
 
         def solve(m: int, guess: Any = None) -> Any:
             seed = None if guess is None else (guess.a, guess.b)
             return solve_line(f, m, lam, e, guess=seed, preformed=not chaise,
-                              stick_zone_limit=stick_zone_limit)
+                              stick_zone_limit=stick_zone_limit, **rough)
     else:
         from contactlab.receding.liftoff.patch import solve_patch
 
@@ -71,7 +75,7 @@ def solve_problem(problem: str, f: float, w_hat: float | None, n: int, *,
             seed = None if guess is None else (guess.a, guess.b)
             return solve_patch(problem, f, w_hat, m, lam_b=lam_b, e=w_hat + e_minus_w,
                                guess=seed, preformed=not chaise,
-                               stick_zone_limit=stick_zone_limit)
+                               stick_zone_limit=stick_zone_limit, **rough)
     sol = solve(n)
     if refine_max_n is None:
         return sol
@@ -80,14 +84,34 @@ def solve_problem(problem: str, f: float, w_hat: float | None, n: int, *,
     return refine_in_n(solve, sol, refine_max_n)[0]
 
 
-def _solve_args(args: argparse.Namespace, problem: str, chaise: bool = False) -> Any:
+def _solve_args(args: argparse.Namespace, problem: str, chaise: bool = False,
+                interface: Any = None) -> Any:
     """:func:`solve_problem` with the command's options."""
     return solve_problem(problem, args.f, getattr(args, "w_hat", None), args.n,
                          lam=getattr(args, "lam", None), e=getattr(args, "e", None),
                          lam_b=getattr(args, "lam_b", None),
                          e_minus_w=getattr(args, "e_minus_w", None), chaise=chaise,
                          stick_zone_limit=args.stick_zone_limit,
-                         refine_max_n=getattr(args, "refine_max_n", None))
+                         refine_max_n=getattr(args, "refine_max_n", None),
+                         interface=interface)
+
+
+def interface_of(args: argparse.Namespace) -> Any:
+    """The rough interface of ``receding solve --interface-compliance C
+    [--interface-compliance-t C_T]`` (C_T: C/m, Mindlin's m at --nu), or None (smooth)."""
+    C, C_T = args.interface_compliance, args.interface_compliance_t
+    for flag, value in (("--interface-compliance", C), ("--interface-compliance-t", C_T)):
+        if value is not None and not (value >= 0 and value < float("inf")):
+            raise ValueError(f"{flag} {value:g}: a compliance number must be finite and >= 0 "
+                             "(a positive interface stiffness; 0: smooth)")
+    if not C and not C_T:
+        return None
+    from contactlab.receding.core.interface import linear_interface, mindlin_ratio
+
+    C = C or 0.0
+    if C_T is None:
+        C_T = C / mindlin_ratio(args.nu)
+    return linear_interface(C, C_T)
 
 
 def summary(sol: Any, seconds: float) -> dict:
@@ -105,11 +129,26 @@ def summary(sol: Any, seconds: float) -> dict:
     })
 
 
+def rough_summary(sol: Any) -> dict:
+    """The rough interface's numbers and certificates beside :func:`summary` (NaN -> null)."""
+    from contactlab.receding.core.solution import json_ready
+
+    law = sol.interface
+    return json_ready({"interface": law.kind, "C": law.C, "C_T": law.C_T,
+                       "approach": sol.compliant.approach if sol.compliant is not None
+                       else 0.0, **sol.certify()})
+
+
 def run_solve(args: argparse.Namespace) -> None:
     """``receding solve`` of a line or patch problem: one solution, printed or as JSON."""
+    if args.f < 0:
+        raise ValueError(f"--f {args.f:g}: the friction coefficient must be >= 0")
+    interface = interface_of(args)
     start = time.perf_counter()
-    sol = _solve_args(args, args.problem)
+    sol = _solve_args(args, args.problem, interface=interface)
     out = summary(sol, time.perf_counter() - start)
+    if interface is not None:
+        out.update(rough_summary(sol))
     if args.json:
         print(json.dumps(out))
         return
@@ -124,6 +163,9 @@ def run_solve(args: argparse.Namespace) -> None:
           f"{sol.remote_slip_record()['remote_slip_error']:.1e}, converged {sol.converged}, "
           f"admissible "
           f"{sol.admissible}, {out['seconds']} s")
+    if interface is not None:
+        print(f"  rough interface      C = {out['C']:.6g}, C_T = {out['C_T']:.6g} (linear law); "
+              f"equilibrium error {out['equilibrium_error']:.1e}")
 
 
 def _log_time(ds: Any, start: float) -> None:

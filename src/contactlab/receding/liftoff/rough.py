@@ -204,7 +204,8 @@ def sweep_rough(problem: str, f_values: Sequence[float], C_values: Sequence[floa
                 lam: float, e_extra: float, refine_max_n: int, interface: str = "linear",
                 pi0: float | None = None) -> xr.Dataset:
     """``problem`` over the compliance: dims (f, ct_ratio, C) for the line load and
-    (f, w_hat, ct_ratio, C) for a patch (``w_values``), C_T = ct_ratio * C.
+    (f, w_hat, ct_ratio, C) for a patch (``w_values``), C_T = ct_ratio * C: the lift-off
+    problems of chs 6-7 (eqs 6.3-6.32, 7.1-7.39) on a compliant interface.
 
     ``interface`` ``linear`` (C, C_T constant) or ``measured`` (the thesis's law with
     p0/T = ``pi0``, C and C_T at p = T). C = 0 is the smooth interface (solved by the
@@ -400,14 +401,18 @@ LAWS = ("smooth", "linear", "measured")
 def tested_pairs(laws: Mapping[str, StiffnessLaw], pressures: Mapping[str, float], *,
                  problem: str, w_hat: float, E: float, nu: float,
                  c_values: Sequence[float], n: int, lam: float, e_extra: float,
-                 ) -> xr.Dataset:
+                 linearised_only: Sequence[str] = ()) -> xr.Dataset:
     """a, b, K_T of a layer (E [kN/mm^2], nu, thickness c [mm]) pressed by a patch of
     half-width w = w_hat c and mean pressure p [kN/mm^2] (``pressures`` per test) onto a
     half-plane of the same material through each tested pair's interface (``laws``, e.g.
     ``core.measured_law.law_from_summary``), at the pair's f: dims (test, c, law) with
     law ``smooth`` (the thesis's interface), ``linear`` (the stiffness at p, k_n(p) and
     Cc k_n(p)) and ``measured`` (the law of eqs 2.4, 2.7 with T = 2 w p / c; NaN with
-    the reason in ``refused`` where the fit has k_n <= 0 at the contact edge)."""
+    the reason in ``refused`` where the fit has k_n <= 0 at the contact edge, or for the
+    tests of ``linearised_only``).
+
+    The smooth solution is solved once per test; each law follows c downwards (C
+    upwards), every point seeded by the last and solved cold where that fails."""
     if problem not in PROBLEMS[1:]:
         raise ValueError(f"tested pairs need a patch problem, got {problem!r}")
     tests = list(laws)
@@ -420,24 +425,39 @@ def tested_pairs(laws: Mapping[str, StiffnessLaw], pressures: Mapping[str, float
                                                "T")}
     flags = {k: np.zeros(shape, dtype=np.int8) for k in ("converged", "admissible")}
     refused = np.full((len(tests), c_arr.size), "", dtype=object)
+    order = np.argsort(-c_arr)  # thick layers first: C grows along the seeds
+
+    def solve(f: float, interface: Interface, seed: tuple[float, float] | None
+              ) -> LiftoffSolution:
+        sol = solve_rough(problem, f, w_hat, interface, n=n, lam=lam, e_extra=e_extra,
+                          guess=seed)
+        if not sol.converged and seed is not None:
+            sol = solve_rough(problem, f, w_hat, interface, n=n, lam=lam, e_extra=e_extra)
+        return sol
+
     for i, test in enumerate(tests):
         law, p = laws[test], float(pressures[test])
         T = 2.0 * w_hat * p
-        for j, c in enumerate(c_arr):
+        smooth = solve(law.f, SMOOTH, None)
+        seeds: dict[str, tuple[float, float] | None] = {"linear": None, "measured": None}
+        for j in order:
+            c = float(c_arr[j])
             interfaces: dict[str, Interface | None] = {
                 "smooth": SMOOTH,
-                "linear": law.linearised(pressure=p, E=E, nu=nu, c=float(c))}
-            try:
-                interfaces["measured"] = law.measured(T=T, E=E, nu=nu, c=float(c))
-            except ValueError as exc:
-                interfaces["measured"], refused[i, j] = None, str(exc)
+                "linear": law.linearised(pressure=p, E=E, nu=nu, c=c)}
+            if test in linearised_only:
+                interfaces["measured"], refused[i, j] = None, "linearised only (config)"
+            else:
+                try:
+                    interfaces["measured"] = law.measured(T=T, E=E, nu=nu, c=c)
+                except ValueError as exc:
+                    interfaces["measured"], refused[i, j] = None, str(exc)
             for k, name in enumerate(LAWS):
                 interface = interfaces[name]
                 out["f"][i, j, k], out["T"][i, j, k] = law.f, T
                 if interface is None:
                     continue
-                sol = solve_rough(problem, law.f, w_hat, interface, n=n, lam=lam,
-                                  e_extra=e_extra)
+                sol = smooth if name == "smooth" else solve(law.f, interface, seeds[name])
                 out["C"][i, j, k], out["C_T"][i, j, k] = interface.C, interface.C_T
                 out["pi0"][i, j, k] = interface.pi0 if np.isfinite(interface.pi0) else np.nan
                 flags["converged"][i, j, k] = int(sol.converged)
@@ -445,6 +465,8 @@ def tested_pairs(laws: Mapping[str, StiffnessLaw], pressures: Mapping[str, float
                 if sol.converged:
                     out["a"][i, j, k], out["b"][i, j, k] = sol.a, sol.b
                     out["K_T"][i, j, k] = sol.K_T
+                    if name != "smooth":
+                        seeds[name] = (sol.a, sol.b)
     names = {"a": "end of the stick zone a/c", "b": "end of contact b/c",
              "K_T": "remote slope k_l 2 mu / ((kappa + 1) T)",
              "C": "normal compliance number (measured law: at p = T)",
@@ -466,5 +488,6 @@ def tested_pairs(laws: Mapping[str, StiffnessLaw], pressures: Mapping[str, float
     ds["source"] = ("test", np.array([laws[t].source for t in tests], dtype=str),
                     {"long_name": "where the law was taken from"})
     ds.attrs.update({"problem": problem, "w_hat": w_hat, "E_kN_mm2": E, "nu": nu, "N": n,
-                     "lambda": lam, "e_minus_w": e_extra})
+                     "lambda": lam, "e_minus_w": e_extra,
+                     "linearised_only": " ".join(t for t in tests if t in linearised_only)})
     return ds

@@ -1,0 +1,288 @@
+"""Commands of the lift-off problems on a rough (compliant) interface (thesis conclusions,
+future work 8; Part II's laws in the problems of chs 6-7).
+
+Declared here, grouped by :mod:`contactlab.receding.cli`: ``rough-sweep`` (one chunk of a
+sweep over the compliance), ``rough-gather``, ``rough-profile``, ``rough-pairs`` (the
+tested pairs' laws under a layer of given thickness) and ``report-rough``. Options fed
+from the config take the schema's defaults (``receding.rough``; the maps and preformed
+densities of ``receding.line`` and ``receding.patches``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+from typing import Any
+
+from contactlab.cliutil import (
+    check_memory,
+    chunks_option,
+    input_file,
+    json_value,
+    out_option,
+    section_outputs,
+)
+from contactlab.command import Command, Option
+from contactlab.receding.options import LINE, NAME, PATCHES, line_options, patch_options
+
+ROUGH = "receding.rough"
+PAIRS = f"{ROUGH}.pairs"
+LAWS = ("uniform", "hertz", "punch")
+PROBLEMS = ("line", *LAWS)
+SOURCE = ("distributed dislocations on a compliant interface: the densities of chs 6-7 "
+          "extended over the contact and stick zones, Gaussian bridges through a and b "
+          "(contactlab.receding.liftoff.compliant, core.bridge); Part II's laws (eqs 2.2-2.7)")
+
+
+def rough_memory(n: int) -> float:
+    """Bytes of a compliant line or patch solution at N points (four densities of N
+    nodes and the bridges: about 1000 N^2)."""
+    return 1000.0 * n * n
+
+
+def mindlin_ct_ratios(ratios: list[float], nu: float) -> list[float]:
+    """C_T / C values: ``ratios`` or, when empty, 1/m with Mindlin's m at ``nu``."""
+    if ratios:
+        return [float(r) for r in ratios]
+    return [(2.0 - nu) / (2.0 * (1.0 - nu))]
+
+
+def check_numbers(option: str, values: Any, *, positive: bool = False) -> None:
+    """Refuse a negative (or, ``positive``, zero), infinite or NaN value of ``option``."""
+    for value in values if isinstance(values, list | tuple) else [values]:
+        value = float(value)
+        if not math.isfinite(value) or value < 0 or (positive and value == 0):
+            need = "positive" if positive else ">= 0"
+            raise ValueError(f"{option} {value:g}: must be finite and {need}")
+
+
+def _lam_e(args: argparse.Namespace, problem: str) -> tuple[float, float]:
+    """lambda and e of the line load, lambda_b and e - w of a patch."""
+    if problem == "line":
+        return args.lam, args.e
+    return args.lam_b, args.e_minus_w
+
+
+def _sweep(args: argparse.Namespace) -> None:
+    check_memory("--n", args.n, rough_memory(args.n))
+    check_numbers("--f", args.f)
+    check_numbers("--C", args.C)
+    check_numbers("--ct-ratios", args.ct_ratios)
+    from contactlab.io import stamp, write_netcdf
+    from contactlab.receding.core.summary import log_summary
+    from contactlab.receding.liftoff.rough import sweep_rough
+
+    lam, e_extra = _lam_e(args, args.problem)
+    ratios = mindlin_ct_ratios(args.ct_ratios, args.nu)
+    start = time.perf_counter()
+    ds = sweep_rough(args.problem, args.f, args.C, ct_ratios=ratios,
+                     w_values=getattr(args, "w_hat", None), n=args.n, lam=lam,
+                     e_extra=e_extra, refine_max_n=args.refine_max_n)
+    ds.attrs["nu_mindlin"] = args.nu
+    log_summary(ds, f"{args.problem} rough sweep N = {args.n}", time.perf_counter() - start)
+    stamp(ds, title=f"{args.problem} on a rough (linear compliant) interface: a, b, K_T "
+                    f"over the compliance C, N = {args.n}", source=SOURCE, history=args.history)
+    write_netcdf(ds, args.out)
+
+
+def _gather(args: argparse.Namespace) -> None:
+    from contactlab.io import concat_chunks, stamp, write_netcdf
+    from contactlab.receding.core.summary import summary_attrs
+
+    ds, parts = concat_chunks(args.chunks, "f")
+    if len({str(part.attrs.get("problem")) for part in parts}) != 1:
+        raise ValueError(f"rough sweep chunks {', '.join(map(str, args.chunks))} mix problems")
+    ds.attrs.update(summary_attrs(ds))
+    stamp(ds, title=str(parts[0].attrs.get("title", "")), source=SOURCE, history=args.history)
+    write_netcdf(ds, args.out)
+
+
+def _profile(args: argparse.Namespace) -> None:
+    check_memory("--n", args.n, rough_memory(args.n))
+    check_memory("--points", args.points, 128.0 * args.points * args.n)
+    check_numbers("--f", args.f)
+    check_numbers("--C", args.C, positive=True)
+    check_numbers("--ct-ratios", args.ct_ratios)
+    from contactlab.io import stamp, write_netcdf
+    from contactlab.receding.core.interface import linear_interface
+    from contactlab.receding.liftoff.rough import rough_profile
+
+    lam, e_extra = _lam_e(args, args.problem)
+    ratio = mindlin_ct_ratios(args.ct_ratios, args.nu)[0]
+    w_hat = getattr(args, "w_hat", None) or 0.0
+    ds = rough_profile(args.problem, args.f, w_hat, linear_interface(args.C, ratio * args.C),
+                       n=args.n, lam=lam, e_extra=e_extra, x_max=args.x_max,
+                       points=args.points)
+    ds.attrs["nu_mindlin"] = args.nu
+    where = f", w/c = {w_hat:g}" if args.problem != "line" else ""
+    stamp(ds, title=f"{args.problem} on a rough interface: profiles at f = {args.f:g}{where}, "
+                    f"C = {args.C:g}, beside the smooth interface", source=SOURCE,
+          history=args.history)
+    write_netcdf(ds, args.out)
+
+
+def _pairs(args: argparse.Namespace) -> None:
+    check_memory("--n", args.n, rough_memory(args.n))
+    specs = args.pairs
+    if not isinstance(specs, dict) or not specs or not all(
+            isinstance(v, dict) for v in specs.values()):
+        raise ValueError(f"--pairs ({PAIRS}.tests) must map names to laws, e.g. "
+                         '{"SU3": {"from_test": "SU3"}}, got ' + repr(specs))
+    check_numbers("--c", args.c, positive=True)
+    check_numbers("--E", args.E, positive=True)
+    import xarray as xr
+
+    from contactlab.io import stamp, write_netcdf
+    from contactlab.receding.core.measured_law import pair_law
+    from contactlab.receding.liftoff.rough import tested_pairs
+
+    summary = None
+    if args.summary is not None:
+        with xr.open_dataset(args.summary) as ds:
+            summary = ds.load()
+    laws, pressures, linearised = {}, {}, []
+    for name, spec in specs.items():
+        law, pressure, kind = pair_law(
+            name, spec, summary, key=f"{PAIRS}.tests", normal_direction=args.normal_direction,
+            tangential_direction=args.tangential_direction, cc_basis=args.cc_basis)
+        laws[name], pressures[name] = law, pressure
+        if kind == "linearised":
+            linearised.append(name)
+    start = time.perf_counter()
+    ds = tested_pairs(laws, pressures, problem=args.problem, w_hat=args.w_hat, E=args.E,
+                      nu=args.nu, c_values=args.c, n=args.n, lam=args.lam_b,
+                      e_extra=args.e_minus_w, linearised_only=linearised)
+    import logging
+
+    logging.getLogger(__name__).info("tested pairs: %d solutions in %.1f s",
+                                     int(ds["converged"].sum()), time.perf_counter() - start)
+    ds.attrs.update(normal_direction=args.normal_direction,
+                    tangential_direction=args.tangential_direction, cc_basis=args.cc_basis,
+                    summary=str(args.summary or ""))
+    stamp(ds, title=f"Tested pairs' interfaces under a layer: a, b, K_T of a {args.problem} "
+                    f"patch, w/c = {args.w_hat:g}, over the layer thickness c", source=SOURCE,
+          history=args.history, inputs=[summary] if summary is not None else [])
+    write_netcdf(ds, args.out)
+
+
+def _report(args: argparse.Namespace) -> None:
+    from contactlab.receding.rough.report import build_section
+
+    build_section(args.sweeps, args.profiles, args.pairs, args.fe, args.report_dir, args.out)
+
+
+# --------------------------------------------------------------------------- declarations
+
+
+def _by_problem(name: str) -> dict[str, str]:
+    """The config key ``receding.rough.{line,patches}.<name>`` of each problem."""
+    return {"line": f"{ROUGH}.line.{name}", **dict.fromkeys(LAWS, f"{ROUGH}.patches.{name}")}
+
+
+def _discretisation(refine: bool = True) -> tuple[Option, ...]:
+    """N (and the refinement) of the rough problems, the maps and preformed densities."""
+    options = (Option("--n", "Gauss-Chebyshev points N of every density (even)", int,
+                      key=_by_problem("n")),)
+    if refine:
+        options += (Option("--refine-max-n", "largest N to which a point failing the "
+                           "contact checks is re-solved (--n: none)", int,
+                           key=_by_problem("refine_max_n")),)
+    return (*options,
+            *(Option(o.flag, o.help, o.type, key={"line": o.key}, only=("line",))
+              for o in line_options(LINE)),
+            *(Option(o.flag, o.help, o.type, key=dict.fromkeys(LAWS, o.key), only=LAWS)
+              for o in patch_options(PATCHES)))
+
+
+def _problem() -> Option:
+    return Option("--problem", "line load (ch. 6) or pressure patch law (ch. 7)",
+                  choices=PROBLEMS)
+
+
+def _ratios() -> tuple[Option, ...]:
+    return (Option("--ct-ratios", "C_T/C = k_n/k_t values (none: 1/m, Mindlin's m at --nu)",
+                   float, nargs="*", key=f"{ROUGH}.ct_ratios"),
+            Option("--nu", "Poisson's ratio of Mindlin's m = 2(1 - nu)/(2 - nu)", float,
+                   key=f"{ROUGH}.nu"))
+
+
+COMMANDS = (
+    Command(
+        NAME, "rough-sweep", "line load or patch over the interface compliance C",
+        description="a, b and K_T of the line load or a pressure patch on a linear "
+                    "compliant interface over C = (2 mu/(kappa + 1))/(c k_n) (0: smooth), "
+                    "C_T = ratio C, at each f (and w/c): one chunk along f.",
+        options=(_problem(), Option("--f", "friction coefficients f", float, nargs="+"),
+                 Option("--w-hat", "patch half-widths w/c", float, nargs="+",
+                        key=dict.fromkeys(LAWS, f"{ROUGH}.w"), only=LAWS),
+                 Option("--C", "normal compliance numbers C (0: smooth)", float, nargs="+",
+                        key=f"{ROUGH}.C"),
+                 *_ratios(), *_discretisation(), out_option("netCDF output (one chunk)")),
+        run=_sweep, select="problem"),
+    Command(
+        NAME, "rough-gather", "join rough-sweep chunks along f",
+        description="Join rough-sweep chunks of one problem along f into one sweep file.",
+        options=(chunks_option("rough-sweep"), out_option()), run=_gather),
+    Command(
+        NAME, "rough-profile", "profiles of one solution on a rough interface",
+        description="Tractions, gap and slip (relative displacements), densities, the "
+                    "closure and the irreversible slip along the interface at one (f, w/c, "
+                    "C), beside the smooth interface's solution.",
+        options=(_problem(),
+                 Option("--w-hat", "patch half-width w/c", float, only=LAWS),
+                 Option("--f", "friction coefficient f", float),
+                 Option("--C", "normal compliance number C (> 0)", float),
+                 *_ratios(), *_discretisation(refine=False),
+                 Option("--x-max", "profile on 0 <= x/c <= w/c + x_max", float,
+                        key=f"{ROUGH}.profile_x_max"),
+                 Option("--points", "points of the profile", int,
+                        key=f"{ROUGH}.profile_points"),
+                 out_option()),
+        run=_profile, select="problem"),
+    Command(
+        NAME, "rough-pairs", "tested pairs' laws under a layer of thickness c",
+        description="a, b and K_T of a pressure patch on a layer (E, nu, thickness c) "
+                    "through each tested pair's interface: the measured law of eqs 2.4, "
+                    "2.7 and its linearisation at the pair's pressure, beside the smooth "
+                    "interface, at the pair's f.",
+        options=(Option("--pairs", "JSON: name -> {from_test: <test>} or the fit's numbers "
+                        "{beta_n_per_um, P0_kN, area_mm2, cc, f}, with law (measured or "
+                        "linearised) and pressure [kN/mm^2]", json_value,
+                        key=f"{PAIRS}.tests"),
+                 Option("--summary", "stiffness summary the from_test laws are read from "
+                        "(results/stiffness/summary.nc)", input_file, default=None),
+                 Option("--normal-direction", "normal fit of a from_test law",
+                        choices=("loading", "unloading"), key=f"{PAIRS}.normal_direction"),
+                 Option("--tangential-direction", "friction coefficient of a from_test law",
+                        choices=("loading", "unloading", "combined"),
+                        key=f"{PAIRS}.tangential_direction"),
+                 Option("--cc-basis", "Kn of Cc = Kt0/Kn of a from_test law",
+                        choices=("mean", "loading", "unloading"), key=f"{PAIRS}.cc_basis"),
+                 Option("--problem", "pressure patch law", choices=LAWS,
+                        key=f"{PAIRS}.problem"),
+                 Option("--w-hat", "patch half-width w/c", float, key=f"{PAIRS}.w"),
+                 Option("--E", "Young's modulus of layer and half-plane", float,
+                        unit="kN/mm^2", key=f"{PAIRS}.E"),
+                 Option("--nu", "Poisson's ratio of layer and half-plane", float,
+                        key=f"{PAIRS}.nu"),
+                 Option("--c", "layer thicknesses", float, unit="mm", nargs="+",
+                        key=f"{PAIRS}.c"),
+                 Option("--n", "Gauss-Chebyshev points N (even)", int,
+                        key=f"{ROUGH}.patches.n"),
+                 *patch_options(PATCHES), out_option()),
+        run=_pairs),
+    Command(
+        NAME, "report-rough", "report section of the rough interface",
+        description="HTML report section: a, b and K_T over the compliance, the tested "
+                    "pairs' laws under a layer, profiles beside the smooth interface and the "
+                    "comparison with the finite elements.",
+        options=(Option("--sweeps", "rough-gather outputs (results/receding/rough/"
+                        "<problem>.nc)", input_file, nargs="+"),
+                 Option("--profiles", "rough-profile outputs", input_file, nargs="+"),
+                 Option("--pairs", "rough-pairs output", input_file),
+                 Option("--fe", "fe rough-compare output (none: an empty FE table)",
+                        input_file, default=None),
+                 *section_outputs()),
+        run=_report),
+)
