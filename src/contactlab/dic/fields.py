@@ -146,7 +146,8 @@ def correlate_images(reference: str | Path | np.ndarray,
                      order: int, max_iterations: int, tolerance: float, zncc_min: float,
                      prefilter_sigma: float, incremental: bool,
                      colour: str, roi: tuple[float, float, float, float] | None = None,
-                     pixel_size_um: float | None = None) -> xr.Dataset:
+                     pixel_size_um: float | None = None,
+                     history: str | None = None) -> xr.Dataset:
     """Correlate ``images`` with ``reference`` on a grid of subsets (single use).
 
     Parameters
@@ -161,6 +162,7 @@ def correlate_images(reference: str | Path | np.ndarray,
         ``x0 <= x < x1``); None: the whole image.
     pixel_size_um : if given, positions and displacements in um, else in pixels.
     colour : ``"refuse"`` or ``"luminance"`` for colour files (:func:`read_image`).
+    history : the command line the result records (default: a description of the call).
 
     Returns a Dataset with dims ``(image, y, x)``: ``u``, ``v``, the gradients, ``zncc``,
     ``iterations``, ``valid``, ``status``; ``image`` is numbered from 0 with the file names
@@ -215,4 +217,5 @@ def correlate_images(reference: str | Path | np.ndarray,
         ds.attrs["pixel_size_um"] = float(pixel_size_um)
     return stamp(ds, title="DIC displacements of images against a reference",
                  source="contactlab.dic local subset correlation (ZNSSD, IC-GN)",
-                 history=f"contactlab.dic.fields.correlate_images reference={ref_name}")
+                 history=history
+                 or f"contactlab.dic.fields.correlate_images reference={ref_name}")
