@@ -190,13 +190,14 @@ def correlate_images(reference: str | Path | np.ndarray,
     names = [Path(i).name if not isinstance(i, np.ndarray) else f"array {k}"
              for k, i in enumerate(images)]
 
-    def frames():  # one image in memory at a time
+    def frames():  # one image in memory at a time; errors name the file as given
         for name, item in zip(names, images, strict=True):
+            label = name if isinstance(item, np.ndarray) else str(item)
             image = load(item)[1]
             if image.shape != ref_image.shape:
-                raise ValueError(f"{name}: {image.shape[1]} x {image.shape[0]} pixels, the "
+                raise ValueError(f"{label}: {image.shape[1]} x {image.shape[0]} pixels, the "
                                  f"reference {ref_name} has {cols} x {rows}")
-            yield name, image
+            yield label, image
 
     results = correlate_sequence(ref_image, frames(), grid, settings,
                                  incremental=incremental)
