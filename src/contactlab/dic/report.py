@@ -93,7 +93,9 @@ def quality_figure(fields: xr.Dataset, result: xr.Dataset | None,
         ax.legend(fontsize=7, loc="lower right")
     ax = axes[1]
     frames = quality.index.to_numpy()
-    ax.plot(frames, 100 * quality["valid"] / quality["placed"], color="C0")
+    valid = 100 * quality["valid"] / quality["placed"]
+    ax.plot(frames, valid, color="C0")
+    ax.set_ylim(max(0.0, float(valid.min()) - 5), 101)
     ax.axvline(worst, color="grey", ls=":", lw=0.8)
     ax.set_xlabel("frame")
     ax.set_ylabel("valid vectors (%)", color="C0")
