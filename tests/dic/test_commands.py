@@ -134,3 +134,23 @@ def test_bad_input_is_refused_in_one_line_and_nothing_is_written(
     assert all(word in err[-1] for word in words), (words, err[-1])
     assert not any("Traceback" in line for line in err)
     assert sorted(tmp_path.rglob("*")) == before  # nothing written, not even in part
+
+
+@pytest.mark.filterwarnings("ignore::DeprecationWarning")
+def test_correlate_writes_a_cf_file_in_pixels_or_um(demo: Path, tmp_path: Path) -> None:
+    """Without a pixel size the positions and displacements are pixels: units "1" (UDUNITS
+    has no pixel), the long names say so; with one, um. Both pass a CF checker."""
+    import xarray as xr
+    from cf_check import cf_errors
+
+    for name, extra in (("px.nc", []), ("um.nc", ["--pixel-size-um", "1.05"])):
+        out = tmp_path / name
+        assert main(["dic", "correlate", "--reference", str(demo / "frame_0000.png"),
+                     "--images", str(demo / "frame_0001.png"), "--roi", "0", "128", "0",
+                     "128", *extra, "--out", str(out)]) == 0
+        with xr.open_dataset(out) as ds:
+            units = {ds[v].attrs["units"] for v in ("x", "y", "u", "v", "increment")}
+            assert units == ({"1"} if not extra else {"um"})
+            assert ("pixels" in ds["u"].attrs["long_name"]) == (not extra)
+            assert bool(ds["valid"].all()) and ds["u"].dims == ("image", "y", "x")
+        assert cf_errors(out) == []

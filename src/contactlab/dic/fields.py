@@ -160,7 +160,8 @@ def correlate_images(reference: str | Path | np.ndarray,
         otherwise every image starts from the FFT guess.
     roi : (x0, x1, y0, y1) in pixels from the image's left/top edge (columns
         ``x0 <= x < x1``); None: the whole image.
-    pixel_size_um : if given, positions and displacements in um, else in pixels.
+    pixel_size_um : if given, positions and displacements in um, else in pixels (units
+        "1", the long names say pixels: UDUNITS has no pixel).
     colour : ``"refuse"`` or ``"luminance"`` for colour files (:func:`read_image`).
     history : the command line the result records (default: a description of the call).
 
@@ -216,6 +217,10 @@ def correlate_images(reference: str | Path | np.ndarray,
                     incremental=int(incremental), colour=colour)
     if pixel_size_um:
         ds.attrs["pixel_size_um"] = float(pixel_size_um)
+    else:  # pixels are no UDUNITS unit: a count, "1", said in the long name
+        for name in ("x", "y", "u", "v", "increment"):
+            ds[name].attrs.update(units="1",
+                                  long_name=ds[name].attrs["long_name"] + ", pixels")
     return stamp(ds, title="DIC displacements of images against a reference",
                  source="contactlab.dic local subset correlation (ZNSSD, IC-GN)",
                  history=history
