@@ -93,3 +93,25 @@ def test_the_report_section_shows_quality_and_recovery(image_run: Path) -> None:
     row = by_test.iloc[0]
     assert (row["truth"], row["steps"], row["steps_within_from_images"]) == ("RU1", 12, 12)
     assert row["table_values_within_from_images"] == row["table_values"] == 18
+
+
+@pytest.mark.slow
+def test_the_workflow_runs_an_image_test_to_its_tables_and_report(e2e_run: Path) -> None:
+    """In the end-to-end study RU1i (RU1's frames, 256 x 128 px) goes frames -> fields ->
+    fits -> tables and report section 22, and recovers RU1's published fits."""
+    results = e2e_run / "results"
+    with xr.open_dataset(results / "dic" / "RU1i" / "fields.nc") as fields:
+        assert fields.attrs["test"] == "RU1i" and fields.attrs["demo_test"] == "RU1"
+        assert fields.sizes["frame"] == 291 and bool((fields["status"] != 6).any())
+    with xr.open_dataset(results / "stiffness" / "RU1i.nc") as ours:
+        assert "results/dic/RU1i/fields.nc" in ours.attrs["source"]
+    table = pd.read_csv(results / "report" / "tables" / "table_2.1.csv")
+    assert set(table.loc[table["test"] == "RU1i", "direction"]) == {"loading", "unloading",
+                                                                    "mean"}
+    by_test = pd.read_csv(results / "report" / "tables" / "dic_recovery_by_test.csv")
+    row = by_test.set_index("test").loc["RU1i"]
+    assert row["steps_within_from_images"] == row["steps"] == 12
+    assert row["table_values_within_from_images"] == row["table_values"] == 18
+    page = (results / "report" / "index.html").read_text()
+    assert "Contact stiffness from camera images (DIC)" in page
+    assert "figures/dic_RU1i_quality.png" in page

@@ -86,3 +86,20 @@ def test_the_workflow_stops_at_start_up_on_a_bad_sidecar(workflow_copy: Path, fr
     output = run.stdout + run.stderr  # a dry run reports on stdout
     assert line in output, output[-3000:]
     assert "Traceback" not in output
+
+
+def test_a_named_study_may_not_change_the_shared_image_demo(workflow_copy: Path,
+                                                            snakemake) -> None:
+    """results/demo/ is every study's: a study changing dic.demo (or a demo seed) is refused
+    before any job, against the default study of the config files that name no study (here
+    config/config.yaml and the end-to-end config, which sets its own demo shape)."""
+    (workflow_copy / "config" / "mine.yaml").write_text(
+        "study: mine\ndic:\n  demo: {bits: 16}\nstiffness:\n  raw: {demo_seed: 7}\n")
+    run = snakemake(workflow_copy, "config/mine.yaml", "-n", "all")
+    output = run.stdout + run.stderr
+    assert run.returncode != 0
+    assert ("study 'mine' changes dic.demo.bits, stiffness.raw.demo_seed; the demo data are "
+            "shared by all studies") in output, output[-2000:]
+    (workflow_copy / "config" / "mine.yaml").write_text("study: mine\ndic: {order: 3}\n")
+    run = snakemake(workflow_copy, "config/mine.yaml", "-n", "all")
+    assert run.returncode == 0, (run.stdout + run.stderr)[-2000:]

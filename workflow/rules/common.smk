@@ -8,7 +8,7 @@
 from pathlib import Path
 
 from snakemake.exceptions import WorkflowError
-from snakemake.utils import validate
+from snakemake.utils import update_config, validate
 
 from contactlab.config_check import (
     ConfigError,
@@ -79,13 +79,17 @@ def logs(path):
 
 
 BASE_CONFIG = _load_yaml("config/config.yaml") or {}
-# with the schema's defaults, as the study's config has them: else every section the default
-# study leaves to the schema would count as changed, and the shared-demo check below miss
-validate(BASE_CONFIG, "../schemas/config.schema.yaml")
 STUDY_CHANGES = changes(config, BASE_CONFIG) if STUDY else {}
 # the demo data under results/demo/ and results/surfaces/demo_scans/ are shared by all
-# studies: a study that changed their seeds would rewrite the default study's inputs
-_SHARED = sorted(k for k in STUDY_CHANGES
+# studies: a study that changed their seeds (or the image demo's settings) would rewrite the
+# default study's inputs. The default study: the config files that name no study, with the
+# schema's defaults like the study's config
+_DEFAULT_STUDY = {}
+for _path, _data in _SOURCES:
+    if "study" not in (_data or {}):
+        update_config(_DEFAULT_STUDY, _data or {})
+validate(_DEFAULT_STUDY, "../schemas/config.schema.yaml")
+_SHARED = sorted(k for k in (changes(config, _DEFAULT_STUDY) if STUDY else {})
                  if k in ("stiffness.raw.demo_seed", "surfaces.demo_seed") or k.startswith("dic.demo."))
 if _SHARED:
     raise WorkflowError(

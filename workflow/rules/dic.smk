@@ -4,7 +4,7 @@
 
 import re
 
-from contactlab.published import PUBLISHED_TESTS
+from contactlab.published import PUBLISHED_TESTS, TANGENTIAL_TABLES
 from contactlab.rulehelpers import (
     DIC_REPORT_TABLES,
     command_args,
@@ -69,6 +69,11 @@ rule dic_report:
             *demo_reference_results(TESTS, RESULTS),
         ],
         tables=RAW_TABLES,
+        # the published fits the demo was built from and the table rows it is compared with
+        published=[
+            PUBLISHED / f"table_{n}.csv"
+            for n in ["2.1", "2.2", "2.4", "2.7", "2.8", "2.9", *TANGENTIAL_TABLES]
+        ],
     output:
         section=result("report/sections/22_dic.html"),
         tables=report_tables(
