@@ -34,6 +34,7 @@ else:
     include: "workflow/rules/receding.smk"
     include: "workflow/rules/asperity.smk"
     include: "workflow/rules/stiffness.smk"
+    include: "workflow/rules/dic.smk"
     include: "workflow/rules/stiffness_published.smk"
     include: "workflow/rules/prediction.smk"
     include: "workflow/rules/fe.smk"

@@ -1,7 +1,7 @@
 """The config walk: change each parameter of a finished study and see what Snakemake replans.
 
 Used by the end-to-end test on its finished workspace. For every leaf of the receding,
-asperity, surfaces, stiffness and prediction sections, the value is changed within the
+asperity, surfaces, stiffness, dic and prediction sections, the value is changed within the
 schema's limits, the whole section is passed back with ``--config`` (so the
 nested-override coercion is exercised too) and a dry run lists the jobs that would rerun and
 their commands. The parameter passes when some job of its own branch reruns, no job of
@@ -29,8 +29,13 @@ from typing import Any
 
 #: Rules a parameter of each branch may rerun (prefixes), besides the report page.
 BRANCH_RULES = {
-    "surfaces": ("surfaces_", "stiffness_summarize", "stiffness_report", "prediction_"),
-    "stiffness": ("stiffness_", "prediction_summarize", "prediction_report"),
+    "surfaces": ("surfaces_", "stiffness_summarize", "stiffness_report", "prediction_",
+                 "dic_report"),
+    # the image demo renders the stiffness demo of stiffness.raw.demo_seed; the image report
+    # reads the stiffness results
+    "stiffness": ("stiffness_", "dic_", "prediction_summarize", "prediction_report"),
+    # an image test's fields feed its stiffness job and everything after it
+    "dic": ("dic_", "stiffness_", "prediction_summarize", "prediction_report"),
     "prediction": ("prediction_",),
     "asperity": ("asperity_", "fe_asperity"),
     # the FE cross-checks solve the line load and the patch with the receding settings, and
@@ -69,9 +74,9 @@ def changed(value: Any, node: Mapping[str, Any]) -> tuple[Any, str] | None:
     kind = node.get("type")
     if isinstance(value, bool):
         return (not value), ""
-    if "enum" in node and isinstance(value, str):
+    if "enum" in node and isinstance(value, str | int):
         other = [v for v in node["enum"] if v != value]
-        return (other[0], other[0]) if other else None
+        return (other[0], str(other[0])) if other else None
     if isinstance(value, int) and kind == "integer":
         new = _bump_number(value, node, integer=True)
         return new, str(new)

@@ -52,8 +52,9 @@ def copy_workflow(dest: Path) -> Path:
 
 
 #: The thesis tests of the session's end-to-end run: one per specimen family (the other six
-#: add 18 jobs of the same code, ~50 CPU-s, to every test session).
-E2E_TESTS = ("RU1", "SU2", "S3")
+#: add 18 jobs of the same code, ~50 CPU-s, to every test session), and RU1i, RU1 from its
+#: RECONSTRUCTED camera frames (small ones: tests/e2e_config.yaml, dic.demo).
+E2E_TESTS = ("RU1", "SU2", "S3", "RU1i")
 
 
 def limit_test_sheet(work: Path, tests: tuple[str, ...] = E2E_TESTS) -> Path:

@@ -71,7 +71,7 @@ def test_every_command_has_a_description_examples_and_every_option_help() -> Non
         missing += [f"{declaration.path} {o.flag}: no help" for o in declaration.options
                     if not o.help]
     assert not missing, missing
-    assert len(groups()) == 8 and len(declared()) >= 48
+    assert len(groups()) == 9 and len(declared()) >= 52
 
 
 def test_rule_and_command_names_match(repo: Path) -> None:
@@ -263,6 +263,15 @@ MINIMAL: dict[str, list[str]] = {
         "report-published --summary {tmp}/published.nc --tables-dir {tmp}/tables "
         "--report-dir {tmp}/report --out {tmp}/report/published.html",
     ],
+    "dic": [
+        # the whole RU1 sequence at the schema's 640 x 512 px takes a minute: four frames
+        "demo --test RU1 --frames 1 2 13 14 --out-dir {tmp}/images",
+        "fields --images {tmp}/images --load-log {tmp}/images/load_log.csv --out {tmp}/fields.nc",
+        "correlate --reference {tmp}/images/frame_0000.png --images {tmp}/images/frame_0001.png "
+        "{tmp}/images/frame_0013.png --out {tmp}/correlated.nc",
+        "report --fields results/dic/RU1i/fields.nc --results results/stiffness/RU1i.nc "
+        "results/stiffness/RU1.nc --report-dir {tmp}/report --out {tmp}/report/dic.html",
+    ],
     "prediction": [
         # the schema's 128 x 128 grid and 8 levels: about 10 s
         "pair --test RU1 --specimen-scan results/surfaces/demo_scans/rough_specimen_B_areal.x3p "
@@ -437,7 +446,7 @@ def test_package_starts_subprocesses_with_argument_lists() -> None:
 
 # ---- science functions take the config's values explicitly --------------------------
 
-SCIENCE = ("surfaces", "stiffness", "asperity", "receding")
+SCIENCE = ("surfaces", "stiffness", "dic", "asperity", "receding")
 
 
 def schema_leaves(node: dict, path: str = "") -> Iterator[tuple[str, str, dict]]:

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from contactlab.io import atomic_path, write_netcdf
+from contactlab.io import atomic_dir, atomic_path, write_netcdf
 
 
 def test_failed_write_leaves_nothing_behind(tmp_path: Path) -> None:
@@ -17,6 +17,25 @@ def test_failed_write_leaves_nothing_behind(tmp_path: Path) -> None:
         tmp.write_text("half")
         raise RuntimeError("interrupted")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_folder_is_written_whole_or_not_at_all(tmp_path: Path) -> None:
+    """A failed write leaves the folder written before untouched and no temporary folder;
+    a finished one replaces it (files of the old one do not survive)."""
+    target = tmp_path / "images"
+    with atomic_dir(target) as tmp:
+        (tmp / "a.png").write_text("old")
+        (tmp / "stale.png").write_text("old")
+    with pytest.raises(RuntimeError), atomic_dir(target) as tmp:
+        (tmp / "a.png").write_text("half")
+        raise RuntimeError("interrupted")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["images"]
+    assert (target / "a.png").read_text() == "old"
+    with atomic_dir(target) as tmp:
+        (tmp / "a.png").write_text("new")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["images"]
+    assert [p.name for p in target.iterdir()] == ["a.png"]
+    assert (target / "a.png").read_text() == "new"
 
 
 def test_write_netcdf_refuses_variables_without_units(tmp_path: Path) -> None:

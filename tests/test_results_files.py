@@ -20,11 +20,12 @@ from contactlab.io import stamp, write_netcdf
 
 pytestmark = pytest.mark.filterwarnings("ignore:The ioos_sos checker:DeprecationWarning")
 
-#: One or more small targets per branch: surfaces, stiffness, asperity, receding (a chunk
-#: gather and a profile) and finite elements.
+#: One or more small targets per branch: surfaces, stiffness, dic (the image demo's frames
+#: and their fields), asperity, receding (a chunk gather and a profile) and finite elements.
 TARGETS = (
     "results/surfaces/seq.nc",
     "results/stiffness/RU1.nc",
+    "results/dic/RU1i/fields.nc",
     "results/asperity/grid.nc",
     "results/asperity/bem/coulomb.nc",
     "results/asperity/grid_bem.nc",

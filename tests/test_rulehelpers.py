@@ -51,3 +51,45 @@ def test_rough_interface_runs_take_one_c_t_for_both_sides() -> None:
         "problem": "uniform", "f": 0.3, "C": 0.3, "w_hat": 1.0}
     assert rough_pairs_summary(rough, "r/") == ["r/stiffness/summary.nc"]
     assert rough_pairs_summary({"pairs": {"tests": {"X": {"beta_n_per_um": 1}}}}) == []
+
+
+def test_an_image_test_reads_the_fields_its_correlation_writes(tmp_path) -> None:
+    """A row with images takes part like one with fields; its fields come from dic_fields
+    in the study's results, and the demo it was rendered from is its report's reference."""
+    from types import SimpleNamespace
+
+    from contactlab.rulehelpers import (
+        demo_data_files,
+        demo_reference_results,
+        image_inputs,
+        image_tests,
+        raw_inputs,
+        raw_tests,
+    )
+    from contactlab.testsheet import read_test_sheet
+
+    sheet_path = tmp_path / "tests.csv"
+    sheet_path.write_text(
+        "id,group,specimen,specimen_side,pad,pad_side,max_normal_load_kN,nominal_area_mm2,"
+        "load_log,fields,contact_displacement,images\n"
+        "RU1,ground,s,B,p,B,4,20,log1.csv,f.nc,,\n"
+        "RU2,ground,s,B,p,B,8,20,,,,\n"
+        "RU1i,ground,s,B,p,B,4,20,log1.csv,,,results/demo/RU1_images\n"
+        "U,ground,s,B,p,B,4,20,u.csv,,,data/U/frames\n")
+    sheet = read_test_sheet(sheet_path)
+    assert raw_tests(sheet) == ["RU1", "RU1i", "U"]
+    assert image_tests(sheet) == ["RU1i", "U"]
+    wildcards = SimpleNamespace(test="U")
+    assert raw_inputs(sheet, "results/studies/s/")(wildcards) == {
+        "load_log": "u.csv", "fields": "results/studies/s/dic/U/fields.nc"}
+    assert image_inputs(sheet)(wildcards) == {"images": "data/U/frames", "load_log": "u.csv"}
+    assert demo_reference_results(sheet) == ["results/stiffness/RU1.nc"]
+    assert "results/demo/RU1_images" in demo_data_files()
+
+
+def test_the_dic_report_files_the_rule_declares_are_the_ones_it_writes() -> None:
+    from contactlab.dic import report
+    from contactlab.rulehelpers import DIC_REPORT_TABLES, dic_quality_figure
+
+    assert DIC_REPORT_TABLES == report.TABLES
+    assert dic_quality_figure("RU1i") == report.figure_name("RU1i")

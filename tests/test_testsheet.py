@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import shutil
 from pathlib import Path
 
@@ -15,13 +16,21 @@ HEADER = (
 )
 
 
-def test_default_sheet_has_the_nine_thesis_tests(repo) -> None:
+def test_default_sheet_has_the_nine_thesis_tests_and_the_image_demo(repo) -> None:
     sheet = read_test_sheet(repo / "config" / "tests.csv")
-    assert list(sheet.index) == ["RU1", "RU2", "RU3", "SU1", "SU2", "SU3", "S1", "S2", "S3"]
+    assert list(sheet.index) == ["RU1", "RU2", "RU3", "SU1", "SU2", "SU3", "S1", "S2", "S3",
+                                 "RU1i"]
     # the demo data are built with the thesis's loads (published.NORMAL_LOAD_KN, the one
     # place they are written); the sheet that processes them must state the same
-    assert sheet["max_normal_load_kN"].to_dict() == NORMAL_LOAD_KN
+    assert sheet["max_normal_load_kN"].drop("RU1i").to_dict() == NORMAL_LOAD_KN
     assert set(sheet["nominal_area_mm2"]) == {NOMINAL_AREA_MM2}
+    # RU1i: RU1 from the RECONSTRUCTED camera frames of the same seed (its load log, its
+    # surfaces and loads), so its fits compare with RU1's and the published ones
+    columns = ["group", "specimen", "specimen_side", "pad", "pad_side", "max_normal_load_kN",
+               "nominal_area_mm2", "load_log"]
+    assert sheet.loc["RU1i", columns].equals(sheet.loc["RU1", columns])
+    assert sheet.loc["RU1i", "images"] == "results/demo/RU1_images"
+    assert sheet[["fields", "contact_displacement"]].loc["RU1i"].isna().all()
 
 
 def test_duplicate_ids_are_refused(tmp_path: Path) -> None:
@@ -39,6 +48,43 @@ def test_missing_data_file_names_sheet_line_and_column(tmp_path: Path) -> None:
         check_data_files(sheet, sheet_path, root=tmp_path)
     (tmp_path / "missing.csv").write_text("frame\n")
     check_data_files(sheet, sheet_path, root=tmp_path)
+
+
+SOURCES = ("id,group,specimen,specimen_side,pad,pad_side,max_normal_load_kN,nominal_area_mm2,"
+           "load_log,fields,contact_displacement,images\n")
+
+
+@pytest.mark.parametrize(("row", "words"), [
+    ("A,ground,s,B,p,B,4,20,log.csv,f.nc,,imgs", "line 2 (test A), columns 'fields', 'images': "
+     "a test takes its displacements from exactly one of fields, images, "
+     "contact_displacement; leave the others empty"),
+    ("A,ground,s,B,p,B,4,20,log.csv,f.nc,uc.csv,", "columns 'fields', 'contact_displacement': "
+     "a test takes its displacements from exactly one"),
+    ("A,ground,s,B,p,B,4,20,,,,imgs", "line 2 (test A), column 'load_log': empty, but column "
+     "'images' gives displacements"),
+    ("A,ground,s,B,p,B,4,20,log.csv,,,f.nc", "line 2 (test A), column 'images': folder not "
+     "found: f.nc"),
+    ("A,ground,s,B,p,B,4,20,log.csv,,,other", "column 'images': folder not found: other"),
+])
+def test_a_test_takes_its_displacements_from_one_source(tmp_path: Path, row: str,
+                                                        words: str) -> None:
+    for name in ("log.csv", "f.nc", "uc.csv"):
+        (tmp_path / name).write_text("frame\n")
+    (tmp_path / "imgs").mkdir()
+    sheet_path = tmp_path / "tests.csv"
+    sheet_path.write_text(SOURCES + row + "\n")
+    with pytest.raises(TestSheetError, match=re.escape(words)):
+        check_data_files(read_test_sheet(sheet_path), sheet_path, root=tmp_path)
+
+
+def test_an_image_folder_the_workflow_writes_may_be_missing(tmp_path: Path) -> None:
+    (tmp_path / "log.csv").write_text("frame\n")
+    sheet_path = tmp_path / "tests.csv"
+    sheet_path.write_text(SOURCES + "A,ground,s,B,p,B,4,20,log.csv,,,results/demo/RU1_images\n")
+    sheet = read_test_sheet(sheet_path)
+    check_data_files(sheet, sheet_path, root=tmp_path, generated=["results/demo/RU1_images"])
+    with pytest.raises(TestSheetError, match="folder not found: results/demo/RU1_images"):
+        check_data_files(sheet, sheet_path, root=tmp_path)
 
 
 def test_surface_id_with_and_without_side() -> None:

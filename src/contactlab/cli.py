@@ -24,6 +24,7 @@ from contactlab.progress import configure_logging
 COMMAND_MODULES: tuple[str, ...] = (
     "contactlab.surfaces.cli",
     "contactlab.stiffness.cli",
+    "contactlab.dic.cli",
     "contactlab.prediction.cli",
     "contactlab.asperity.cli",
     "contactlab.receding.cli",

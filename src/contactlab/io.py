@@ -1,7 +1,8 @@
 """Writing results: CF-style netCDF, tables and text files, atomically.
 
-Every result goes through :func:`write_netcdf`, :func:`write_table` or :func:`atomic_path`,
-so a failed or interrupted job never leaves a half-written file behind.
+Every result goes through :func:`write_netcdf`, :func:`write_table`, :func:`atomic_path` or
+(a folder of files) :func:`atomic_dir`, so a failed or interrupted job never leaves a
+half-written file or folder behind.
 """
 
 from __future__ import annotations
@@ -47,6 +48,32 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
         tmp_path.replace(target)
     finally:
         tmp_path.unlink(missing_ok=True)
+
+
+@contextlib.contextmanager
+def atomic_dir(path: str | os.PathLike[str]) -> Iterator[Path]:
+    """Yield a new temporary folder next to ``path``; on success it replaces ``path`` (a
+    folder written before is removed), on any exception it is removed and ``path`` is
+    untouched."""
+    import shutil
+
+    target = Path(path)
+    target.parent.mkdir(parents=True, exist_ok=True)
+    if target.exists() and not target.is_dir():
+        raise ValueError(f"{target}: exists and is not a folder")
+    tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", dir=target.parent))
+    umask = os.umask(0)
+    os.umask(umask)
+    tmp.chmod(0o777 & ~umask)  # mkdtemp makes 0700; results should be world-readable
+    try:
+        yield tmp
+        if target.exists():
+            old = Path(tempfile.mkdtemp(prefix=f".{target.name}.old.", dir=target.parent))
+            target.replace(old / target.name)
+            shutil.rmtree(old)
+        tmp.replace(target)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
 
 
 def history_time() -> str | None:

@@ -28,6 +28,7 @@ __all__ = [
     "per_step_fits",
     "read_published",
     "surfaces_of_tests",
+    "user_step_tables",
 ]
 
 PUBLISHED_DIR: Path = Path(__file__).resolve().parents[2] / "resources" / "published"
@@ -76,6 +77,14 @@ TANGENTIAL_TABLES: dict[str, tuple[str, str, str]] = {
     "A.38": ("S3", "loading", "mean_row"), "A.39": ("S3", "unloading", "mean_row"),
 }
 """Appendix A tangential tables: table number -> (test, direction, kind)."""
+
+
+def user_step_tables(test: str) -> list[str]:
+    """File stems of the per-step tables of a test outside the thesis, in place of its
+    Appendix A tables: ``table_fit_<test>_<direction>`` and ``table_mean_row_<test>_
+    <direction>`` for the loading and the unloading steps."""
+    return [f"table_{kind}_{test}_{direction}" for kind in ("fit", "mean_row")
+            for direction in ("loading", "unloading")]
 
 PER_STEP_FIT_TABLES: tuple[str, ...] = tuple(
     t for t, (_, _, kind) in TANGENTIAL_TABLES.items() if kind == "fit"

@@ -45,13 +45,31 @@ def pdf_files(*png: str) -> list[str]:
     return [str(Path(name).with_suffix(".pdf")) for name in png]
 
 
+#: The tables ``contactlab dic report`` writes (``contactlab.dic.report.TABLES``).
+DIC_REPORT_TABLES = ("dic_quality", "dic_recovery_by_test", "dic_recovery_steps",
+                     "dic_table_rows")
+
+
+def dic_quality_figure(test: str) -> str:
+    """File stem of an image test's quality figure (``contactlab.dic.report.figure_name``)."""
+    return f"dic_{test}_quality"
+
+
 # --------------------------------------------------------------------------- stiffness
 
 
 def demo_data_files(directory: str = "results/demo") -> list[str]:
-    """The raw-data paths the demo rule writes (accepted as missing at start-up)."""
-    return [f"{directory}/{test}/{name}" for test in PUBLISHED_TESTS
-            for name in ("load_log.csv", "fields.nc")]
+    """The raw-data paths the demo rules write (accepted as missing at start-up): each
+    thesis test's load log and fields, and its image folder (:func:`demo_image_folder`)."""
+    return [*(f"{directory}/{test}/{name}" for test in PUBLISHED_TESTS
+              for name in ("load_log.csv", "fields.nc")),
+            *(demo_image_folder(test, directory) for test in PUBLISHED_TESTS)]
+
+
+def demo_image_folder(test: str, directory: str = "results/demo") -> str:
+    """The folder of the RECONSTRUCTED image demo of thesis test ``test`` (rule
+    ``dic_demo``), which a test-sheet row may name in its ``images`` column."""
+    return f"{directory}/{test}_images"
 
 
 def has_path(sheet: pd.DataFrame, test: str, column: str) -> bool:
@@ -61,25 +79,62 @@ def has_path(sheet: pd.DataFrame, test: str, column: str) -> bool:
 
 
 def raw_tests(sheet: pd.DataFrame) -> list[str]:
-    """Tests with a load log and fields or a contact-displacement file, in sheet order."""
+    """Tests with a load log and fields, images or a contact-displacement file, in sheet
+    order."""
     return [str(t) for t in sheet.index
             if has_path(sheet, t, "load_log")
-            and (has_path(sheet, t, "fields") or has_path(sheet, t, "contact_displacement"))]
+            and any(has_path(sheet, t, c) for c in ("fields", "images", "contact_displacement"))]
 
 
-def raw_inputs(sheet: pd.DataFrame) -> Callable[[Any], dict[str, str]]:
-    """Input function: the test's load log and fields (or contact displacement) paths."""
+def image_tests(sheet: pd.DataFrame) -> list[str]:
+    """Tests whose displacements are correlated from their camera frames (``images``)."""
+    return [t for t in raw_tests(sheet) if has_path(sheet, t, "images")]
+
+
+def image_fields(test: str, results: str = "results/") -> str:
+    """The DIC fields correlated from the frames of image test ``test`` (rule
+    ``dic_fields``)."""
+    return f"{results}dic/{test}/fields.nc"
+
+
+def raw_inputs(sheet: pd.DataFrame, results: str = "results/"
+               ) -> Callable[[Any], dict[str, str]]:
+    """Input function: the test's load log and fields (correlated from its images, see
+    :func:`image_fields`) or contact displacement paths."""
 
     def inputs(wildcards: Any) -> dict[str, str]:
         row = sheet.loc[wildcards.test]
         files = {"load_log": str(row["load_log"])}
         if has_path(sheet, wildcards.test, "fields"):
             files["fields"] = str(row["fields"])
+        elif has_path(sheet, wildcards.test, "images"):
+            files["fields"] = image_fields(wildcards.test, results)
         else:
             files["contact_displacement"] = str(row["contact_displacement"])
         return files
 
     return inputs
+
+
+def image_inputs(sheet: pd.DataFrame) -> Callable[[Any], dict[str, str]]:
+    """Input function of ``dic_fields``: the test's image folder and load log."""
+
+    def inputs(wildcards: Any) -> dict[str, str]:
+        row = sheet.loc[wildcards.test]
+        return {"images": str(row["images"]).strip(), "load_log": str(row["load_log"]).strip()}
+
+    return inputs
+
+
+def demo_reference_results(sheet: pd.DataFrame, results: str = "results/") -> list[str]:
+    """The stiffness results the image report compares the image demo with: those of the
+    thesis tests whose demo image folder (:func:`demo_image_folder`) an image test names,
+    where the sheet has that test with raw data."""
+    folders = {demo_image_folder(t): t for t in PUBLISHED_TESTS}
+    raw = set(raw_tests(sheet))
+    named = {folders.get(Path(str(sheet.loc[t, "images"]).strip()).as_posix())
+             for t in image_tests(sheet)}
+    return [f"{results}stiffness/{t}.nc" for t in sheet.index if t in named and t in raw]
 
 
 def raw_data_option(wildcards: Any, input: Mapping[str, Any]) -> list[str]:

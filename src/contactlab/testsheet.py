@@ -21,7 +21,11 @@ from contactlab.config_check import nearest_first
 from contactlab.csvlines import numeric_cells, read_csv_lines
 
 #: Columns holding paths to a test's raw data (empty when a test has none).
-PATH_COLUMNS = ("load_log", "fields", "contact_displacement")
+PATH_COLUMNS = ("load_log", "fields", "contact_displacement", "images")
+#: The columns giving a test's displacements, one of which a test with a load log names.
+DISPLACEMENT_COLUMNS = ("fields", "images", "contact_displacement")
+#: Columns holding a folder rather than a file.
+FOLDER_COLUMNS = ("images",)
 #: Columns holding numbers (type ``number`` in the schema).
 NUMBER_COLUMNS = ("max_normal_load_kN", "nominal_area_mm2")
 #: The two surfaces of a test's interface: the column of each and of its side.
@@ -92,7 +96,9 @@ def check_rows(sheet: pd.DataFrame, sheet_path: str | Path, schema: dict) -> Non
 
 def check_data_files(sheet: pd.DataFrame, sheet_path: str | Path, root: str | Path = ".",
                      generated: Collection[str] = ()) -> None:
-    """Raise :class:`TestSheetError` if a data path in the sheet does not exist.
+    """Raise :class:`TestSheetError` if a data path in the sheet does not exist (an image
+    folder: is no folder), a test names more than one source of displacements (fields,
+    images, contact displacement), or one without its load log.
 
     Paths are relative to ``root`` (the workflow's working directory). ``generated`` lists
     the exact paths a workflow rule produces (e.g. the demo data under ``results/demo/``);
@@ -101,18 +107,32 @@ def check_data_files(sheet: pd.DataFrame, sheet_path: str | Path, root: str | Pa
     made = {Path(p).as_posix() for p in generated}
     lines = sheet.attrs.get("line", {})
     for test_id, row in sheet.iterrows():
+        where = f"{sheet_path}: line {lines.get(test_id, '?')} (test {test_id})"
+        given = [c for c in DISPLACEMENT_COLUMNS if _path(row.get(c))]
+        if len(given) > 1:
+            raise TestSheetError(f"{where}, columns {', '.join(repr(c) for c in given)}: a "
+                                 "test takes its displacements from exactly one of "
+                                 f"{', '.join(DISPLACEMENT_COLUMNS)}; leave the others empty")
+        if given and not _path(row.get("load_log")):
+            raise TestSheetError(f"{where}, column 'load_log': empty, but column "
+                                 f"'{given[0]}' gives displacements; they need the load log "
+                                 "of their frames")
         for column in PATH_COLUMNS:
-            value = row.get(column)
-            if value is None or pd.isna(value) or str(value).strip() == "":
+            value = _path(row.get(column))
+            if not value or Path(value).as_posix() in made:
                 continue
-            if Path(str(value)).as_posix() in made:
-                continue
-            if not (Path(root) / str(value)).exists():
-                raise TestSheetError(
-                    f"{sheet_path}: line {lines.get(test_id, '?')} (test {test_id}), "
-                    f"column '{column}': "
-                    f"file not found: {value}"
-                )
+            path = Path(root) / value
+            if column in FOLDER_COLUMNS:
+                if not path.is_dir():
+                    raise TestSheetError(f"{where}, column '{column}': folder not found: "
+                                         f"{value}")
+            elif not path.exists():
+                raise TestSheetError(f"{where}, column '{column}': file not found: {value}")
+
+
+def _path(value: object) -> str:
+    """A path cell as text, empty when the cell is."""
+    return "" if value is None or pd.isna(value) else str(value).strip()
 
 
 def _side(value: object) -> str:

@@ -6,9 +6,13 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from contactlab.stiffness.displacement import contact_displacement, contact_displacement_rows
+from contactlab.stiffness.displacement import (
+    contact_displacement,
+    contact_displacement_rows,
+    step_between_lines,
+)
 from contactlab.stiffness.fit import MIN_POINTS, adjusted_r2, fit_step, t_factor, varpro_fit
-from contactlab.stiffness.readers import Geometry
+from contactlab.stiffness.readers import Geometry, geometry_of
 from contactlab.stiffness.readers.grid import normalise_fields as _normalise
 
 
@@ -64,6 +68,46 @@ def test_masked_vectors_are_ignored_not_averaged_as_zero() -> None:
     ds["valid"][:] = valid
     ds["u"][:] = np.where(valid, ds["u"].values, np.nan)
     np.testing.assert_allclose(contact_displacement(ds)["uc"].values, uc, atol=1e-12)
+
+
+@pytest.mark.filterwarnings("ignore:Mean of empty slice:RuntimeWarning")
+def test_rows_rejected_in_some_columns_do_not_shift_the_step() -> None:
+    """Where v and u vary with y (shear, rotation) and vectors are rejected in some rows of
+    some columns only (DIC), each side's plane keeps y out of the step: exact. Averaging
+    each column's valid vectors and fitting lines shifts it (by about 0.05 um here)."""
+    uc = -np.linspace(0.0, 2.0, 4)
+    vc = np.linspace(0.0, 0.8, 4)
+    ds = field(uc, np.repeat(vc[:, None], 8, axis=1))
+    y = ds["y"].values[None, :, None]
+    ds["u"][:] = ds["u"].values + 4e-4 * y  # rotation of both bodies
+    ds["v"][:] = ds["v"].values + 1e-3 * y  # shear strain of both bodies
+    valid = ds["valid"].values.copy()
+    valid[:, -3:, 17:20] = False  # the specimen's three columns next to the mask, bottom rows
+    valid[1:, :2, 5] = False  # one pad column, top rows, from frame 2 on
+    ds["valid"][:] = valid
+    for name in ("u", "v"):
+        ds[name][:] = np.where(valid, ds[name].values, np.nan)
+    mean = contact_displacement(ds)
+    np.testing.assert_allclose(mean["uc"].values, uc, atol=1e-10)
+    np.testing.assert_allclose(mean["vc"].values, vc, atol=1e-10)
+    column_means = np.nanmean(ds["v"].values, axis=1)  # the construction this replaces
+    shifted = step_between_lines(ds["x"].values, column_means, geometry_of(ds))
+    assert np.abs(shifted - vc).max() > 0.02
+
+
+def test_a_side_with_one_valid_row_is_a_line() -> None:
+    """The plane needs two rows to find its y slope; one valid row on a side is the line
+    through it, and one valid column is no answer (NaN)."""
+    uc = -np.linspace(0.0, 1.0, 3)
+    ds = field(uc, np.zeros((3, 4)))
+    valid = ds["valid"].values.copy()
+    valid[0, 1:, 17:] = False  # frame 1: the specimen keeps row 0 only
+    valid[2, :, 18:] = False  # frame 3: the specimen keeps column 17 only
+    ds["valid"][:] = valid
+    ds["u"][:] = np.where(valid, ds["u"].values, np.nan)
+    got = contact_displacement(ds)["uc"].values
+    np.testing.assert_allclose(got[:2], uc[:2], atol=1e-12)
+    assert np.isnan(got[2])
 
 
 def model_data(alpha: float, beta: float, c: float, load: np.ndarray) -> np.ndarray:

@@ -135,12 +135,16 @@ def test_seq_from_scans_beside_the_published(processed: pd.DataFrame, repo: Path
     ds = add_beta_n(add_scan_seq(ds, sheet, processed["Sq"]))
     np.testing.assert_allclose(ds["Seq_scan"], ds["Seq"], rtol=0.01)
     printed = pd.concat([read_published("2.3"), read_published("2.10")]).set_index("test")
-    for test in ds["test"].values:
+    for test in printed.index:
         assert float(ds["Seq_scan"].sel(test=test)) == pytest.approx(
             printed.loc[test, "Seq"], rel=0.01)
         # beta_n * Seq from the published Sq against the printed two or three decimals
         assert float(ds["beta_n_Seq"].sel(test=test)) == pytest.approx(
             printed.loc[test, "beta_n_Seq"], abs=0.006), test
+    # RU1i, RU1 from its camera frames, has RU1's pair but no published beta_n of its own
+    assert set(ds["test"].values) - set(printed.index) == {"RU1i"}
+    assert float(ds["Seq_scan"].sel(test="RU1i")) == float(ds["Seq_scan"].sel(test="RU1"))
+    assert np.isnan(float(ds["beta_n_Seq"].sel(test="RU1i")))
     assert ds["beta_n_Seq_scan"].attrs["units"] == "1"
 
 

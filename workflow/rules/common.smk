@@ -8,7 +8,7 @@
 from pathlib import Path
 
 from snakemake.exceptions import WorkflowError
-from snakemake.utils import validate
+from snakemake.utils import update_config, validate
 
 from contactlab.config_check import (
     ConfigError,
@@ -23,6 +23,7 @@ from contactlab.published import (
     TANGENTIAL_TABLES,
     surfaces_of_tests,
 )
+from contactlab.dic.sheet import check_image_folders
 from contactlab.rulehelpers import demo_data_files, table_files
 from contactlab.studies.family import name_clash
 from contactlab.study import changes, coerce, export_provenance, logs_dir, results_dir
@@ -85,12 +86,21 @@ def logs(path):
 BASE_CONFIG = _load_yaml("config/config.yaml") or {}
 STUDY_CHANGES = changes(config, BASE_CONFIG) if STUDY else {}
 # the demo data under results/demo/ and results/surfaces/demo_scans/ are shared by all
-# studies: a study that changed their seeds would rewrite the default study's inputs
-_SHARED = sorted(k for k in STUDY_CHANGES if k in ("stiffness.raw.demo_seed", "surfaces.demo_seed"))
+# studies: a study that changed their seeds (or the image demo's settings) would rewrite the
+# default study's inputs. The default study: the config files that name no study, with the
+# schema's defaults like the study's config
+_DEFAULT_STUDY = {}
+for _path, _data in _SOURCES:
+    if "study" not in (_data or {}):
+        update_config(_DEFAULT_STUDY, _data or {})
+validate(_DEFAULT_STUDY, "../schemas/config.schema.yaml")
+_SHARED = sorted(k for k in (changes(config, _DEFAULT_STUDY) if STUDY else {})
+                 if k in ("stiffness.raw.demo_seed", "surfaces.demo_seed") or k.startswith("dic.demo."))
 if _SHARED:
     raise WorkflowError(
         f"invalid configuration in {_config_files()}: study {STUDY!r} changes {', '.join(_SHARED)}; "
-        "the demo data are shared by all studies, so their seeds are set in config/config.yaml only"
+        "the demo data are shared by all studies, so their seeds and settings are set in "
+        "config/config.yaml only"
     )
 # the jobs inherit the study name, config hash and commit through the environment
 PROVENANCE = export_provenance(STUDY, config, workflow.basedir)
@@ -119,6 +129,9 @@ try:
         TESTS, config["tests"], surfaces_of_tests(Path(config["published_dir"])),
         ", ".join(f"{config['published_dir']}/table_{t}.csv" for t in SURFACE_TABLES))
     check_data_files(TESTS, config["tests"], generated=demo_data_files())
+    # image folders: sidecar, frames of one size, every frame of the load log (contactlab.dic)
+    check_image_folders(TESTS, config["tests"], colour=config["dic"]["colour"],
+                        generated=demo_data_files())
 except (TestSheetError, ValueError, FileNotFoundError) as exc:
     raise WorkflowError(str(exc)) from None
 

@@ -1,10 +1,11 @@
 # Contact stiffness from raw data (thesis ch. 2): demo data, one job per test, summary, report.
-# A test takes part when its row in config/tests.csv has a load_log and fields or a
-# contact_displacement file; adding a row adds its jobs, and only they and the summaries rerun.
+# A test takes part when its row in config/tests.csv has a load_log and fields, images (their
+# fields come from dic_fields, workflow/rules/dic.smk) or a contact_displacement file; adding
+# a row adds its jobs, and only they and the summaries rerun.
 
 import re
 
-from contactlab.published import GROUP_TABLES, PUBLISHED_TESTS, TANGENTIAL_TABLES
+from contactlab.published import GROUP_TABLES, PUBLISHED_TESTS, TANGENTIAL_TABLES, user_step_tables
 from contactlab.rulehelpers import command_args, pdf_files, raw_data_option, raw_inputs, raw_tests
 
 
@@ -14,6 +15,8 @@ RAW_TABLES = [result(f"report/tables/table_{t}.csv") for tables in GROUP_TABLES.
               for t in tables]
 RAW_TABLES += [result(f"report/tables/table_{t}.csv")
                for t, (test, _, _) in TANGENTIAL_TABLES.items() if test in RAW_TESTS]
+RAW_TABLES += [result(f"report/tables/{stem}.csv") for test in RAW_TESTS
+               if test not in PUBLISHED_TESTS for stem in user_step_tables(test)]
 RAW_FIGURES = ["normal", "tangential", "steps", "mean_row"]
 
 
@@ -41,7 +44,7 @@ rule stiffness_demo:
 rule stiffness_process:
     """Contact displacement, per-step fits and stiffness curves of one test."""
     input:
-        unpack(raw_inputs(TESTS)),
+        unpack(raw_inputs(TESTS, RESULTS)),
     output:
         result("stiffness/{test}.nc"),
     wildcard_constraints:

@@ -48,7 +48,7 @@ from contactlab.dic.regions import subset_grid
 from contactlab.dic.sidecar import SIDECAR, read_sidecar, sidecar_dict
 from contactlab.dic.speckle import AffineField, Camera, TwoBlockField, speckle_pattern
 from contactlab.dic.speckle import blob_image as _blob_image
-from contactlab.io import atomic_path, write_text
+from contactlab.io import atomic_dir, atomic_path, write_text
 from contactlab.progress import track
 from contactlab.stiffness.readers import Geometry, geometry_of
 
@@ -66,6 +66,9 @@ DEMO_STEP = 32
 DEMO_SUBSET = 31
 #: Pixels kept clear along the image's edges (more than the demo's largest motion).
 DEMO_EDGE = 16
+#: Smallest frames (rows, columns): two grid columns per body beside the interface band
+#: of two steps, three grid rows inside the edges.
+MIN_SHAPE = (2 * DEMO_EDGE + 3 * DEMO_STEP, 8 * DEMO_STEP)
 #: Blobs per speckle area: roughly equal dark and bright areas.
 SPECKLE_DENSITY = 0.8
 _BODIES = ("pad", "specimen")
@@ -149,11 +152,29 @@ def render_demo(out_dir: str | Path, *, test: str, seed: int, shape: tuple[int, 
 
     Writes ``frame_0000.<fmt>`` (reference, at rest), ``frame_NNNN.<fmt>`` for each frame
     of the load log, ``contactlab.json``, ``load_log.csv`` and ``truth.csv`` (per frame the
-    bodies' affine motion and the exact ``uc``, ``vc``, um). Returns their paths.
+    bodies' affine motion and the exact ``uc``, ``vc``, um), into a new folder that
+    replaces ``out_dir`` when complete (nothing half-written). Returns their paths.
+    Raises ValueError for frames smaller than :data:`MIN_SHAPE`.
     """
     if image_format not in ("png", "tif"):
         raise ValueError(f"image format must be 'png' or 'tif', got {image_format!r}")
-    out = Path(out_dir)
+    rows, cols = (int(n) for n in shape)
+    if rows < MIN_SHAPE[0] or cols < MIN_SHAPE[1]:
+        raise ValueError(f"demo frames of {cols} x {rows} px are too small: at least "
+                         f"{MIN_SHAPE[1]} x {MIN_SHAPE[0]} px (two grid columns of "
+                         f"{DEMO_SUBSET} px subsets per body beside the interface band, "
+                         "three rows)")
+    with atomic_dir(out_dir) as out:
+        return _render(out, Path(out_dir), test=test, seed=seed, shape=(rows, cols),
+                       pixel_size_um=pixel_size_um, speckle_size=speckle_size,
+                       read_noise=read_noise, bits=bits, image_format=image_format,
+                       frames=frames)
+
+
+def _render(out: Path, final: Path, *, test: str, seed: int, shape: tuple[int, int],
+            pixel_size_um: float, speckle_size: float, read_noise: float, bits: int,
+            image_format: str, frames: Sequence[int] | None) -> dict[str, Path]:
+    """:func:`render_demo` into the folder ``out``; the paths returned are in ``final``."""
     rows, cols = shape
     log, motion = demo_motion(test, seed=seed)
     if frames is not None:
@@ -214,27 +235,32 @@ def render_demo(out_dir: str | Path, *, test: str, seed: int, shape: tuple[int, 
                     "contact step uc, vc (um)\n")
     paths["truth"] = write_text(truth_header + motion.to_csv(
         index=False, lineterminator="\n", float_format="%.9g"), out / "truth.csv")
-    return paths
+    return {key: final / path.name for key, path in paths.items()}
 
 
 def fields_from_images(folder: str | Path, frames: Sequence[int], *, subset: int | None,
                        step: int | None, order: int, max_iterations: int, tolerance: float,
                        zncc_min: float, prefilter_sigma: float, incremental: bool,
-                       colour: str) -> xr.Dataset:
+                       colour: str, test: str | None = None,
+                       history: str | None = None) -> xr.Dataset:
     """DIC fields (stiffness format) of ``frames`` of an image folder with a sidecar.
 
     Parameters
     ----------
     folder : directory with the frames and ``contactlab.json`` (:mod:`.sidecar`).
     frames : frame ids to correlate (e.g. the load log's), in order.
-    subset, step : pixels; None takes the sidecar's (an error if it has none).
+    subset, step : pixels, where the sidecar gives none: the sidecar's ``subset`` and
+        ``step`` win, as they belong to the images (an error if neither gives one).
     order, max_iterations, tolerance, zncc_min, prefilter_sigma : see
         :class:`contactlab.dic.correlate.Settings`.
     incremental : each frame starts from the previous frame's solution.
     colour : ``"refuse"`` or ``"luminance"`` for colour files.
+    test : the test id the fields belong to (recorded as the attribute ``test``).
+    history : the command line the fields record (default: a description of the call).
 
     Returns the Dataset of :func:`contactlab.dic.fields.fields_dataset` (u, v in um, dims
-    frame, y, x; geometry from the sidecar; quality variables).
+    frame, y, x; geometry from the sidecar; quality variables). A demo folder's sidecar
+    names the thesis test it was rendered from: attribute ``demo_test``.
     """
     setup = read_sidecar(folder)
     images = ImageFolder(setup.folder, reference=setup.reference, colour=colour)
@@ -242,11 +268,16 @@ def fields_from_images(folder: str | Path, frames: Sequence[int], *, subset: int
     if not frames:
         raise ValueError(f"{setup.folder}: no frames to correlate")
     images.require(frames)
-    subset = subset if subset is not None else setup.subset
-    step = step if step is not None else setup.step
+    given = {"subset": subset, "step": step}
+    subset = setup.subset if setup.subset is not None else subset
+    step = setup.step if setup.step is not None else step
     if subset is None or step is None:
         raise ValueError(f"{setup.path}: no subset/step given and the sidecar has none "
                          "(keys 'subset', 'step')")
+    for name, value in (("subset", subset), ("step", step)):
+        if given[name] is not None and given[name] != value:
+            LOG.info("%s: the sidecar's %s of %d px wins over the %d px given", setup.path,
+                     name, value, given[name])
     settings = Settings(order=order, max_iterations=max_iterations, tolerance=tolerance,
                         zncc_min=zncc_min, prefilter_sigma=prefilter_sigma)
     try:
@@ -260,11 +291,19 @@ def fields_from_images(folder: str | Path, frames: Sequence[int], *, subset: int
                                  incremental=incremental)
     label = f" ({setup.reconstructed.split(':')[0]})" if setup.reconstructed else ""
     attrs: dict[str, object] = {"images": str(setup.folder), "reference": setup.reference,
-                                "incremental": int(incremental), "colour": colour,
+                                "sidecar": str(setup.path),
+                                "subset_from": "sidecar" if setup.subset is not None
+                                else "given", "step_from": "sidecar" if setup.step is not None
+                                else "given", "incremental": int(incremental),
+                                "colour": colour,
                                 "roi_px": " ".join(f"{v:g}" for v in setup.roi())}
+    if test is not None:
+        attrs["test"] = str(test)
     if setup.reconstructed:
         attrs["reconstructed"] = 1
         attrs["comment_images"] = setup.reconstructed
+        if setup.test:
+            attrs["demo_test"] = setup.test
     return fields_dataset(
         grid, results, frames=frames, pixel_size_um=setup.pixel_size_um,
         geometry=setup.geometry, settings=settings,
@@ -272,4 +311,5 @@ def fields_from_images(folder: str | Path, frames: Sequence[int], *, subset: int
         source="contactlab.dic local subset correlation (ZNSSD, IC-GN) of the images in "
                f"{setup.folder}" + (f"; {setup.reconstructed}" if setup.reconstructed
                                     else ""),
-        history=f"contactlab.dic.demo.fields_from_images {setup.folder}", attrs=attrs)
+        history=history or f"contactlab.dic.demo.fields_from_images {setup.folder}",
+        attrs=attrs)

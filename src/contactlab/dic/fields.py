@@ -146,7 +146,8 @@ def correlate_images(reference: str | Path | np.ndarray,
                      order: int, max_iterations: int, tolerance: float, zncc_min: float,
                      prefilter_sigma: float, incremental: bool,
                      colour: str, roi: tuple[float, float, float, float] | None = None,
-                     pixel_size_um: float | None = None) -> xr.Dataset:
+                     pixel_size_um: float | None = None,
+                     history: str | None = None) -> xr.Dataset:
     """Correlate ``images`` with ``reference`` on a grid of subsets (single use).
 
     Parameters
@@ -159,8 +160,10 @@ def correlate_images(reference: str | Path | np.ndarray,
         otherwise every image starts from the FFT guess.
     roi : (x0, x1, y0, y1) in pixels from the image's left/top edge (columns
         ``x0 <= x < x1``); None: the whole image.
-    pixel_size_um : if given, positions and displacements in um, else in pixels.
+    pixel_size_um : if given, positions and displacements in um, else in pixels (units
+        "1", the long names say pixels: UDUNITS has no pixel).
     colour : ``"refuse"`` or ``"luminance"`` for colour files (:func:`read_image`).
+    history : the command line the result records (default: a description of the call).
 
     Returns a Dataset with dims ``(image, y, x)``: ``u``, ``v``, the gradients, ``zncc``,
     ``iterations``, ``valid``, ``status``; ``image`` is numbered from 0 with the file names
@@ -188,13 +191,14 @@ def correlate_images(reference: str | Path | np.ndarray,
     names = [Path(i).name if not isinstance(i, np.ndarray) else f"array {k}"
              for k, i in enumerate(images)]
 
-    def frames():  # one image in memory at a time
+    def frames():  # one image in memory at a time; errors name the file as given
         for name, item in zip(names, images, strict=True):
+            label = name if isinstance(item, np.ndarray) else str(item)
             image = load(item)[1]
             if image.shape != ref_image.shape:
-                raise ValueError(f"{name}: {image.shape[1]} x {image.shape[0]} pixels, the "
+                raise ValueError(f"{label}: {image.shape[1]} x {image.shape[0]} pixels, the "
                                  f"reference {ref_name} has {cols} x {rows}")
-            yield name, image
+            yield label, image
 
     results = correlate_sequence(ref_image, frames(), grid, settings,
                                  incremental=incremental)
@@ -213,6 +217,11 @@ def correlate_images(reference: str | Path | np.ndarray,
                     incremental=int(incremental), colour=colour)
     if pixel_size_um:
         ds.attrs["pixel_size_um"] = float(pixel_size_um)
+    else:  # pixels are no UDUNITS unit: a count, "1", said in the long name
+        for name in ("x", "y", "u", "v", "increment"):
+            ds[name].attrs.update(units="1",
+                                  long_name=ds[name].attrs["long_name"] + ", pixels")
     return stamp(ds, title="DIC displacements of images against a reference",
                  source="contactlab.dic local subset correlation (ZNSSD, IC-GN)",
-                 history=f"contactlab.dic.fields.correlate_images reference={ref_name}")
+                 history=history
+                 or f"contactlab.dic.fields.correlate_images reference={ref_name}")

@@ -55,6 +55,7 @@ class ImageSetup:
     subset: int | None
     step: int | None
     reconstructed: str | None
+    test: str | None = None
 
     @property
     def folder(self) -> Path:
@@ -188,7 +189,9 @@ def read_sidecar(path: str | Path) -> ImageSetup:
                 raise ValueError(f"{path}: key 'subset': {subset} px is larger than the "
                                  f"{what} ({span:g} px)")
     reconstructed = data.get("reconstructed")
+    test = data.get("test")
     return ImageSetup(path=path, pixel_size_um=size, reference=reference, geometry=geometry,
                       shape=shape, y_range=(float(y_range[0]), float(y_range[1])),
                       subset=subset, step=step,
-                      reconstructed=None if reconstructed is None else str(reconstructed))
+                      reconstructed=None if reconstructed is None else str(reconstructed),
+                      test=None if test is None else str(test))

@@ -1,9 +1,14 @@
 """Contact displacement from DIC displacement fields (thesis sec. 2.3.2, Fig. 2.5; sec. 2.5.4).
 
-For each frame the vectors of equal x are averaged on each side of the masked interface,
-a straight line is fitted to the mean profile on the pad and another on the specimen, and
-the contact displacement is the step between the two lines at the centre of the mask.
-Fitting lines removes the bulk deformation of pad and specimen from the step.
+For each frame a plane ``u = a + b x + c y`` is fitted by least squares to the valid vectors
+of the pad and another to those of the specimen, and the contact displacement is the step
+between the two planes at the centre of the mask and the mean y of the rows used. Fitting
+planes removes the bulk deformation of pad and specimen from the step (the ``b x`` term:
+strain across the interface; the ``c y`` term: shear, rotation, Poisson contraction along
+it). With every vector valid this is the thesis's construction exactly: the vectors of equal
+x averaged, a line fitted to each side's mean profile, their step at the mask centre. Where
+vectors are rejected in some rows only (DIC), the plane keeps the y-dependence of the
+displacement out of the step, which averaging each column's valid vectors would shift.
 
 Signs (sec. 2.3.2): ``uc`` is the normal displacement of the specimen minus that of the pad,
 along the normal pointing from pad to specimen, so it is negative while the normal load
@@ -14,7 +19,8 @@ specimen, so it is positive in tangential loading steps.
 The same construction per pixel row (points of equal y) gives the per-row contact
 displacements behind the mean-row stiffness of sec. 2.5.4.
 
-Everything is vectorised over frames (and rows): a least-squares line from masked sums.
+Everything is vectorised over frames (and rows): least-squares lines and planes from masked
+sums.
 """
 
 from __future__ import annotations
@@ -24,7 +30,8 @@ import xarray as xr
 
 from contactlab.stiffness.readers import Geometry, geometry_of
 
-__all__ = ["contact_displacement", "contact_displacement_rows", "step_between_lines"]
+__all__ = ["contact_displacement", "contact_displacement_rows", "step_between_lines",
+           "step_between_planes"]
 
 
 def _line_value(x: np.ndarray, values: np.ndarray, use: np.ndarray, at: float) -> np.ndarray:
@@ -58,15 +65,62 @@ def step_between_lines(x: np.ndarray, values: np.ndarray, geometry: Geometry) ->
     return _line_value(x, values, on_specimen, at) - _line_value(x, values, on_pad, at)
 
 
+def _plane_value(x: np.ndarray, y: np.ndarray, values: np.ndarray, use: np.ndarray,
+                 at_x: float, at_y: np.ndarray) -> np.ndarray:
+    """Least-squares plane ``a + b x + c y`` through ``values[..., y, x]`` in the columns
+    ``use``, evaluated at (``at_x``, ``at_y``), one per leading index (frame).
+
+    NaN in ``values`` is ignored. Where the used vectors lie in one row only, ``c`` is
+    undetermined and the plane is the line through that row; NaN where they lie in fewer
+    than two columns (or on one straight line across rows and columns).
+    """
+    ok = np.isfinite(values) & use[None, None, :]
+    w = ok.astype(float)
+    vals = np.where(ok, values, 0.0)
+    n = w.sum(axis=(-2, -1))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mx = (w * x).sum(axis=(-2, -1)) / n
+        my = (w * y[:, None]).sum(axis=(-2, -1)) / n
+        mv = vals.sum(axis=(-2, -1)) / n
+        dx = x[None, None, :] - mx[:, None, None]
+        dy = y[None, :, None] - my[:, None, None]
+        dv = np.where(ok, values - mv[:, None, None], 0.0)
+        sxx, syy, sxy = ((w * a * b).sum(axis=(-2, -1)) for a, b in
+                         ((dx, dx), (dy, dy), (dx, dy)))
+        sxv, syv = ((a * dv).sum(axis=(-2, -1)) for a in (dx, dy))
+        det = sxx * syy - sxy * sxy
+        one_row = ~(syy > 1e-12 * np.maximum(sxx, 1e-300))
+        plane = det > 1e-12 * np.maximum(sxx * syy, 1e-300)
+        b = np.where(one_row, sxv / sxx, (syy * sxv - sxy * syv) / det)
+        c = np.where(one_row, 0.0, (sxx * syv - sxy * sxv) / det)
+        value = mv + b * (at_x - mx) + c * (at_y - my)
+    columns = ok.any(axis=-2).sum(axis=-1)
+    good = (columns >= 2) & (one_row | plane)
+    return np.where(good, value, np.nan)
+
+
+def step_between_planes(x: np.ndarray, y: np.ndarray, values: np.ndarray,
+                        geometry: Geometry) -> np.ndarray:
+    """Specimen plane minus pad plane at the mask centre, per frame of ``values[frame, y,
+    x]``, at the mean y of the rows holding a valid vector on either side."""
+    on_pad = (x >= geometry.pad_x_min) & (x <= geometry.pad_x_max)
+    on_specimen = (x >= geometry.specimen_x_min) & (x <= geometry.specimen_x_max)
+    used = (np.isfinite(values) & (on_pad | on_specimen)[None, None, :]).any(axis=-1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        at_y = (used * y[None, :]).sum(axis=-1) / used.sum(axis=-1)
+    at = geometry.interface_x
+    return (_plane_value(x, y, values, on_specimen, at, at_y)
+            - _plane_value(x, y, values, on_pad, at, at_y))
+
+
 def contact_displacement(fields: xr.Dataset) -> xr.Dataset:
-    """uc and vc per frame from the mean displacement field (sec. 2.3.2), um."""
+    """uc and vc per frame from the planes fitted to each side's valid vectors (sec. 2.3.2;
+    module docstring), um."""
     geometry = geometry_of(fields)
     x = fields["x"].to_numpy()
-    with np.errstate(invalid="ignore"), _quiet():
-        u_mean = np.nanmean(fields["u"].to_numpy(), axis=1)  # average vectors of equal x
-        v_mean = np.nanmean(fields["v"].to_numpy(), axis=1)
-    uc = geometry.normal_sign * step_between_lines(x, u_mean, geometry)
-    vc = geometry.qt_positive * step_between_lines(x, v_mean, geometry)
+    y = fields["y"].to_numpy()
+    uc = geometry.normal_sign * step_between_planes(x, y, fields["u"].to_numpy(), geometry)
+    vc = geometry.qt_positive * step_between_planes(x, y, fields["v"].to_numpy(), geometry)
     return _as_dataset(fields, uc, vc, ("frame",))
 
 
@@ -91,17 +145,3 @@ def _as_dataset(fields: xr.Dataset, uc: np.ndarray, vc: np.ndarray,
         },
         coords={dim: fields[dim] for dim in dims},
     )
-
-
-class _quiet:
-    """Silence numpy's 'mean of empty slice' warnings (columns inside the mask)."""
-
-    def __enter__(self) -> None:
-        import warnings
-
-        self._ctx = warnings.catch_warnings()
-        self._ctx.__enter__()
-        warnings.simplefilter("ignore", category=RuntimeWarning)
-
-    def __exit__(self, *exc: object) -> None:
-        self._ctx.__exit__(*exc)

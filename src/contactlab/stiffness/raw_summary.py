@@ -21,7 +21,7 @@ import pandas as pd
 import xarray as xr
 
 from contactlab.io import load_datasets, stamp, write_netcdf, write_table
-from contactlab.published import GROUP_TABLES, TANGENTIAL_TABLES
+from contactlab.published import GROUP_TABLES, TANGENTIAL_TABLES, user_step_tables
 from contactlab.stiffness.errors import ErrorModel
 from contactlab.stiffness.process import step_tables
 from contactlab.stiffness.summary import published_inputs, read_seq, summary_dataset
@@ -106,6 +106,11 @@ def table_files(tables: dict[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
         stem = f"table_{number}"
         if test in present and stem not in out:  # e.g. a direction without data: header only
             out[stem] = pd.DataFrame(columns=STEP_COLUMNS if kind == "fit" else MEAN_ROW_COLUMNS)
+    thesis = {test for test, _, _ in TANGENTIAL_TABLES.values()}
+    for test in sorted(present - thesis):  # every file the rule declares: header only if empty
+        for stem in user_step_tables(test):
+            columns = MEAN_ROW_COLUMNS if stem.startswith("table_mean_row_") else STEP_COLUMNS
+            out.setdefault(stem, pd.DataFrame(columns=columns))
     return out
 
 
