@@ -83,8 +83,6 @@ def logs(path):
     return LOGS + path
 
 
-BASE_CONFIG = _load_yaml("config/config.yaml") or {}
-STUDY_CHANGES = changes(config, BASE_CONFIG) if STUDY else {}
 # the demo data under results/demo/ and results/surfaces/demo_scans/ are shared by all
 # studies: a study that changed their seeds (or the image demo's settings) would rewrite the
 # default study's inputs. The default study: the config files that name no study, with the
@@ -94,7 +92,9 @@ for _path, _data in _SOURCES:
     if "study" not in (_data or {}):
         update_config(_DEFAULT_STUDY, _data or {})
 validate(_DEFAULT_STUDY, "../schemas/config.schema.yaml")
-_SHARED = sorted(k for k in (changes(config, _DEFAULT_STUDY) if STUDY else {})
+#: every key a named study changes against the default study: (default, study) values
+STUDY_CHANGES = changes(config, _DEFAULT_STUDY) if STUDY else {}
+_SHARED = sorted(k for k in STUDY_CHANGES
                  if k in ("stiffness.raw.demo_seed", "surfaces.demo_seed") or k.startswith("dic.demo."))
 if _SHARED:
     raise WorkflowError(
