@@ -48,3 +48,17 @@ def test_the_deepest_named_study_wins() -> None:
     assert study_of_command(["--out", "results/studies/lama/x.nc"], studies) == "lama"
     assert study_of_command(["results/studies/lam/x.nc", "results/studies/lama/y.nc"],
                             studies) is None
+
+
+def test_the_shared_build_reads_its_config_back_with_its_types(tmp_path) -> None:
+    """The run that builds the shared inputs gets the asking run's config as a file: every
+    value comes back with its type (JSON's 1e-06 read as YAML would be a string)."""
+    from contactlab.config_check import load_yaml_file
+    from contactlab.studies.shared import write_config
+
+    config = {"prediction": {"solver_tol": 1e-06, "load_points": 8, "plastic_cap": True},
+              "receding": {"gap": {"stick_zone_limit": 1e-30, "profiles": [{"w": 2.5}]}},
+              "tests": "config/tests.csv"}
+    path = tmp_path / "shared.yaml"
+    write_config(config, path)
+    assert load_yaml_file(path) == config

@@ -91,6 +91,7 @@ _DEFAULT_STUDY = {}
 for _path, _data in _SOURCES:
     if "study" not in (_data or {}):
         update_config(_DEFAULT_STUDY, _data or {})
+_DEFAULT_STUDY = coerce(_DEFAULT_STUDY, CONFIG_SCHEMA)
 validate(_DEFAULT_STUDY, "../schemas/config.schema.yaml")
 #: every key a named study changes against the default study: (default, study) values
 STUDY_CHANGES = changes(config, _DEFAULT_STUDY) if STUDY else {}

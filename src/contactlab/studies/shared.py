@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import contextlib
 import fcntl
-import json
 import os
 import subprocess
 import sys
@@ -68,6 +67,14 @@ def build_command(files: Sequence[str], configfile: str, cores: int) -> list[str
             "--configfile", configfile, "--", *files]
 
 
+def write_config(config: Mapping[str, Any], path: Path) -> None:
+    """``config`` as a YAML config file that Snakemake reads back with the same types
+    (YAML, not JSON: Snakemake's YAML reader takes JSON's ``1e-06`` for a string)."""
+    import yaml
+
+    path.write_text(yaml.safe_dump(dict(config), sort_keys=False), encoding="utf-8")
+
+
 def build_missing(files: Sequence[str], config: Mapping[str, Any], cores: int = 1,
                   root: str | os.PathLike[str] = ".", lock: str = LOCK,
                   what: str = "the demo data") -> bool:
@@ -86,10 +93,8 @@ def build_missing(files: Sequence[str], config: Mapping[str, Any], cores: int = 
     with locked(root / lock):
         if not missing(files, root):  # built by the run that held the lock before us
             return False
-        configfile = root / Path(lock).parent / f"shared-inputs-{os.getpid()}.json"
-        configfile.write_text(json.dumps({k: v for k, v in config.items()
-                                          if k not in STUDY_KEYS}, default=str),
-                              encoding="utf-8")
+        configfile = root / Path(lock).parent / f"shared-inputs-{os.getpid()}.yaml"
+        write_config({k: v for k, v in config.items() if k not in STUDY_KEYS}, configfile)
         print(f"Building the inputs all studies share ({what}) in a run of their own, one "
               "run at a time:", file=sys.stderr, flush=True)
         try:
