@@ -5,8 +5,14 @@ activated environment's default profile serves (no ``--workflow-profile``)."""
 
 from __future__ import annotations
 
+import os
 import re
+import shutil
+import subprocess
+import sys
 from pathlib import Path
+
+import pytest
 
 REPO = Path(__file__).resolve().parents[1]
 #: Where users copy commands from.
@@ -73,3 +79,83 @@ def test_examples_use_the_bare_form() -> None:
              for line, text in enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
              if "--workflow-profile" in text]
     assert named == []
+
+
+# ---- every documented command runs ---------------------------------------------------
+
+#: What a documented command may answer instead of running, where the document says so:
+#: a comparison page of studies this copy has not built.
+EXPECTED_REFUSALS = ("StudiesNotBuilt: ",)
+#: Where the commands a user copies are shown (the code blocks and inline code of these).
+RUN_DOCUMENTS = [REPO / "README.md", *sorted((REPO / "docs").rglob("*.md"))]
+_CODE_SPAN = re.compile(r"`((?:contactlab|snakemake) [^`]+)`")
+
+
+def documented_commands(path: Path) -> list[tuple[int, str]]:
+    """(line, command) of every ``contactlab`` or ``snakemake`` command of ``path``: the
+    lines of fenced and indented code blocks (continuation lines joined, a ``$ `` prompt
+    and a trailing ``# comment`` dropped) and inline code spans. Templates (``<name>``,
+    ``...``, ``[optional]``, ``a|b``) are not commands."""
+    found = []
+    lines = path.read_text(encoding="utf-8").splitlines()
+    fenced, number = False, 0
+    while number < len(lines):
+        line = lines[number]
+        if line.strip().startswith("```"):
+            fenced = not fenced
+            number += 1
+            continue
+        text = line.strip().removeprefix("$ ")
+        start = number + 1
+        if (fenced or line.startswith("    ")) and text.startswith(("contactlab ", "snakemake ")):
+            while text.endswith("\\") and number + 1 < len(lines):
+                number += 1
+                text = text[:-1].rstrip() + " " + lines[number].strip()
+            found.append((start, re.sub(r"\s+#.*$", "", text)))
+        elif not fenced:  # inline code that runs something (a bare command name only names it)
+            found += [(start, span) for span in _CODE_SPAN.findall(line) if " -" in span]
+        number += 1
+    return [(line, text) for line, text in found
+            if not re.search(r"<[^>]*>|\.\.\.|\[[^\]]*\]|\{[^}]*\}|\w\|\w", text)]
+
+
+def test_the_collector_finds_blocks_prompts_and_inline_commands(tmp_path: Path) -> None:
+    doc = tmp_path / "doc.md"
+    doc.write_text("Run `contactlab receding solve --problem line --f 0.5` first; "
+                   "`contactlab studies list` names it.\n"
+                   "```bash\n$ snakemake -j2 all  # everything\ncontactlab gap-sweep --f 0.5 \\\n"
+                   "    --out x.nc\n```\n    contactlab report index a.html --out b.html\n"
+                   "Not `contactlab <group> --help` nor `snakemake [-n] all`.\n")
+    assert documented_commands(doc) == [
+        (1, "contactlab receding solve --problem line --f 0.5"), (3, "snakemake -j2 all"),
+        (4, "contactlab gap-sweep --f 0.5 --out x.nc"),
+        (7, "contactlab report index a.html --out b.html")]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("document", RUN_DOCUMENTS, ids=lambda p: str(p.relative_to(REPO)))
+def test_every_documented_command_runs(document: Path, e2e_run: Path, tmp_path: Path) -> None:
+    """Each command the document shows runs as shown, in a copy of the session's end-to-end
+    run (its results are the inputs the commands name), in the document's order (an example
+    may read what the one before wrote): ``contactlab`` commands for real, Snakemake ones
+    as a dry run (``-n``) of the default study. A stale example fails here."""
+    commands = documented_commands(document)
+    if not commands:
+        pytest.skip("no commands")
+    work = tmp_path / "run"
+    shutil.copytree(e2e_run, work, symlinks=True,
+                    ignore=shutil.ignore_patterns(".snakemake", "logs"))
+    env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    failed = []
+    for line, text in commands:
+        if "--report " in text:  # Snakemake's report of a run: tests/test_workflow.py
+            continue
+        if text.startswith("snakemake "):
+            text = "snakemake -n --quiet " + text.removeprefix("snakemake ")
+        done = subprocess.run(["bash", "-c", text], cwd=work, env=env, capture_output=True,
+                              text=True, check=False)
+        if done.returncode != 0 and not any(
+                reason in done.stdout + done.stderr for reason in EXPECTED_REFUSALS):
+            failed.append(f"{document.relative_to(REPO)}:{line}: {text}\n"
+                          f"{(done.stderr or done.stdout)[-800:]}")
+    assert not failed, "\n".join(failed)

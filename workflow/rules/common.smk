@@ -86,10 +86,10 @@ def logs(path):
 # the demo data under results/demo/ and results/surfaces/demo_scans/ are shared by all
 # studies: a study that changed their seeds (or the image demo's settings) would rewrite the
 # default study's inputs. The default study: the config files that name no study, with the
-# schema's defaults like the study's config
+# schema's defaults like the study's config (a family file, which defines studies, is none)
 _DEFAULT_STUDY = {}
 for _path, _data in _SOURCES:
-    if "study" not in (_data or {}):
+    if not {"study", "family"} & set(_data or {}):
         update_config(_DEFAULT_STUDY, _data or {})
 _DEFAULT_STUDY = coerce(_DEFAULT_STUDY, CONFIG_SCHEMA)
 validate(_DEFAULT_STUDY, "../schemas/config.schema.yaml")

@@ -47,7 +47,7 @@ FAMILY_KEYS = ("family", "grid", "compare")
 
 #: Rules whose outputs every study shares (results/demo/, results/surfaces/demo_scans/):
 #: one rule each in a family run, not one per variant.
-SHARED_RULES = ("stiffness_demo", "surfaces_demo_scans")
+SHARED_RULES = ("stiffness_demo", "surfaces_demo_scans", "dic_demo")
 
 
 class FamilyError(ValueError):
