@@ -93,6 +93,8 @@ _DEFAULT_STUDY = {}
 for _path, _data in _SOURCES:
     if "study" not in (_data or {}):
         update_config(_DEFAULT_STUDY, _data or {})
+# the shared-inputs run reads a JSON config through YAML, where 1e-05 is a string
+_DEFAULT_STUDY = coerce(_DEFAULT_STUDY, CONFIG_SCHEMA)
 validate(_DEFAULT_STUDY, "../schemas/config.schema.yaml")
 _SHARED = sorted(k for k in (changes(config, _DEFAULT_STUDY) if STUDY else {})
                  if k in ("stiffness.raw.demo_seed", "surfaces.demo_seed") or k.startswith("dic.demo."))
