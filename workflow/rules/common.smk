@@ -87,11 +87,11 @@ BASE_CONFIG = _load_yaml("config/config.yaml") or {}
 STUDY_CHANGES = changes(config, BASE_CONFIG) if STUDY else {}
 # the demo data under results/demo/ and results/surfaces/demo_scans/ are shared by all
 # studies: a study that changed their seeds (or the image demo's settings) would rewrite the
-# default study's inputs. The default study: the config files that name no study, with the
-# schema's defaults like the study's config
+# default study's inputs. The default study: the config files that name no study (nor a
+# family, whose variants are studies), with the schema's defaults like the study's config
 _DEFAULT_STUDY = {}
 for _path, _data in _SOURCES:
-    if "study" not in (_data or {}):
+    if not {"study", "family"} & set(_data or {}):
         update_config(_DEFAULT_STUDY, _data or {})
 # the shared-inputs run reads a JSON config through YAML, where 1e-05 is a string
 _DEFAULT_STUDY = coerce(_DEFAULT_STUDY, CONFIG_SCHEMA)
