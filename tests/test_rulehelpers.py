@@ -2,13 +2,48 @@
 
 from __future__ import annotations
 
-from contactlab.rulehelpers import pdf_files, table_files
+import pytest
+
+from contactlab.rulehelpers import section_files, table_files
 
 
-def test_tables_and_figures_come_with_their_copies() -> None:
+def test_tables_come_with_their_copies() -> None:
     assert table_files("r/tables/a.csv", "r/tables/b.csv") == [
         "r/tables/a.csv", "r/tables/a.md", "r/tables/b.csv", "r/tables/b.md"]
-    assert pdf_files("r/figures/a.png") == ["r/figures/a.pdf"]
+
+
+def test_a_section_rule_declares_what_its_declaration_lists() -> None:
+    """Figures with their PDFs, tables with their Markdown copies, every one with its
+    caption file; a stem with a field once per value, a conditional file only when its
+    condition holds."""
+    files = section_files("52_receding_rough", "r/", problem=["line", "hertz"], fe=False)
+    assert files.section == "r/report/sections/52_receding_rough.html"
+    assert files.category == "Receding contacts"
+    assert [f.path for f in files.figures] == [
+        "r/report/figures/receding_rough_line.png", "r/report/figures/receding_rough_hertz.png",
+        "r/report/figures/receding_rough_pairs.png",
+        "r/report/figures/receding_rough_tractions.png",
+        "r/report/figures/receding_rough_displacements.png"]
+    assert files.pdfs[0] == "r/report/figures/receding_rough_line.pdf"
+    assert "r/report/tables/receding_rough_fe.md" in files.markdown
+    assert files.captions[0] == "r/report/figures/receding_rough_line.rst"
+    assert "r/report/tables/receding_rough_pairs.rst" in files.captions  # beside the table
+    with_fe = section_files("52_receding_rough", "r/", problem=["line"], fe=True)
+    assert with_fe.figures[-1].path == "r/report/figures/receding_rough_fe.png"
+    per_test = section_files("22_dic", "r/", test=["RU1i", "X"])
+    assert [(f.stem, f.subcategory) for f in per_test.figures] == [
+        ("dic_RU1i_quality", "RU1i"), ("dic_X_quality", "X")]
+    assert section_files("22_dic", "r/", test=[]).figures == []
+
+
+def test_a_section_rule_gives_every_value_its_declaration_needs_and_no_other() -> None:
+    with pytest.raises(ValueError, match=r"52_receding_rough.yaml: figures: "
+                                         r"receding_rough_\{problem\} needs problem"):
+        section_files("52_receding_rough", "r/", fe=True)
+    with pytest.raises(ValueError, match="receding_rough_fe needs fe"):
+        section_files("52_receding_rough", "r/", problem=["line"])
+    with pytest.raises(ValueError, match="no figure or table uses test"):
+        section_files("50_receding_gap", "r/", test=["RU1"])
 
 
 def test_rough_interface_runs_take_one_c_t_for_both_sides() -> None:
@@ -85,11 +120,3 @@ def test_an_image_test_reads_the_fields_its_correlation_writes(tmp_path) -> None
     assert image_inputs(sheet)(wildcards) == {"images": "data/U/frames", "load_log": "u.csv"}
     assert demo_reference_results(sheet) == ["results/stiffness/RU1.nc"]
     assert "results/demo/RU1_images" in demo_data_files()
-
-
-def test_the_dic_report_files_the_rule_declares_are_the_ones_it_writes() -> None:
-    from contactlab.dic import report
-    from contactlab.rulehelpers import DIC_REPORT_TABLES, dic_quality_figure
-
-    assert DIC_REPORT_TABLES == report.TABLES
-    assert dic_quality_figure("RU1i") == report.figure_name("RU1i")

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import hashlib
+import html
+import json
 import re
 import shutil
 import subprocess
@@ -49,8 +51,10 @@ def test_workflow_end_to_end(e2e_run: Path, snakemake) -> None:
     # Snakemake's report holds every figure and table the HTML report shows
     with zipfile.ZipFile(results / "report" / "snakemake-report.zip") as archive:
         packed = {Path(name).name for name in archive.namelist()}
+        report_page = archive.read("snakemake-report/report.html").decode()
     shown = set(re.findall(r"(?:figures|tables)/([^'\"/]+\.(?:png|csv))", page))
     assert len(shown) > 50 and not shown - packed, sorted(shown - packed)
+    check_report_captions(page, report_page)
 
     check_named_study_beside_default(workflow_copy, snakemake)
 
@@ -110,6 +114,31 @@ def test_an_edited_published_table_reruns_the_reports_that_compare_with_it(
     # Table 2.3 is also compared in the stiffness-from-published-steps section
     assert planned_rules(touched) == {"surfaces_report", "stiffness_report_published",
                                       "stiffness_report_raw", "report_index", "all"}
+
+
+def _text(markup: str) -> str:
+    return " ".join(html.unescape(re.sub(r"<[^>]+>", "", markup)).split())
+
+
+def check_report_captions(page: str, report_page: str) -> None:
+    """Every figure in Snakemake's report, and every table the HTML report shows, has its
+    caption there (the caption file its section's builder writes): the caption the HTML
+    report gives it, then the section it belongs to."""
+    start = re.search(r"var results =\s*(?=\{)", report_page).end()
+    files, _ = json.JSONDecoder().raw_decode(report_page, start)
+    files = {Path(path).name: record["caption"] for path, record in files.items()}
+    on_page = {f"{stem}.{'png' if kind == 'fig' else 'csv'}":
+               _text(re.sub(r"\s*\(<a [^>]*>(?:PDF|CSV)</a>\)$", "", caption))
+               for kind, stem, caption in re.findall(
+                   r"<figure(?: class='table')? id='(fig|tab)-([^']+)'>.*?"
+                   r"<figcaption>(.*?)</figcaption>", page, re.S)}
+    captioned = {name for name in files if name.endswith(".png")} | set(on_page)
+    assert len(captioned) > 100
+    for name in captioned:
+        paragraphs = [_text(p) for p in re.findall(r"<p>(.*?)</p>", files[name], re.S)]
+        assert len(paragraphs) >= 2 and paragraphs[1].startswith("Report section: "), \
+            (name, files[name])
+        assert name not in on_page or paragraphs[0] == on_page[name], (name, paragraphs[0])
 
 
 def check_every_file_is_declared(work: Path, snakemake) -> None:

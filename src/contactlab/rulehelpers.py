@@ -5,18 +5,19 @@ a loop or a decision lives here, as plain functions of config sections, the test
 and wildcard values, so it is tested (tests/test_rulehelpers.py) and ``snakemake --lint``
 stays clean. Command-line options are returned as lists of words, which a rule passes as
 one quoted argument each (``{params.x:q}``); ``results`` is the study's results folder
-(``results/`` or ``results/studies/<name>/``). Nothing here reads files or imports
-Snakemake.
+(``results/`` or ``results/studies/<name>/``). Nothing here imports Snakemake or reads
+files other than the package's own report declarations.
 
 Sections: the arguments of a declared command (:func:`command_args`); the report files a
-rule declares; contact stiffness (which tests have raw data, their files); receding
-contacts (sweep values, chunks, profile names); finite elements (the values of a run that
-are not config values, file lists).
+rule declares (:func:`section_files`, from the section's declaration); contact stiffness
+(which tests have raw data, their files); receding contacts (sweep values, chunks, profile
+names); finite elements (the values of a run that are not config values, file lists).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -40,19 +41,84 @@ def table_files(*csv: str) -> list[str]:
     return [path for name in csv for path in (name, str(Path(name).with_suffix(".md")))]
 
 
-def pdf_files(*png: str) -> list[str]:
-    """The PDF copy :func:`contactlab.report.section.save_figure` writes of each figure."""
-    return [str(Path(name).with_suffix(".pdf")) for name in png]
+@dataclass(frozen=True)
+class ReportFile:
+    """A figure (PNG) or table (CSV) of a report section: its path, its caption file for
+    Snakemake's report, its stem and its sub-category there (None: none)."""
+
+    path: str
+    caption: str
+    stem: str
+    subcategory: str | None
 
 
-#: The tables ``contactlab dic report`` writes (``contactlab.dic.report.TABLES``).
-DIC_REPORT_TABLES = ("dic_quality", "dic_recovery_by_test", "dic_recovery_steps",
-                     "dic_table_rows")
+@dataclass(frozen=True)
+class SectionFiles:
+    """Every file a report section's builder writes, as its declaration lists them."""
+
+    section: str
+    category: str
+    figures: list[ReportFile]
+    tables: list[ReportFile]
+
+    @property
+    def pdfs(self) -> list[str]:
+        """The PDF copy :func:`contactlab.report.section.save_figure` writes of each figure."""
+        return [str(Path(f.path).with_suffix(".pdf")) for f in self.figures]
+
+    @property
+    def markdown(self) -> list[str]:
+        """The Markdown copy :func:`contactlab.io.write_table` writes of each table."""
+        return [str(Path(t.path).with_suffix(".md")) for t in self.tables]
+
+    @property
+    def captions(self) -> list[str]:
+        """The caption file of every figure and table."""
+        return [f.caption for f in (*self.figures, *self.tables)]
 
 
-def dic_quality_figure(test: str) -> str:
-    """File stem of an image test's quality figure (``contactlab.dic.report.figure_name``)."""
-    return f"dic_{test}_quality"
+def section_page(name: str, results: str = "results/") -> str:
+    """The page of report section ``name``: ``<results>report/sections/<name>.html``."""
+    return f"{results}report/sections/{name}.html"
+
+
+def section_files(name: str, results: str = "results/", **values: Any) -> SectionFiles:
+    """The files of report section ``name`` from its declaration
+    (``contactlab/report/sections/<name>.yaml``, :mod:`contactlab.report.declaration`).
+
+    ``values`` give what the rule knows: for each field of a stem the list of its values
+    (``problem=["line", "uniform"]``: one figure per value), for each ``when`` condition
+    whether it holds (``fe=True``). ValueError naming the declaration if a field or a
+    condition has no value, or a value is given that the declaration does not use.
+    """
+    from itertools import product
+
+    from contactlab.report.declaration import FOLDERS, caption_file, load
+
+    declaration = load(name)
+    report_dir = f"{results}report"
+    used: set[str] = set()
+    files: dict[str, list[ReportFile]] = {"figure": [], "table": []}
+    for item in declaration.items.values():
+        needed = ([item.when] if item.when else []) + item.fields
+        missing = [key for key in needed if key not in values]
+        if missing:
+            raise ValueError(f"{declaration.path}: {FOLDERS[item.kind]}: {item.stem} needs "
+                             f"{', '.join(missing)} from the rule")
+        used.update(needed)
+        if item.when and not values[item.when]:
+            continue
+        for combination in product(*(values[field] for field in item.fields)):
+            filled = dict(zip(item.fields, combination, strict=True))
+            path = declaration.file(item.kind, item.stem, report_dir, filled)
+            files[item.kind].append(ReportFile(
+                str(path), str(caption_file(path)), path.stem,
+                item.subcategory.format(**filled) if item.subcategory else None))
+    unused = sorted(set(values) - used)
+    if unused:
+        raise ValueError(f"{declaration.path}: no figure or table uses {', '.join(unused)}")
+    return SectionFiles(section_page(name, results), declaration.category,
+                        files["figure"], files["table"])
 
 
 # --------------------------------------------------------------------------- stiffness

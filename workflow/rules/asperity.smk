@@ -5,7 +5,7 @@
 # (command_args). Small dense and FFT solves: one BLAS thread per job (the command line
 # sets it), Snakemake runs the jobs side by side.
 
-from contactlab.rulehelpers import command_args, pdf_files
+from contactlab.rulehelpers import command_args
 
 ASPERITY = config["asperity"]
 ASPERITY_BEM_LAWS = ASPERITY["bem"]["laws"]
@@ -128,28 +128,7 @@ rule asperity_report_single:
         single=result("asperity/single.nc"),
         transverse=result("asperity/bem/transverse.nc"),
     output:
-        section=result("report/sections/30_asperity_1_single.html"),
-        tables=report_tables(
-            "Asperity models",
-            *[
-                result(f"report/tables/asperity_{name}.csv")
-                for name in ("bem_checks", "yield_ratios", "shear_limits", "transverse")
-            ]
-        ),
-        pdfs=pdf_files(
-            result("report/figures/asperity_fig_3_6.png"),
-            result("report/figures/asperity_fig_3_8.png"),
-        ),
-        fig36=report(
-            result("report/figures/asperity_fig_3_6.png"),
-            caption="../report/asperity_single.rst",
-            category="Asperity models",
-        ),
-        fig38=report(
-            result("report/figures/asperity_fig_3_8.png"),
-            caption="../report/asperity_single.rst",
-            category="Asperity models",
-        ),
+        **report_section("30_asperity_1_single"),
     params:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
@@ -166,14 +145,7 @@ rule asperity_report_multi:
     input:
         result("asperity/multi.nc"),
     output:
-        section=result("report/sections/30_asperity_2_multi.html"),
-        tables=report_tables("Asperity models", result("report/tables/asperity_multi.csv")),
-        pdfs=pdf_files(result("report/figures/asperity_fig_3_10.png")),
-        fig=report(
-            result("report/figures/asperity_fig_3_10.png"),
-            caption="../report/asperity_multi.rst",
-            category="Asperity models",
-        ),
+        **report_section("30_asperity_2_multi"),
     params:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
@@ -191,39 +163,7 @@ rule asperity_report_grid:
         grid=result("asperity/grid.nc"),
         bem=result("asperity/grid_bem.nc"),
     output:
-        section=result("report/sections/30_asperity_3_grid.html"),
-        tables=report_tables("Asperity models", result("report/tables/asperity_grid_bem.csv")),
-        pdfs=pdf_files(
-            *[
-                result(f"report/figures/asperity_{name}.png")
-                for name in ("fig_3_12", "fig_3_13", "fig_3_14", "fig_3_15_3_16", "grid_bem")
-            ]
-        ),
-        fig312=report(
-            result("report/figures/asperity_fig_3_12.png"),
-            caption="../report/asperity_grid.rst",
-            category="Asperity models",
-        ),
-        fig313=report(
-            result("report/figures/asperity_fig_3_13.png"),
-            caption="../report/asperity_grid.rst",
-            category="Asperity models",
-        ),
-        fig314=report(
-            result("report/figures/asperity_fig_3_14.png"),
-            caption="../report/asperity_grid.rst",
-            category="Asperity models",
-        ),
-        fig315=report(
-            result("report/figures/asperity_fig_3_15_3_16.png"),
-            caption="../report/asperity_grid.rst",
-            category="Asperity models",
-        ),
-        figbem=report(
-            result("report/figures/asperity_grid_bem.png"),
-            caption="../report/asperity_grid.rst",
-            category="Asperity models",
-        ),
+        **report_section("30_asperity_3_grid"),
     params:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
@@ -246,9 +186,9 @@ ALL_TARGETS.extend(
 )
 REPORT_SECTIONS.extend(
     [
-        result("report/sections/30_asperity_1_single.html"),
-        result("report/sections/30_asperity_2_multi.html"),
-        result("report/sections/30_asperity_3_grid.html"),
+        report_page("30_asperity_1_single"),
+        report_page("30_asperity_2_multi"),
+        report_page("30_asperity_3_grid"),
     ]
 )
 

@@ -24,7 +24,7 @@ from contactlab.published import (
     surfaces_of_tests,
 )
 from contactlab.dic.sheet import check_image_folders
-from contactlab.rulehelpers import demo_data_files, table_files
+from contactlab.rulehelpers import demo_data_files, section_files, section_page, table_files
 from contactlab.studies.family import name_clash
 from contactlab.study import changes, coerce, export_provenance, logs_dir, results_dir
 from contactlab.surfaces.sheet import check_demo_scan_surfaces, read_surface_sheet
@@ -152,6 +152,35 @@ def report_tables(category, *csv):
                       labels={"table": Path(path).stem})
 
     return [path if path.endswith(".md") else annotated(path) for path in table_files(*csv)]
+
+
+def report_page(name):
+    """The page of report section ``name`` in this study's results."""
+    return section_page(name, RESULTS)
+
+
+def report_section(name, **values):
+    """The outputs of the rule that builds report section ``name``, from its declaration
+    (src/contactlab/report/sections/<name>.yaml; ``values``: what its stems and conditions
+    need, see rulehelpers.section_files): the section page, every figure with its PDF and
+    every table with its Markdown copy, each marked for Snakemake's report under the
+    section's category with the caption file the builder writes beside it."""
+    files = section_files(name, RESULTS, **values)
+
+    def marked(item, **more):
+        # the caption is a result, not a file of the workflow: an absolute path
+        return report(item.path, caption=str(Path(item.caption).resolve()),
+                      category=files.category, **more)
+
+    return {
+        "section": files.section,
+        "figures": [marked(f, subcategory=f.subcategory) for f in files.figures],
+        "pdfs": files.pdfs,
+        "tables": [marked(t, subcategory="Tables", labels={"table": t.stem})
+                   for t in files.tables],
+        "markdown": files.markdown,
+        "captions": files.captions,
+    }
 
 
 wildcard_constraints:

@@ -6,15 +6,12 @@ import re
 
 from contactlab.published import PUBLISHED_TESTS, TANGENTIAL_TABLES
 from contactlab.rulehelpers import (
-    DIC_REPORT_TABLES,
     command_args,
-    dic_quality_figure,
     demo_image_folder,
     demo_reference_results,
     image_fields,
     image_inputs,
     image_tests,
-    pdf_files,
 )
 
 
@@ -75,20 +72,7 @@ rule dic_report:
             for n in ["2.1", "2.2", "2.4", "2.7", "2.8", "2.9", *TANGENTIAL_TABLES]
         ],
     output:
-        section=result("report/sections/22_dic.html"),
-        tables=report_tables(
-            "Contact stiffness from images", *[result(f"report/tables/{t}.csv") for t in DIC_REPORT_TABLES]
-        ),
-        figures=[
-            report(
-                result(f"report/figures/{dic_quality_figure(t)}.png"),
-                caption="../report/dic.rst",
-                category="Contact stiffness from images",
-                subcategory=t,
-            )
-            for t in IMAGE_TESTS
-        ],
-        pdfs=pdf_files(*[result(f"report/figures/{dic_quality_figure(t)}.png") for t in IMAGE_TESTS]),
+        **report_section("22_dic", test=IMAGE_TESTS),
     params:
         published=PUBLISHED,
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
@@ -104,7 +88,7 @@ rule dic_report:
 
 if IMAGE_TESTS:
     ALL_TARGETS.extend(image_fields(t, RESULTS) for t in IMAGE_TESTS)
-    REPORT_SECTIONS.append(result("report/sections/22_dic.html"))
+    REPORT_SECTIONS.append(report_page("22_dic"))
 
 
 # A report of seconds: on a cluster it runs in the Snakemake process itself.

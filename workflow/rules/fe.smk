@@ -6,7 +6,7 @@
 # the h and L study); its options come from the command's declaration (command_args).
 
 from contactlab import rulehelpers
-from contactlab.rulehelpers import command_args, pdf_files
+from contactlab.rulehelpers import command_args
 
 FE = config["fe"]
 FE_ON = FE["enabled"]
@@ -14,11 +14,6 @@ FE_PROBLEMS = list(FE["problems"]) if FE_ON else []
 FE_ASPERITY = rulehelpers.asperity_runs(FE, RESULTS)
 FE_CONVERGENCE = rulehelpers.convergence_files(FE, RESULTS)
 FE_STUDY = rulehelpers.study_files(FE, RESULTS)
-FE_FIGURES = [
-    *expand(result("report/figures/fe_{problem}.png"), problem=FE_PROBLEMS),
-    *([result("report/figures/fe_convergence.png")] if FE_CONVERGENCE else []),
-    *([result("report/figures/fe_asperity.png")] if FE_ASPERITY else []),
-]
 
 
 rule fe_receding:
@@ -214,20 +209,13 @@ rule fe_report:
         study=FE_STUDY,
         asperity=[result("fe/asperity_plastic.nc")] if FE_ASPERITY else [],
     output:
-        section=result("report/sections/70_fe.html"),
-        tables=report_tables(
-            "Finite elements",
-            result("report/tables/fe_agreement.csv"),
-            *([result("report/tables/fe_convergence.csv")] if FE_CONVERGENCE else []),
-            *([result("report/tables/fe_study.csv")] if FE_STUDY else []),
-            *([result("report/tables/fe_asperity.csv")] if FE_ASPERITY else []),
+        **report_section(
+            "70_fe",
+            problem=FE_PROBLEMS,
+            convergence=bool(FE_CONVERGENCE),
+            study=bool(FE_STUDY),
+            asperity=bool(FE_ASPERITY),
         ),
-        figures=report(
-            FE_FIGURES,
-            caption="../report/fe.rst",
-            category="Finite elements",
-        ),
-        pdfs=pdf_files(*FE_FIGURES),
     params:
         asperity=lambda wc, input: ["--asperity", *input.asperity] if input.asperity else [],
         convergence=lambda wc, input: (
@@ -252,7 +240,7 @@ if FE_ON:
     ALL_TARGETS.extend([result("fe/asperity_plastic.nc")] if FE_ASPERITY else [])
     if rulehelpers.rough_fe_runs(config, RESULTS):
         ALL_TARGETS.append(result("fe/rough_compare.nc"))
-    REPORT_SECTIONS.append(result("report/sections/70_fe.html"))
+    REPORT_SECTIONS.append(report_page("70_fe"))
 
 
 # Seconds-long gathers, light solves and reports: on a cluster they run in the

@@ -7,7 +7,7 @@ import re
 
 from contactlab.prediction.pairs import pair_lookup
 from contactlab.published import PUBLISHED_TESTS
-from contactlab.rulehelpers import command_args, pdf_files
+from contactlab.rulehelpers import command_args
 
 PREDICTION_TESTS = list(TEST_IDS)
 # the summary from the published steps exists only for a sheet with a thesis test: a
@@ -77,28 +77,7 @@ rule prediction_report:
         summary=result("prediction/summary.nc"),
         predictions=expand(result("prediction/{test}.nc"), test=PREDICTION_TESTS),
     output:
-        section=result("report/sections/25_prediction.html"),
-        tables=report_tables(
-            "Contact stiffness",
-            result("report/tables/prediction.csv"),
-            result("report/tables/prediction_validation.csv"),
-        ),
-        pdfs=pdf_files(
-            result("report/figures/prediction_stiffness.png"),
-            result("report/figures/prediction_coupling.png"),
-        ),
-        figure=report(
-            result("report/figures/prediction_stiffness.png"),
-            caption="../report/prediction.rst",
-            category="Contact stiffness",
-            subcategory="prediction",
-        ),
-        coupling=report(
-            result("report/figures/prediction_coupling.png"),
-            caption="../report/prediction.rst",
-            category="Contact stiffness",
-            subcategory="prediction",
-        ),
+        **report_section("25_prediction"),
     params:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
@@ -112,7 +91,7 @@ rule prediction_report:
 
 ALL_TARGETS.extend(expand(result("prediction/{test}.nc"), test=PREDICTION_TESTS))
 ALL_TARGETS.append(result("prediction/summary.nc"))
-REPORT_SECTIONS.append(result("report/sections/25_prediction.html"))
+REPORT_SECTIONS.append(report_page("25_prediction"))
 
 
 # Seconds-long gathers and reports: on a cluster they run in the Snakemake process itself.

@@ -11,7 +11,6 @@ from contactlab.rulehelpers import (
     liftoff_profile_name,
     liftoff_profile_point,
     patch_shape,
-    pdf_files,
     rough_fe_runs,
     rough_pairs_summary,
     rough_profile_name,
@@ -130,44 +129,7 @@ rule receding_report_gap:
         regimes=result("receding/gap_regimes.nc"),
         profiles=expand(result("receding/profiles/gap_{point}.nc"), point=RECEDING_PROFILES),
     output:
-        section=result("report/sections/50_receding_gap.html"),
-        tables=report_tables(
-            "Receding contacts",
-            result("report/tables/receding_gap_points.csv"),
-            result("report/tables/receding_gap_thresholds.csv"),
-            result("report/tables/receding_gap_summary.csv"),
-        ),
-        pdfs=pdf_files(
-            *[
-                result(f"report/figures/receding_gap_{name}.png")
-                for name in ("regimes", "zones", "densities", "tractions", "displacements")
-            ]
-        ),
-        regimes=report(
-            result("report/figures/receding_gap_regimes.png"),
-            caption="../report/receding_regimes.rst",
-            category="Receding contacts",
-        ),
-        zones=report(
-            result("report/figures/receding_gap_zones.png"),
-            caption="../report/receding_zones.rst",
-            category="Receding contacts",
-        ),
-        densities=report(
-            result("report/figures/receding_gap_densities.png"),
-            caption="../report/receding_profiles.rst",
-            category="Receding contacts",
-        ),
-        tractions=report(
-            result("report/figures/receding_gap_tractions.png"),
-            caption="../report/receding_profiles.rst",
-            category="Receding contacts",
-        ),
-        displacements=report(
-            result("report/figures/receding_gap_displacements.png"),
-            caption="../report/receding_profiles.rst",
-            category="Receding contacts",
-        ),
+        **report_section("50_receding_gap"),
     params:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
@@ -189,7 +151,7 @@ ALL_TARGETS.extend(
         *expand(result("receding/profiles/gap_{point}.nc"), point=RECEDING_PROFILES),
     ]
 )
-REPORT_SECTIONS.append(result("report/sections/50_receding_gap.html"))
+REPORT_SECTIONS.append(report_page("50_receding_gap"))
 
 
 # ---- Line load (ch. 6) and pressure patches (ch. 7): lift-off at all remote points.
@@ -334,82 +296,7 @@ rule receding_report_line_patch:
             *expand(result("receding/profiles/{p}.nc"), p=PATCH_PROFILES),
         ],
     output:
-        section=result("report/sections/51_receding_line_patch.html"),
-        tables=report_tables(
-            "Receding contacts",
-            result("report/tables/receding_liftoff_summary.csv"),
-            result("report/tables/receding_line_sweep.csv"),
-            result("report/tables/receding_patch_points.csv"),
-            result("report/tables/receding_patch_fits.csv"),
-            *([result("report/tables/receding_user_shapes.csv")] if PATCH_TABLES else []),
-        ),
-        pdfs=pdf_files(
-            *[
-                result(f"report/figures/receding_{name}.png")
-                for name in (
-                    "line_zones",
-                    "line_densities",
-                    "line_tractions",
-                    "line_displacements",
-                    "patch_tractions",
-                    "patch_densities",
-                    "patch_displacements",
-                    "patch_zones",
-                    "patch_slope",
-                    "patch_wide",
-                )
-            ]
-        ),
-        line_zones=report(
-            result("report/figures/receding_line_zones.png"),
-            caption="../report/receding_line_patch.rst",
-            category="Receding contacts",
-        ),
-        line_densities=report(
-            result("report/figures/receding_line_densities.png"),
-            caption="../report/receding_line_patch.rst",
-            category="Receding contacts",
-        ),
-        line_tractions=report(
-            result("report/figures/receding_line_tractions.png"),
-            caption="../report/receding_line_patch.rst",
-            category="Receding contacts",
-        ),
-        line_displacements=report(
-            result("report/figures/receding_line_displacements.png"),
-            caption="../report/receding_line_patch.rst",
-            category="Receding contacts",
-        ),
-        patch_tractions=report(
-            result("report/figures/receding_patch_tractions.png"),
-            caption="../report/receding_line_patch.rst",
-            category="Receding contacts",
-        ),
-        patch_densities=report(
-            result("report/figures/receding_patch_densities.png"),
-            caption="../report/receding_line_patch.rst",
-            category="Receding contacts",
-        ),
-        patch_displacements=report(
-            result("report/figures/receding_patch_displacements.png"),
-            caption="../report/receding_line_patch.rst",
-            category="Receding contacts",
-        ),
-        patch_zones=report(
-            result("report/figures/receding_patch_zones.png"),
-            caption="../report/receding_line_patch.rst",
-            category="Receding contacts",
-        ),
-        patch_slope=report(
-            result("report/figures/receding_patch_slope.png"),
-            caption="../report/receding_line_patch.rst",
-            category="Receding contacts",
-        ),
-        patch_wide=report(
-            result("report/figures/receding_patch_wide.png"),
-            caption="../report/receding_line_patch.rst",
-            category="Receding contacts",
-        ),
+        **report_section("51_receding_line_patch", user_shapes=bool(PATCH_TABLES)),
     params:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
@@ -430,7 +317,7 @@ ALL_TARGETS.extend(
         *expand(result("receding/profiles/{p}.nc"), p=PATCH_PROFILES),
     ]
 )
-REPORT_SECTIONS.append(result("report/sections/51_receding_line_patch.html"))
+REPORT_SECTIONS.append(report_page("51_receding_line_patch"))
 
 
 # ---- A rough (compliant) interface (future work 8): the lift-off problems swept over the
@@ -442,12 +329,7 @@ ROUGH = config["receding"]["rough"]
 ROUGH_CHUNKS = list(range(min(ROUGH["chunks"], len(ROUGH["f"]))))
 ROUGH_PROFILES = [rough_profile_name(p) for p in ROUGH["profiles"]]
 ROUGH_FE = [result("fe/rough_compare.nc")] if rough_fe_runs(config, RESULTS) else []
-ROUGH_FIGURES = [
-    *[result(f"report/figures/receding_rough_{p}.png") for p in ROUGH["problems"]],
-    *[result(f"report/figures/receding_rough_{name}.png")
-      for name in ("pairs", "tractions", "displacements")],
-    *([result("report/figures/receding_rough_fe.png")] if ROUGH_FE else []),
-]
+
 
 
 rule receding_rough_sweep:
@@ -533,27 +415,7 @@ rule receding_report_rough:
         pairs=result("receding/rough/pairs.nc"),
         fe=ROUGH_FE,
     output:
-        section=result("report/sections/52_receding_rough.html"),
-        tables=report_tables(
-            "Receding contacts",
-            *[
-                result(f"report/tables/receding_rough_{name}.csv")
-                for name in (
-                    "smooth_limit",
-                    "summary",
-                    "sweep",
-                    "pairs",
-                    "profile_points",
-                    "fe",
-                )
-            ],
-        ),
-        figures=report(
-            ROUGH_FIGURES,
-            caption="../report/receding_rough.rst",
-            category="Receding contacts",
-        ),
-        pdfs=pdf_files(*ROUGH_FIGURES),
+        **report_section("52_receding_rough", problem=ROUGH["problems"], fe=bool(ROUGH_FE)),
     params:
         fe=lambda wc, input: ["--fe", *input.fe] if input.fe else [],
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
@@ -574,7 +436,7 @@ ALL_TARGETS.extend(
         result("receding/rough/pairs.nc"),
     ]
 )
-REPORT_SECTIONS.append(result("report/sections/52_receding_rough.html"))
+REPORT_SECTIONS.append(report_page("52_receding_rough"))
 
 
 # Seconds-long gathers, light solves and reports: on a cluster they run in the

@@ -6,7 +6,7 @@
 import re
 
 from contactlab.published import GROUP_TABLES, PUBLISHED_TESTS, TANGENTIAL_TABLES, user_step_tables
-from contactlab.rulehelpers import command_args, pdf_files, raw_data_option, raw_inputs, raw_tests
+from contactlab.rulehelpers import command_args, raw_data_option, raw_inputs, raw_tests
 
 
 RAW_TESTS = raw_tests(TESTS)
@@ -17,7 +17,6 @@ RAW_TABLES += [result(f"report/tables/table_{t}.csv")
                for t, (test, _, _) in TANGENTIAL_TABLES.items() if test in RAW_TESTS]
 RAW_TABLES += [result(f"report/tables/{stem}.csv") for test in RAW_TESTS
                if test not in PUBLISHED_TESTS for stem in user_step_tables(test)]
-RAW_FIGURES = ["normal", "tangential", "steps", "mean_row"]
 
 
 rule stiffness_demo:
@@ -107,43 +106,7 @@ rule stiffness_report_raw:
                       *TANGENTIAL_TABLES]
         ],
     output:
-        section=result("report/sections/21_stiffness_raw.html"),
-        flags=result("report/tables/stiffness_raw_flagged_fits.csv"),
-        tables=report_tables(
-            "Contact stiffness",
-            *[
-                result(f"report/tables/stiffness_raw_{name}.csv")
-                for name in (
-                    "vs_published",
-                    "recovery",
-                    "recovery_by_test",
-                    "summary_margins",
-                    "summary_margins_by_quantity",
-                    "margins_covariance",
-                )
-            ]
-        ),
-        flags_md=result("report/tables/stiffness_raw_flagged_fits.md"),
-        test_figures=[
-            report(
-                result(f"report/figures/stiffness_raw_{test}_{name}.png"),
-                caption="../report/stiffness_raw.rst",
-                category="Contact stiffness",
-                subcategory=test,
-            )
-            for test in RAW_TESTS
-            for name in RAW_FIGURES
-        ],
-        test_pdfs=pdf_files(
-            *[result(f"report/figures/stiffness_raw_{test}_{name}.png")
-              for test in RAW_TESTS for name in RAW_FIGURES]
-        ),
-        figure=report(
-            result("report/figures/stiffness_raw_summary.png"),
-            caption="../report/stiffness_raw.rst",
-            category="Contact stiffness",
-        ),
-        pdf=result("report/figures/stiffness_raw_summary.pdf"),
+        **report_section("21_stiffness_raw", test=RAW_TESTS),
     params:
         published=PUBLISHED,
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
@@ -154,14 +117,14 @@ rule stiffness_report_raw:
     shell:
         "contactlab stiffness report-raw {input.results:q} --summary {input.summary:q}"
         " --published-dir {params.published:q}"
-        " --report-dir {params.report_dir:q} --flags {output.flags:q}"
+        " --report-dir {params.report_dir:q}"
         " --out {output.section:q} 2> {log:q}"
 
 
 ALL_TARGETS.extend(expand(result("stiffness/{test}.nc"), test=RAW_TESTS))
 ALL_TARGETS.append(result("stiffness/summary.nc"))
 ALL_TARGETS.extend(RAW_TABLES)
-REPORT_SECTIONS.append(result("report/sections/21_stiffness_raw.html"))
+REPORT_SECTIONS.append(report_page("21_stiffness_raw"))
 
 
 # Seconds-long gathers, light solves and reports: on a cluster they run in the

@@ -3,13 +3,12 @@
 # printed ones. Outputs carry the suffix _from_published_steps.
 
 from contactlab.published import MEAN_ROW_TABLES, PER_STEP_FIT_TABLES
-from contactlab.rulehelpers import command_args, pdf_files
+from contactlab.rulehelpers import command_args
 
 STIFFNESS_PUBLISHED_NUMBERS = ["2.1", "2.2", "2.3", "2.4", "2.7", "2.8", "2.9", "2.10"]
 STIFFNESS_PUBLISHED_TABLES = expand(
     result("report/tables/table_{n}_from_published_steps.csv"), n=STIFFNESS_PUBLISHED_NUMBERS
 )
-STIFFNESS_PUBLISHED_FIGURES = ["fig_2_40", "fig_2_41", "fig_2_42", "fig_2_60", "fig_2_61", "mean_row"]
 
 # inputs: per-step fit and mean-row tables (A.2-A.39) and the normal fits (2.1, 2.7)
 STIFFNESS_PUBLISHED_INPUTS = [
@@ -48,28 +47,7 @@ rule stiffness_report_published:
         tables=STIFFNESS_PUBLISHED_TABLES,
         published=[PUBLISHED / f"table_{n}.csv" for n in STIFFNESS_PUBLISHED_NUMBERS],
     output:
-        section=result("report/sections/20_stiffness_published.html"),
-        tables=report_tables(
-            "Contact stiffness",
-            *expand(
-                result("report/tables/compare_{n}_from_published_steps.csv"),
-                n=[*STIFFNESS_PUBLISHED_NUMBERS, "counts"],
-            )
-        ),
-        figures=report(
-            expand(
-                result("report/figures/stiffness_{fig}_from_published_steps.png"),
-                fig=STIFFNESS_PUBLISHED_FIGURES,
-            ),
-            caption="../report/stiffness_published.rst",
-            category="Contact stiffness",
-        ),
-        pdfs=pdf_files(
-            *expand(
-                result("report/figures/stiffness_{fig}_from_published_steps.png"),
-                fig=STIFFNESS_PUBLISHED_FIGURES,
-            )
-        ),
+        **report_section("20_stiffness_published", table=STIFFNESS_PUBLISHED_NUMBERS),
     params:
         published=PUBLISHED,
         tables_dir=lambda wildcards, input: Path(input.tables[0]).parent,
@@ -87,7 +65,7 @@ rule stiffness_report_published:
 ALL_TARGETS.extend(
     [result("stiffness/summary_from_published_steps.nc"), *STIFFNESS_PUBLISHED_TABLES]
 )
-REPORT_SECTIONS.append(result("report/sections/20_stiffness_published.html"))
+REPORT_SECTIONS.append(report_page("20_stiffness_published"))
 
 
 # Seconds-long gathers, light solves and reports: on a cluster they run in the

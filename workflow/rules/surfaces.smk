@@ -1,7 +1,7 @@
 # Surfaces branch (thesis sec. 2.3.4): texture parameters of every surface from its scans,
 # and Seq of each test's interface from the computed and from the published Sq.
 
-from contactlab.rulehelpers import command_args, pdf_files
+from contactlab.rulehelpers import command_args
 from contactlab.surfaces.sheet import check_scan_files, read_surface_sheet, scan_paths
 
 SURFACES_CONFIG = config["surfaces"]
@@ -117,41 +117,7 @@ rule surfaces_report:
             PUBLISHED / f"table_{t}.csv" for t in ("2.3", "2.10", "A.1", "A.26", "A.27", "2.6")
         ],
     output:
-        section=result("report/sections/10_surfaces.html"),
-        tables=report_tables(
-            "Surfaces",
-            result("report/tables/seq.csv"),
-            *[
-                result(f"report/tables/surfaces_{name}.csv")
-                for name in ("areal", "profile", "100x", "other", "filled", "undefined")
-            ],
-        ),
-        pdfs=pdf_files(
-            *[
-                result(f"report/figures/{name}.png")
-                for name in ("seq", "surfaces_maps", "surfaces_profiles", "surfaces_spectra")
-            ]
-        ),
-        figure=report(
-            result("report/figures/seq.png"),
-            caption="../report/seq.rst",
-            category="Surfaces",
-        ),
-        maps=report(
-            result("report/figures/surfaces_maps.png"),
-            caption="../report/surfaces_maps.rst",
-            category="Surfaces",
-        ),
-        profiles=report(
-            result("report/figures/surfaces_profiles.png"),
-            caption="../report/surfaces_profiles.rst",
-            category="Surfaces",
-        ),
-        spectra=report(
-            result("report/figures/surfaces_spectra.png"),
-            caption="../report/surfaces_spectra.rst",
-            category="Surfaces",
-        ),
+        **report_section("10_surfaces"),
     params:
         published=PUBLISHED,
         surface_dir=lambda wildcards, input: Path(input.texture).parent,
@@ -169,7 +135,7 @@ rule surfaces_report:
 ALL_TARGETS.extend(
     [result("surfaces/seq.nc"), result("surfaces/texture.nc"), result("surfaces/refused.csv")]
 )
-REPORT_SECTIONS.append(result("report/sections/10_surfaces.html"))
+REPORT_SECTIONS.append(report_page("10_surfaces"))
 
 
 # Seconds-long gathers, light solves and reports: on a cluster they run in the

@@ -29,21 +29,14 @@ from contactlab.dic.recovery import (
     step_comparison,
     table_rows,
 )
-from contactlab.report.section import Section, save_figure
+from contactlab.report.section import ReportSection, save_figure
 
-__all__ = ["TABLES", "build_section", "figure_name", "quality_figure"]
+__all__ = ["build_section", "quality_figure"]
 
-#: The tables the section writes (``<report_dir>/tables/<name>.csv``), every run.
-TABLES = ("dic_quality", "dic_recovery_by_test", "dic_recovery_steps", "dic_table_rows")
 _MARKERS = {"textureless": "s", "left_image": "^", "left_region": "D", "not_converged": "x",
             "low_zncc": "v"}
 _SETTINGS = ("subset_px", "step_px", "order", "max_iterations", "tolerance_px", "zncc_min",
              "prefilter_sigma_px", "incremental", "colour")
-
-
-def figure_name(test: str) -> str:
-    """File stem of the quality figure of image test ``test``."""
-    return f"dic_{test}_quality"
 
 
 def _test_of(fields: xr.Dataset, path: Path) -> str:
@@ -133,28 +126,20 @@ def _edges(centres: np.ndarray) -> np.ndarray:
 
 def build_section(fields_paths: list[Path], results_paths: list[Path], report_dir: Path,
                   out: Path, published_dir: Path | None = None) -> None:
-    """Write section 22 and its tables (:data:`TABLES`, empty when there is nothing to
-    show) and one quality figure per image test (:func:`figure_name`).
+    """Write section 22, its tables (empty when there is nothing to show) and one quality
+    figure per image test (``contactlab/report/sections/22_dic.yaml``).
 
     ``fields_paths``: the DIC fields of the image tests; ``results_paths``: stiffness
     results of those tests and of the thesis tests their demo was rendered from (the
     summary tables are read from ``report_dir/tables``).
     """
-    report_dir = Path(report_dir)
-    tables_dir = report_dir / "tables"
+    tables_dir = Path(report_dir) / "tables"
     results: dict[str, Path] = {}
     for path in results_paths:
         with xr.open_dataset(path) as ds:
             results[str(ds.attrs["test"])] = Path(path)
-    section = Section("Contact stiffness from camera images (DIC)", "dic", report_dir)
-    section.paragraph(
-        "Tests whose displacements were correlated from their camera frames (test-sheet "
-        "column 'images'): local subset correlation (zero-normalised sum of squared "
-        "differences, inverse-compositional Gauss-Newton, B-spline interpolation), the pad "
-        "and the specimen as regions so that no subset straddles the interface (sec. "
-        "2.3.2). A vector is rejected (NaN in the fields) when its reference subset has no "
-        "texture, it leaves the image or its body, it does not converge, or its ZNCC is "
-        "below the threshold; the contact displacement uses the valid vectors only.")
+    section = ReportSection("22_dic", report_dir)
+    section.paragraph("method")
     quality_rows, by_test, steps, rows = [], [], [], []
     loaded: dict[str, xr.Dataset] = {}
 
@@ -180,9 +165,9 @@ def build_section(fields_paths: list[Path], results_paths: list[Path], report_di
         quality_rows.append({"test": test, "images": fields.attrs.get("images", ""),
                              **{key: fields.attrs.get(key) for key in _SETTINGS},
                              **quality_summary(fields)})
-        png = report_dir / "figures" / f"{figure_name(test)}.png"
+        png = section.figure_path("dic_{test}_quality", test=test)
         worst = quality_figure(fields, mine, reference, png)
-        figures.append((png, test, worst, reference is not None))
+        figures.append((test, worst, reference is not None))
         if not truth or mine is None:
             continue
         row: dict[str, object] = {"test": test, "truth": truth}
@@ -201,17 +186,9 @@ def build_section(fields_paths: list[Path], results_paths: list[Path], report_di
             table_values_within_from_fields=int(cells["fields_within"].sum()))
         by_test.append(row)
     if demo_tests:
-        section.note(
-            f"The frames of {', '.join(demo_tests)} are RECONSTRUCTED: synthetic speckle "
-            "images rendered by contactlab (contactlab dic demo) with the motion of the "
-            "RECONSTRUCTED stiffness demo of the same seed, built from the published fits. "
-            "They test that the image path recovers the thesis; they are not camera images.")
+        section.caveat("reconstructed", tests=", ".join(demo_tests))
     quality = pd.DataFrame(quality_rows)
-    section.table(quality, "Correlation parameters and quality per image test: subsets per "
-                  "frame, the fraction of valid vectors, the vectors rejected for each "
-                  "reason (summed over the frames), the ZNCC of the valid vectors, mean "
-                  "iterations, and the frame with the most rejections",
-                  tables_dir / "dic_quality.csv", digits=4)
+    section.table(quality, "dic_quality", digits=4)
     recovery = pd.DataFrame(by_test, columns=[
         "test", "truth", "frames", "uc_max_abs_diff", "uc_rms_diff", "vc_max_abs_diff",
         "vc_rms_diff", "steps", "steps_within_from_images", "steps_within_from_fields",
@@ -219,33 +196,19 @@ def build_section(fields_paths: list[Path], results_paths: list[Path], report_di
         "table_values_within_from_fields"])
     for row in by_test:
         section.paragraph(
-            f"{row['test']} (images of {row['truth']}): contact displacement from images "
-            f"minus from the demo's fields at most {row.get('uc_max_abs_diff', np.nan):.4f} "
-            f"um in uc and {row.get('vc_max_abs_diff', np.nan):.4f} um in vc over "
-            f"{int(row.get('frames', 0))} frames; steps whose alpha, beta and P0 or Qs all "
-            f"lie within the published 95% margins: {row['steps_within_from_images']} of "
-            f"{row['steps']} from images, {row['steps_within_from_fields']} from the fields; "
-            f"table values within the published margins: "
-            f"{row['table_values_within_from_images']} of {row['table_values']} from "
-            f"images, {row['table_values_within_from_fields']} from the fields.")
-    section.table(recovery, "The image demo against the demo's fields and the thesis: uc, vc "
-                  "from images minus from the fields (um), steps and table values within "
-                  "the published margins", tables_dir / "dic_recovery_by_test.csv", digits=4)
+            "recovery", test=row["test"], truth=row["truth"],
+            uc=row.get("uc_max_abs_diff", np.nan), vc=row.get("vc_max_abs_diff", np.nan),
+            frames=int(row.get("frames", 0)), steps=row["steps"],
+            steps_from_images=row["steps_within_from_images"],
+            steps_from_fields=row["steps_within_from_fields"], values=row["table_values"],
+            values_from_images=row["table_values_within_from_images"],
+            values_from_fields=row["table_values_within_from_fields"])
+    section.table(recovery, "dic_recovery_by_test", digits=4)
     section.table(pd.concat(rows, ignore_index=True) if rows
-                  else pd.DataFrame(columns=TABLE_ROW_COLUMNS),
-                  "The image demo's rows of Tables 2.1, 2.2, 2.4 (2.7-2.9): published with "
-                  "its 95% margin, from the demo's fields and from images",
-                  tables_dir / "dic_table_rows.csv", digits=4)
+                  else pd.DataFrame(columns=TABLE_ROW_COLUMNS), "dic_table_rows", digits=4)
     section.table(pd.concat(steps, ignore_index=True) if steps
-                  else pd.DataFrame(columns=STEP_COLUMNS),
-                  "The image demo's steps: alpha, beta and P0 or Qs published with the 95% "
-                  "margin (the truth the demo was built from), from the demo's fields and "
-                  "from images with their margins; within: inside the published margin",
-                  tables_dir / "dic_recovery_steps.csv", digits=4)
-    for png, test, worst, compared in figures:
-        section.image(png, f"Test {test}: ZNCC of the vectors of frame {worst} (the most "
-                      "rejections) with the rejected ones marked by reason; valid vectors "
-                      "and median ZNCC per frame; contact displacement "
-                      + ("from images minus from the demo's fields" if compared
-                         else "from images"))
+                  else pd.DataFrame(columns=STEP_COLUMNS), "dic_recovery_steps", digits=4)
+    for test, worst, compared in figures:
+        section.image("dic_{test}_quality", test=test, worst=worst,
+                      displacement=section.say("minus_fields" if compared else "from_images"))
     section.write(out)

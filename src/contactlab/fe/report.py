@@ -18,7 +18,7 @@ from matplotlib.ticker import NullFormatter
 
 from contactlab.fe.receding import STICK_SLIP_NAME
 from contactlab.io import load_datasets
-from contactlab.report.section import Section
+from contactlab.report.section import ReportSection
 
 TITLES = {
     "gap": ("Gap problem (ch. 5), w/c = {w:g}, f = {f:g}", "Figs 8.3-8.6"),
@@ -189,117 +189,63 @@ def asperity_figure(ds: xr.Dataset) -> plt.Figure:
     return fig
 
 
-def _note_for(ds: xr.Dataset) -> str:
-    problem = ds.attrs["problem"]
+def _ddt_missing(section: ReportSection, ds: xr.Dataset) -> None:
+    """A note where the comparison with the distributed dislocations is missing."""
     if ds.attrs.get("ddt_status", "ok") != "ok":
-        return (f"{problem}: {ds.attrs.get('ddt_missing_reason', ds.attrs['ddt_status'])}. "
-                "The FE side is complete; the comparison with the distributed dislocations "
-                "is missing for this problem.")
-    return ""
+        section.note("ddt_missing", problem=ds.attrs["problem"],
+                     reason=ds.attrs.get("ddt_missing_reason", ds.attrs["ddt_status"]))
 
 
 def build_section(results: list[Path], convergence: list[Path], asperity: Path | None,
                   report_dir: Path, out: Path, study: list[Path] | None = None) -> None:
-    """Write the FE section, its tables and figures."""
-    report_dir = Path(report_dir)
+    """Write the FE section, its tables and figures
+    (``contactlab/report/sections/70_fe.yaml``)."""
     datasets = load_datasets(results, "FE comparison")
-    sec = Section("Finite element cross-checks (CalculiX)", "fe", report_dir)
-    sec.paragraph(
-        "The receding contacts of chs 5-7 modelled as a finite strip on a finite block in "
-        "plane strain (CPE4/CPE3, gmsh meshes, CalculiX surface-to-surface penalty contact "
-        "with Coulomb friction, strip slave, block master), symmetric half models, as in "
-        "sec. 8.2. Tractions are normalised by the load scale q (p, or P/c for the line "
-        "load), separation and slip by (kappa+1) q c/(2 mu), lengths by c. Transition "
-        "points from the FE tractions: contact where -N > 1e-3 q, slip where |S| >= "
-        "0.99 f|N|, interpolated between the bracketing nodes."
-    )
-    table = agreement_table(datasets)
-    sec.table(table, "Transition points of FE and distributed dislocations (DDT), units of "
-              "c; differences (FE - DDT)/DDT in percent; max |dN|, |dS| over the plotted "
-              "grid in units of q", report_dir / "tables" / "fe_agreement.csv")
+    sec = ReportSection("70_fe", report_dir)
+    sec.paragraph("models")
+    sec.table(agreement_table(datasets), "fe_agreement")
     for ds in datasets:
-        note = _note_for(ds)
-        if note:
-            sec.note(note)
-    sec.paragraph(
-        "Reading the table: b and a are read off the tractions node by node, so they move "
-        "in steps of h (one element is 5 % of the line load's a = 0.25 c at h/c = 0.0125); "
-        "b_sep and a_slip place the same points inside the element from the onset of "
-        "separation and slip, which grow as |x - p|^(3/2), and converge smoothly. The "
-        "gap problem's b rests on a separation of only ~1e-3 (normalised). Block edges: "
-        "the thesis encastred the block of the line load and the patch (Figs 8.7, 8.13); "
-        "a rigid boundary where the half-plane still moves as -ln r shifts their stick-slip "
-        "points by +4 to +6 %. 'farfield' edges impose the half-plane's displacements "
-        "instead (Flamant's field of the net load, and with fe.farfield_passes = 2 the "
-        "field of the first solve's interface tractions). The mesh and domain study "
-        "(config/studies/fe_convergence.yaml) extrapolates every point to h -> 0 and "
-        "L -> infinity with its uncertainty (docs/FINDINGS.md, Finite element cross-checks)."
-    )
+        _ddt_missing(sec, ds)
+    sec.paragraph("reading")
     by_problem = {ds.attrs["problem"]: ds for ds in datasets}
     for problem in ("gap", "line", "uniform"):
         if problem not in by_problem:
             continue
         ds = by_problem[problem]
         title, figs = TITLES[problem]
-        caption = (f"{title.format(w=ds.attrs.get('w_hat', np.nan), f=ds.attrs['f'])}: FE "
-                   f"(h/c = {float(ds['h']):g}, {int(ds['n_elements'])} elements, block edges "
-                   f"{ds.attrs['edges']}) over the distributed-dislocation solution ({figs}).")
-        sec.figure(profile_figure(ds), caption, report_dir / "figures" / f"fe_{problem}.png")
+        sec.figure(profile_figure(ds), "fe_{problem}", problem=problem,
+                   title=title.format(w=ds.attrs.get("w_hat", np.nan), f=ds.attrs["f"]),
+                   h=float(ds["h"]), elements=int(ds["n_elements"]), edges=ds.attrs["edges"],
+                   figs=figs)
     conv = load_datasets(convergence, "FE convergence study")
     if conv:
-        sec.table(convergence_table(conv), "Mesh convergence (sec. 8.3): transition points "
-                  "and sizes per mesh", report_dir / "tables" / "fe_convergence.csv")
-        sec.figure(convergence_figure(conv), "Transition points against the element size and "
-                   "the normal traction on each mesh (sec. 8.3).",
-                   report_dir / "figures" / "fe_convergence.png")
+        sec.table(convergence_table(conv), "fe_convergence")
+        sec.figure(convergence_figure(conv), "fe_convergence")
     studies = load_datasets(study or [], "FE study")
     if studies:
         series = "; ".join(
-            f"{ds.attrs['problem']}: h/c = {', '.join(f'{v:g}' for v in ds['h'].values)}, "
-            f"L/c = {', '.join(f'{v:g}' for v in ds['length'].values)} at h/c = "
-            f"{ds.attrs['h_ref']:g}" for ds in studies)
-        sec.paragraph(
-            "Mesh and domain study: each quantity on a mesh series of the "
-            "configured model and a domain series (strip length and block depth scaled) "
-            f"({series}), extrapolated to h -> 0 (Richardson with the observed "
-            "order p; GCI uncertainty, 3 x the spread where the series is not monotone) and "
-            "L -> infinity (q_inf + C/L^m, m = 1 or 2 by the smaller residual). Block edges "
-            "encastred as in the thesis or displaced as the half-plane (farfield: Flamant's "
-            "field of the net load, then with fe.farfield_passes = 2 the field of the first "
-            "solve's interface tractions). b and a are read off the tractions node by node "
-            "and move in steps of h; b_sep and a_slip place the same points inside the "
-            "element from the onset of separation and slip (~ |x - p|^(3/2)). K_T: remote "
-            "slope of the separation. z: difference over the combined uncertainty."
-        )
-        sec.table(study_table(studies), "FE extrapolated to h -> 0 and L -> infinity against "
-                  "the DDT (units of c; K_T as in chs 6-7)",
-                  report_dir / "tables" / "fe_study.csv", digits=4)
+            sec.say("study_series", problem=ds.attrs["problem"],
+                    h=", ".join(f"{v:g}" for v in ds["h"].values),
+                    length=", ".join(f"{v:g}" for v in ds["length"].values),
+                    h_ref=ds.attrs["h_ref"]) for ds in studies)
+        sec.paragraph("study", series=series)
+        sec.table(study_table(studies), "fe_study", digits=4)
         for ds in studies:
             if not int(ds.attrs.get("all_converged", 1)):
-                sec.note(f"{ds.attrs['problem']}: some FE run or DDT solve of the study did "
-                         "not converge (mesh_converged, domain_converged, ddt_converged).")
+                sec.note("study_not_converged", problem=ds.attrs["problem"])
     if asperity is not None and Path(asperity).exists():
         with xr.open_dataset(asperity) as ds:
             asp = ds.load()
-        sec.paragraph(
-            "Elastic-perfectly plastic stuck asperity (sec. 3.2.2): a sphere (R = "
-            f"{asp.attrs['radius_mm']:g} mm) on a block, half model, C3D10, normal approach "
-            f"{asp.attrs['approach_mm']:g} mm then tangential displacement, contact stuck "
-            f"(f = {asp.attrs['friction']:g}). r_c = {asp.attrs['r_c_mm']:.4g} mm, p0 = "
-            f"{asp.attrs['p0_N_per_mm2']:.5g} N/mm^2 (Hertz), Q_n = sigma_y pi r_c^2. "
-            f"BEM curve: {asp.attrs.get('bem_source', 'none')}."
-        )
+        sec.paragraph("asperity", radius=asp.attrs["radius_mm"],
+                      approach=asp.attrs["approach_mm"], friction=asp.attrs["friction"],
+                      r_c=asp.attrs["r_c_mm"], p0=asp.attrs["p0_N_per_mm2"],
+                      bem=asp.attrs.get("bem_source", "none"))
         rows = pd.DataFrame({
             "model": [str(m) for m in asp["model"].values],
             "sigma_y/sigma_v": asp["yield_ratio"].values,
             "P/P_Hertz": asp["P_normal"].values / asp["P_hertz"].values,
             "elements": asp["n_elements"].values.astype(int),
         })
-        sec.table(rows, "Asperity models: normal load after the normal step over Hertz, "
-                  "and size", report_dir / "tables" / "fe_asperity.csv")
-        sec.figure(asperity_figure(asp), "Delta_x/Delta_n against Q/Q_n for the yield limits "
-                   "(thesis Fig. 3.8) with the elastic stuck and Cattaneo-Mindlin curves; the "
-                   "Coulomb BEM (dotted) lies on the Mindlin curve. Left: Delta_n from the "
-                   "elastic stuck FE model's compliance; right: Delta_n by eq. (3.3).",
-                   report_dir / "figures" / "fe_asperity.png")
+        sec.table(rows, "fe_asperity")
+        sec.figure(asperity_figure(asp), "fe_asperity")
     sec.write(out)

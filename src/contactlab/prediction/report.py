@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from contactlab.report.section import Section
+from contactlab.report.section import ReportSection
 
 
 def comparison_table(summary: xr.Dataset) -> pd.DataFrame:
@@ -133,38 +133,26 @@ def _median(values: object) -> float:
     return float(np.median(data)) if data.size else float("nan")
 
 
-def findings(summary: xr.Dataset) -> list[str]:
+def findings(section: ReportSection, summary: xr.Dataset) -> list[str]:
     """Plain-language findings, each computed from the summary (medians over the tests)."""
     out = []
     raw = summary.sel(source="raw")
     mindlin = float(summary["mindlin_ratio"].values[0])
     elastic = summary.sel(variant="elastic")
     kn = _median_ratio(elastic["predicted_Kn_An"], raw["measured_Kn_An"])
-    out.append(f"Normal stiffness: the elastic prediction is {kn:.2g} times the measured "
-               f"loading Kn/An at the test's load (median over the tests); predicted beta_n "
-               f"Seq spans {_span(elastic['predicted_beta_n_Seq'])} against "
-               f"{_span(raw['measured_beta_n_Seq'])} measured. Only roughness "
-               "shorter than the scans' cut-off and window is modelled; waviness and form "
-               "of the nominal interface are not, and would make it more compliant.")
+    out.append(section.say("normal", ratio=kn,
+                           predicted=_span(elastic["predicted_beta_n_Seq"]),
+                           measured=_span(raw["measured_beta_n_Seq"])))
     cc = {"measured": _median(raw["measured_Cc"]),
           "stuck": _median(elastic["predicted_Cc_stuck"]),
           "slip": _median(elastic["predicted_Cc_slip"]),
           "consistent": _median(elastic["predicted_Cc_consistent"])}
-    out.append(f"Cc (medians over the tests): measured {cc['measured']:.3f} "
-               f"({cc['measured'] / mindlin:.2f} of the Mindlin ratio {mindlin:.3f}); elastic "
-               f"prediction {cc['stuck']:.3f} fully stuck, {cc['slip']:.3f} with Coulomb "
-               f"partial slip at the measured f in the tests' +-Pn/8 cycles and "
-               f"{cc['consistent']:.3f} at the friction coefficient that reproduces the "
-               f"measured f through the thesis's fit ({cc['stuck'] / mindlin:.2f}, "
-               f"{cc['slip'] / mindlin:.2f} and {cc['consistent'] / mindlin:.2f} of the "
-               "Mindlin ratio).")
-    overshoot = _median_ratio(elastic["predicted_f_fit"], summary["f_used"])
-    f_consistent = _median(elastic["predicted_f_consistent"])
-    out.append(f"Friction: eq. (2.3) fitted to a predicted cycle that reaches only Pn/8 "
-               f"puts its asymptote Qs at {overshoot:.2f} times the friction coefficient of "
-               f"the model (median), so the thesis's f = |Qs/Pn| reads high; the friction "
-               f"that reproduces the measured f is {f_consistent:.3f} "
-               f"(median; measured {_median(summary['f_used']):.3f}), NaN where none does.")
+    out.append(section.say("coupling", **cc, mindlin=mindlin,
+                           **{f"{k}_ratio": v / mindlin for k, v in cc.items()}))
+    out.append(section.say(
+        "friction", overshoot=_median_ratio(elastic["predicted_f_fit"], summary["f_used"]),
+        consistent=_median(elastic["predicted_f_consistent"]),
+        measured=_median(summary["f_used"])))
     plastic_lowers = anisotropy_lowers = False
     if "plastic" in summary["variant"].values:
         plastic = summary.sel(variant="plastic")
@@ -172,56 +160,38 @@ def findings(summary: xr.Dataset) -> list[str]:
         cc_pl_slip = _median(plastic["predicted_Cc_slip"])
         change = cc_pl_slip / cc["slip"] - 1
         plastic_lowers = change < 0
-        direction = "raises" if change > 0 else "lowers"
-        out.append(f"Plasticity: capping the pressure at the hardness {direction} the "
-                   f"predicted Cc, to {cc_pl:.3f} stuck and {cc_pl_slip:.3f} with partial slip "
-                   f"({100 * change:+.0f} %). "
-                   + ("Flattened asperities make larger stuck junctions, which stiffen the "
-                      "tangential response more than the normal one. So plasticity of this "
-                      "kind does not explain a Cc below the Mindlin ratio." if change > 0
-                      else "Plasticity of this kind moves Cc towards the measured values."))
+        out.append(section.say("plasticity_raises" if change > 0 else "plasticity_lowers",
+                               stuck=cc_pl, slip=cc_pl_slip, change=100 * change))
     kt_ratio = elastic["predicted_Kt0_An_stuck"] / elastic["predicted_Kt0_An_stuck_y"]
     str_values = summary["Str_composite"].values
     low = ~np.isfinite(str_values) | (str_values < 0.3)
     if low.any():
         cc_low = _median(elastic["predicted_Cc_stuck"].values[low])
         anisotropy_lowers = cc_low < mindlin
-        effect = ("stiffer in shear along the load than across it, so this anisotropy raises "
-                  "Cc" if cc_low > mindlin else "softer in shear along the load, so this "
-                  "anisotropy lowers Cc")
-        out.append(f"Anisotropy: for the {int(low.sum())} composite(s) with Str < 0.3 (or "
-                   f"undefined) the stuck stiffness along the load is "
-                   f"{_median(kt_ratio.values[low]):.3f} times that across it and the elastic "
-                   f"stuck Cc along the load {cc_low:.3f} ({cc_low / mindlin:.2f} of the "
-                   f"Mindlin ratio): the contacts are {effect}.")
+        out.append(section.say(
+            "anisotropy", count=int(low.sum()), ratio=_median(kt_ratio.values[low]),
+            stuck=cc_low, stuck_ratio=cc_low / mindlin,
+            effect=section.say("stiffer_along" if cc_low > mindlin else "softer_along")))
     if (~low).any():
         cc_iso = _median(elastic["predicted_Cc_stuck"].values[~low])
-        agree = ("within 5 %, as for the isotropic check surface"
-                 if abs(cc_iso / mindlin - 1) < 0.05 else "more than 5 % off")
-        out.append(f"The {int((~low).sum())} more isotropic composite(s) (Str >= 0.3) give an "
-                   f"elastic stuck Cc of {cc_iso:.3f} ({cc_iso / mindlin:.2f} of the Mindlin "
-                   f"ratio, {agree}).")
+        agreement = ("isotropic_agrees" if abs(cc_iso / mindlin - 1) < 0.05
+                     else "isotropic_differs")
+        out.append(section.say("isotropic", count=int((~low).sum()), stuck=cc_iso,
+                               stuck_ratio=cc_iso / mindlin, agreement=section.say(agreement)))
     closest = min(("stuck", "slip", "consistent"),
                   key=lambda k: abs(np.log(cc["measured"] / cc[k]))
                   if np.isfinite(cc[k]) else np.inf)
-    words = {"stuck": "the fully stuck contact",
-             "slip": "partial slip at the measured f in the tests' cycles",
-             "consistent": "partial slip at the friction consistent with the measured f"}
-    lowering = [name for name, lowers in (("the plastic cap", plastic_lowers),
-                                          ("the anisotropy", anisotropy_lowers)) if lowers]
-    verdict = (f"in these models only {' and '.join(lowering)} lowers Cc" if lowering
-               else "in these models neither lowers Cc")
-    out.append(f"What this says about the thesis's explanation (sec. 2.6, 'plasticity and "
-               f"anisotropic surface texture'): {verdict}; the "
-               f"prediction closest to the measured Cc is {words[closest]} (measured/predicted "
-               f"{cc['measured'] / cc[closest]:.2f}). Kt0 is measured in cycles that reach "
-               "Pn/8, a good part of the friction limit, and Coulomb partial slip in them "
-               "lowers the slope at Qt = 0 below the stuck value; "
-               + ("that accounts for most of the distance from the Mindlin ratio."
-                  if abs(np.log(cc["measured"] / cc[closest])) < np.log(1.25) and closest
-                  != "stuck" else "what is left must come from what the model leaves out "
-                  "(tangential plasticity of the junctions, waviness, the DIC's contact "
-                  "displacement) or from the measurement."))
+    lowering = [section.say(name) for name, lowers in (("plastic_cap", plastic_lowers),
+                                                        ("the_anisotropy", anisotropy_lowers))
+                if lowers]
+    verdict = (section.say("only_lowers", causes=" and ".join(lowering)) if lowering
+               else section.say("neither_lowers"))
+    explained = (abs(np.log(cc["measured"] / cc[closest])) < np.log(1.25)
+                 and closest != "stuck")
+    out.append(section.say("verdict", verdict=verdict, closest=section.say(f"closest_{closest}"),
+                           ratio=cc["measured"] / cc[closest],
+                           rest=section.say("slip_explains" if explained
+                                            else "rest_unexplained")))
     return out
 
 
@@ -243,62 +213,30 @@ def validation_table(summary: xr.Dataset) -> pd.DataFrame:
 
 def write_section(summary: xr.Dataset, predictions: list[xr.Dataset], report_dir: Path,
                   out: Path) -> None:
-    """The section fragment, ``tables/prediction*.csv`` and ``figures/prediction_*.png``."""
-    report_dir = Path(report_dir)
-    section = Section("Contact stiffness predicted from the scans", "prediction", report_dir)
+    """The section fragment, ``tables/prediction*.csv`` and ``figures/prediction_*.png``
+    (``contactlab/report/sections/25_prediction.yaml``)."""
+    section = ReportSection("25_prediction", report_dir)
     first = predictions[0]
     a = first.attrs
     size = float(first["x"].values[-1] + first["x"].values[0])
-    section.paragraph(
-        "Each test's pair is modelled from its two areal scans: roughness surfaces (plane "
-        "and Gaussian L-filter removed, as for the texture parameters), the pad mirrored to "
-        "face the specimen and added (the scans' relative position is unknown; the "
-        "composite's Sq is checked against Seq of eq. 2.1), pressed against a flat by "
-        "a Polonsky-Keer solver bounded at the hardness (checked against ContactMechanics') "
-        "on a non-periodic window whose mean "
-        "traction and displacement belong to the nominal field (a piece of the 20 mm2 "
-        "interface), elastic and with the pressure capped at the hardness. The tangential "
-        "problem is solved on the contact found, fully stuck and with Coulomb partial slip "
-        "(this project's Cerruti cell coefficients, FFT). Kt0 with slip is the slope at "
-        "Qt = 0 of the tests' fully reversed +-Pn/8 cycles at the measured f (Masing's "
-        f"rule). Grid: {a.get('grid_points')} x {a.get('grid_points')} cells of "
-        f"{float(first['x'].values[1] - first['x'].values[0]):.3g} um ({size / 1000:.3g} mm "
-        f"windows), E = {a.get('youngs_modulus_GPa')} GPa, nu = {a.get('poissons_ratio')}, "
-        f"hardness {a.get('hardness_GPa')} GPa.")
+    section.paragraph("method", points=a.get("grid_points"),
+                      cell=float(first["x"].values[1] - first["x"].values[0]),
+                      window=size / 1000, E=a.get("youngs_modulus_GPa"),
+                      nu=a.get("poissons_ratio"), hardness=a.get("hardness_GPa"))
     if any("demo_scans" in str(ds.attrs.get("specimen_scan", "")) for ds in predictions):
-        section.note("The demo scans are SYNTHETIC and the demo raw data RECONSTRUCTED from "
-                     "the published fits: the comparison shows the method, not the thesis's "
-                     "surfaces.")
-    deviations = [f"{ds.attrs['test']} {100 * float(ds['Seq_deviation']):+.1f} %"
-                  for ds in predictions]
-    section.paragraph("Sq of the composite against Seq of eq. (2.1): " + ", ".join(deviations)
-                      + " (independent surfaces: the difference is the sampled covariance).")
-    tables = report_dir / "tables"
-    section.table(validation_table(summary), "Solver checks on a sphere, relative errors "
-                  f"({float(summary['validation_cells_per_radius']):.0f} cells per contact "
-                  "radius); the tests in tests/prediction check the same more finely",
-                  tables / "prediction_validation.csv", digits=4)
+        section.caveat("synthetic")
+    deviations = [section.say("deviation", test=ds.attrs["test"],
+                              percent=100 * float(ds["Seq_deviation"])) for ds in predictions]
+    section.paragraph("deviations", deviations=", ".join(deviations))
+    section.table(validation_table(summary), "prediction_validation", digits=4,
+                  cells=float(summary["validation_cells_per_radius"]))
     table = comparison_table(summary)
-    section.table(table, "Predicted beside measured (Tables 2.1-2.4, 2.7-2.10 quantities): "
-                  "Kn/An at the test's load, beta_n of eq. (2.2) fitted to the predicted "
-                  "loading curve, Kt0/An fully stuck and with partial slip at f in the +-Pn/8 "
-                  "cycles, Cc = Kt0/Kn, and Cc at the friction f_consistent whose eq. (2.3) fit "
-                  "gives the measured f; measured Kt0/An and Cc are the thesis's (combined, "
-                  "mean basis)",
-                  tables / "prediction.csv")
+    section.table(table, "prediction")
     flagged = [str(t) for t, ok in zip(table["test"], table["converged"], strict=True) if not ok]
     if flagged:
-        section.note("Not every solution converged for: " + ", ".join(sorted(set(flagged)))
-                     + " (flags in results/prediction/<test>.nc).")
-    figures = report_dir / "figures"
-    section.figure(_stiffness_figure(predictions, summary),
-                   "Kn/An against the nominal pressure, predicted (elastic, plastic) with the "
-                   "measured loading Kn/An at each test's load",
-                   figures / "prediction_stiffness.png")
-    section.figure(_coupling_figure(summary),
-                   "Cc = Kt0/Kn measured and predicted (stuck, partial slip at f; elastic, "
-                   "plastic) beside the Mindlin ratio and its half",
-                   figures / "prediction_coupling.png")
-    for text in findings(summary):
-        section.paragraph(text)
+        section.note("not_converged", tests=", ".join(sorted(set(flagged))))
+    section.figure(_stiffness_figure(predictions, summary), "prediction_stiffness")
+    section.figure(_coupling_figure(summary), "prediction_coupling")
+    for text in findings(section, summary):
+        section.paragraph_text(text)
     section.write(out)

@@ -1,12 +1,16 @@
 """One report section: an HTML fragment plus its tables (CSV, Markdown) and figures (PNG, PDF).
 
 The report toolkit (this module and :mod:`contactlab.report.index`) knows no science: each
-branch's own report builder (``contactlab.<branch>.report``) fills a :class:`Section` and
-writes it to ``results/report/sections/`` as a page of its own (the report's styles, links
-relative to the section's folder, so it opens alone); :mod:`contactlab.report.index`
-stitches the sections into ``index.html``. Tables are written by
-:func:`contactlab.io.write_table`. While a section is built, its links are relative to
-``report_dir``; :meth:`Section.write` rebases them to the folder it writes to.
+branch's own report builder (``contactlab.<branch>.report``) fills a :class:`ReportSection`
+and writes it to ``results/report/sections/`` as a page of its own (the report's styles,
+links relative to the section's folder, so it opens alone); :mod:`contactlab.report.index`
+stitches the sections into ``index.html``. A :class:`ReportSection` takes its title, prose,
+captions and file names from the section's declaration (:mod:`contactlab.report.declaration`)
+and writes each figure's and table's caption beside it for Snakemake's report;
+:class:`Section` is the page underneath, built from text the caller gives (the comparison
+pages of studies use it directly). Tables are written by :func:`contactlab.io.write_table`.
+While a section is built, its links are relative to ``report_dir``; :meth:`Section.write`
+rebases them to the folder it writes to.
 """
 
 from __future__ import annotations
@@ -16,6 +20,7 @@ import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import matplotlib
 
@@ -24,6 +29,7 @@ import matplotlib.pyplot as plt
 import pandas as pd
 
 from contactlab.io import atomic_path, write_table, write_text
+from contactlab.report.declaration import Declaration, caption_file, load
 from contactlab.report.style import STYLE, rebase_links
 
 #: Metadata in saved figures is fixed so the same data give the same files.
@@ -123,3 +129,120 @@ class Section:
         """Write the section page to ``path`` (atomically): it opens on its own, and
         :func:`contactlab.report.index.build_index` stitches its ``<section>``."""
         write_text(self.page(Path(path).parent), path)
+
+
+#: Characters that start inline markup in reStructuredText or a tag in Jinja (``{%``).
+_RST_MARKUP = frozenset("\\`*_|[]<>{}%#")
+
+
+def rst_text(text: str) -> str:
+    """A paragraph of plain ``text`` as reStructuredText that reads as the text itself:
+    every character that starts inline markup or a Jinja tag escaped (Snakemake renders a
+    caption file through Jinja, then docutils), and the first one, so that the paragraph
+    cannot start a list, a comment or a directive."""
+    escaped = "".join(f"\\{c}" if c in _RST_MARKUP else c for c in text[1:])
+    return (f"\\{text[0]}" if text else "") + escaped
+
+
+class ReportSection:
+    """A report section built from its declaration (:mod:`contactlab.report.declaration`).
+
+    Text, captions and file names come from ``contactlab/report/sections/<name>.yaml``: the
+    builder names each figure and table by its declared stem and each paragraph or note by
+    its key, and gives the values of their ``{fields}``. :meth:`write` writes the page and,
+    beside each figure and table written, its caption for Snakemake's report
+    (``<stem>.rst``: the caption, the section's title and its caveats).
+    """
+
+    def __init__(self, name: str, report_dir: str | os.PathLike[str]) -> None:
+        self.declaration: Declaration = load(name)
+        self.report_dir = Path(report_dir)
+        self.page = Section(self.declaration.title, self.declaration.anchor, self.report_dir)
+        self.captions: dict[Path, str] = {}
+        self.caveats: list[str] = []
+
+    def say(self, key: str, /, **values: Any) -> str:
+        """The declared text ``key`` with its fields filled (to compose a paragraph)."""
+        return self.declaration.say(key, **values)
+
+    def paragraph(self, key: str, /, **values: Any) -> None:
+        """Add the declared text ``key`` as a paragraph."""
+        self.page.paragraph(self.say(key, **values))
+
+    def paragraph_text(self, text: str) -> None:
+        """Add a paragraph composed of declared texts (:meth:`say`)."""
+        self.page.paragraph(text)
+
+    def note(self, key: str, /, **values: Any) -> None:
+        """Add the declared text ``key`` as a highlighted note."""
+        self.page.note(self.say(key, **values))
+
+    def note_text(self, text: str) -> None:
+        """Add a note composed of declared texts (:meth:`say`)."""
+        self.page.note(text)
+
+    def caveat(self, key: str, /, **values: Any) -> None:
+        """Add a note on what the data are (e.g. RECONSTRUCTED, SYNTHETIC), repeated in the
+        caption of every figure and table of the section in Snakemake's report."""
+        text = self.say(key, **values)
+        self.page.note(text)
+        self.caveats.append(text)
+
+    def heading(self, key: str, /, **values: Any) -> None:
+        """Start a sub-section headed by the declared text ``key``."""
+        self.page.heading(self.say(key, **values))
+
+    def keys(self, prefix: str) -> list[str]:
+        """The declared text keys ``<prefix><n>``, in the order declared."""
+        return [key for key in self.declaration.text if key.startswith(prefix)
+                and key[len(prefix):].isdigit()]
+
+    def _file(self, kind: str, stem: str, values: dict[str, Any]) -> tuple[Path, str]:
+        """The file and caption of a figure or table written; its caption file is written
+        with the page."""
+        path = self.declaration.file(kind, stem, self.report_dir, values)
+        caption = self.declaration.caption(kind, stem, values)
+        self.captions[path] = caption
+        return path, caption
+
+    def figure_path(self, stem: str, /, **values: Any) -> Path:
+        """The PNG of the declared figure ``stem`` (for a figure drawn and saved elsewhere,
+        :func:`save_figure`; show it with :meth:`image`)."""
+        return self.declaration.file("figure", stem, self.report_dir, values)
+
+    def figure(self, fig: plt.Figure, stem: str, /, **values: Any) -> None:
+        """Save ``fig`` as the declared figure ``stem`` (PNG and PDF) and show it with its
+        caption."""
+        path, caption = self._file("figure", stem, values)
+        self.page.figure(fig, caption, path)
+
+    def image(self, stem: str, /, **values: Any) -> None:
+        """Show the declared figure ``stem``, already saved, with its caption."""
+        path, caption = self._file("figure", stem, values)
+        self.page.image(path, caption)
+
+    def table(self, table: pd.DataFrame, stem: str, /, digits: int = 3, **values: Any) -> None:
+        """Write ``table`` as the declared table ``stem`` (CSV, Markdown) and show it with
+        its caption."""
+        path, caption = self._file("table", stem, values)
+        self.page.table(table, caption, path, digits)
+
+    def table_file(self, table: pd.DataFrame, stem: str, /, digits: int = 3,
+                   **values: Any) -> None:
+        """Write ``table`` as the declared table ``stem`` (CSV, Markdown) without showing
+        it on the page; its caption goes to Snakemake's report only."""
+        path, _ = self._file("table", stem, values)
+        write_table(table, path, digits)
+
+    def caption_text(self, caption: str) -> str:
+        """The caption file of a figure or table: its caption, the section it belongs to
+        and the section's caveats, as reStructuredText (:func:`rst_text`)."""
+        parts = [caption, f"Report section: {self.declaration.title}.", *self.caveats]
+        return "\n\n".join(rst_text(part) for part in parts) + "\n"
+
+    def write(self, path: str | os.PathLike[str]) -> None:
+        """Write the section page to ``path`` and the caption file of every figure and
+        table written (:func:`contactlab.report.declaration.caption_file`)."""
+        for file, caption in self.captions.items():
+            write_text(self.caption_text(caption), caption_file(file))
+        self.page.write(path)

@@ -84,7 +84,7 @@ def _report_raw(args: argparse.Namespace) -> None:
     from contactlab.stiffness.report_raw import build_section
 
     build_section(args.results, args.summary, args.report_dir, args.out,
-                  published_dir=args.published_dir, flags_out=args.flags)
+                  published_dir=args.published_dir)
 
 
 def _model_from_args(args: argparse.Namespace) -> ErrorModel:
@@ -221,8 +221,6 @@ COMMANDS = (
                  Option("--summary", "results/stiffness/summary.nc (with each test's load "
                         "and area)", input_file),
                  published_dir_option(),
-                 Option("--flags", "also write a CSV of the flagged fits here", Path,
-                        default=None),
                  *section_outputs()),
         run=_report_raw),
     Command(

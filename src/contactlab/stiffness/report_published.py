@@ -18,7 +18,7 @@ import pandas as pd
 import xarray as xr
 
 from contactlab.published import read_published
-from contactlab.report.section import Section
+from contactlab.report.section import ReportSection
 from contactlab.stiffness.compare import COMPARED_TABLES, THESIS_DISCREPANCIES, comparison
 
 __all__ = ["build_section"]
@@ -161,43 +161,19 @@ def _mean_row_figure(ds: xr.Dataset) -> plt.Figure:
 
 def build_section(summary_path: Path, tables_dir: Path, report_dir: Path, out: Path, *,
                   published_dir: Path | None = None) -> None:
-    """Write ``20_stiffness_published.html`` with its comparison tables and figures."""
-    report_dir = Path(report_dir)
-    section = Section("Contact stiffness: thesis tables from the published per-step values",
-                      "stiffness-published", report_dir)
+    """Write ``20_stiffness_published.html`` with its comparison tables and figures
+    (``contactlab/report/sections/20_stiffness_published.yaml``)."""
+    section = ReportSection("20_stiffness_published", report_dir)
     with xr.open_dataset(summary_path) as ds_file:
         ds = ds_file.load()
-    section.paragraph(
-        "Tables 2.1-2.4 and 2.7-2.10 recomputed by the aggregation code (contactlab.stiffness."
-        "aggregate) from the published per-step values only: the tangential fit parameters of "
-        "Appendix A (alpha_t, beta_t, Qs and margins, Tables A.2-A.37), the normal fit "
-        "parameters of Tables 2.1/2.7 (beta_n, P0 and margins), the loads of the test sheet "
-        "and Seq from the published Sq. 'from_published_steps' = this recomputation. Units: "
-        "kN, um, mm (Kn/An and Kt0/An in kN/mm3, beta in 1/um, Pn/An in kN/mm2).")
-    section.paragraph(
-        "Error model (sec. 2.5) as implemented: Kn = beta_n(|Pn| - P0) (eq. 2.4) with eq. "
-        "(2.8) and dPn/Pn = sqrt(0.01^2 + (0.135 MPa/pn)^2), pn = Pn/6.5 cm^2; Kt0 = -beta_t Qs "
-        "with eq. (2.9) on the fit margins; f = |Qs/Pn| with eq. (2.10), dQs + 1%|Qs| and the "
-        "tangential-step load error sqrt(0.01^2 + (0.135 MPa/pn + 0.01)^2); means over the "
-        "steps whose Kt0 margin is under 50% with the addition rule d = sqrt(sum d_i^2)/n; "
-        f"Cc = Kt0/Kn by the division rule. tangential_pressure = "
-        f"{ds.attrs.get('tangential_pressure', '?')}.")
-    section.note(
-        "Finding: the published friction margins (all 85 steps of Appendix A, hence Tables "
-        "2.2/2.8) are reproduced only with the gauge pressure pn = Pn x 6.5 cm^2 / 10 "
-        "(2.6 MPa at 4 kN), i.e. the load multiplied by the piston area instead of divided "
-        "(6.15 MPa at 4 kN as sec. 2.5.2 states). This section uses the published convention "
-        "('multiply') so the tables can be checked; with the text's formula the f margins at "
-        "4 kN are 5-11% smaller. The Kn margins of Tables 2.1/2.7 follow the text.")
-    section.note(
-        "Cells the aggregation does not reproduce (thesis inconsistencies, see the status "
-        "column): " + "; ".join(f"Table {k[0]} {k[1]} {k[2]} {k[3]}: {v}"
-                                  for k, v in THESIS_DISCREPANCIES.items()) + ".")
-    section.paragraph(
-        "Covariance: the thesis neglects the covariance of the fit parameters (sec. 2.5.1, "
-        "footnote 2). The aggregation also gives every margin with the covariance kept "
-        "(columns *_moe_cov) when the per-step tables carry the correlation of (beta_t, Qs) "
-        "or (beta_n, P0); the published tables print none, so those columns are empty here.")
+    section.paragraph("method")
+    section.paragraph("error_model",
+                      tangential_pressure=ds.attrs.get("tangential_pressure", "?"))
+    section.note("gauge_pressure")
+    section.note("discrepancies", cells="; ".join(
+        section.say("discrepancy", table=table, test=test, row=row, column=column, why=why)
+        for (table, test, row, column), why in THESIS_DISCREPANCIES.items()))
+    section.paragraph("covariance")
     counts = []
     for table in COMPARED_TABLES:
         cmp = comparison(table, _ours(tables_dir, table), published_dir)
@@ -207,11 +183,8 @@ def build_section(summary_path: Path, tables_dir: Path, report_dir: Path, out: P
                        "within input rounding": int(cmp["status"].str.startswith("within")
                                                     .sum()),
                        "thesis discrepancy": int(cmp["status"].str.startswith("thesis").sum())})
-        section.table(cmp, f"Table {table}: published, recomputed from published steps, "
-                           "difference (recomputed - published) and status",
-                      report_dir / "tables" / f"compare_{table}{SUFFIX}.csv", digits=4)
-    section.table(pd.DataFrame(counts), "Cells per table by status",
-                  report_dir / "tables" / f"compare_counts{SUFFIX}.csv", digits=0)
+        section.table(cmp, "compare_{table}_from_published_steps", digits=4, table=table)
+    section.table(pd.DataFrame(counts), "compare_counts_from_published_steps", digits=0)
 
     ground = [t for t in ("RU1", "RU2", "RU3", "SU1", "SU2", "SU3") if t in ds["test"].values]
     structured = [t for t in ("S1", "S2", "S3") if t in ds["test"].values]
@@ -223,38 +196,23 @@ def build_section(summary_path: Path, tables_dir: Path, report_dir: Path, out: P
         xs = {k: pn_an.loc[v].to_numpy() for k, v in groups.items()}
         section.figure(_normal_figure(ds, groups, xs, "-Pn/An (kN/mm2)",
                                       _pub("2.1", published_dir)),
-                       "Like Fig. 2.40: normal contact stiffness per nominal area at the test's "
-                       "maximum load (top) and beta_n (bottom) of the ground tests, loading "
-                       "(left) and unloading (right); circles recomputed, crosses published",
-                       report_dir / "figures" / "stiffness_fig_2_40_from_published_steps.png")
+                       "stiffness_fig_2_40_from_published_steps")
         section.figure(_tangential_figure(ds, groups, xs, "-Pn/An (kN/mm2)",
                                           _pub("2.2", published_dir)),
-                       "Like Fig. 2.41: mean Kt0/An, mean |beta_t| and mean f (all steps "
-                       "with Kt0 margin under 50%) of the ground tests against -Pn/An",
-                       report_dir / "figures" / "stiffness_fig_2_41_from_published_steps.png")
+                       "stiffness_fig_2_41_from_published_steps")
         section.figure(_coupling_figure(ds, groups, xs, "-Pn/An (kN/mm2)",
                                         _pub("2.4", published_dir)),
-                       "Like Fig. 2.42: Cc = mean Kt0 / mean Kn of the ground tests",
-                       report_dir / "figures" / "stiffness_fig_2_42_from_published_steps.png")
+                       "stiffness_fig_2_42_from_published_steps")
     if structured:
         wl = read_published("2.7", published_dir).drop_duplicates("test").set_index("test")
         x = wl.loc[structured, "texture_wavelength"].to_numpy(dtype=float)
         section.figure(_normal_figure(ds, {"structured (S)": structured},
                                       {"structured (S)": x}, "texture wavelength (um)",
                                       _pub("2.7", published_dir)),
-                       "Like Fig. 2.60: Kn/An at 8 kN and beta_n of the structured tests "
-                       "against the texture wavelength; circles recomputed, crosses published",
-                       report_dir / "figures" / "stiffness_fig_2_60_from_published_steps.png")
+                       "stiffness_fig_2_60_from_published_steps")
         groups = {"structured (S)": structured}
         section.figure(_tangential_figure(ds, groups, {"structured (S)": x},
                                           "texture wavelength (um)", _pub("2.8", published_dir)),
-                       "Like Fig. 2.61: mean Kt0/An, mean |beta_t| and mean f of the "
-                       "structured tests against the texture wavelength",
-                       report_dir / "figures" / "stiffness_fig_2_61_from_published_steps.png")
-    section.figure(_mean_row_figure(ds),
-                   "Kt0/An per step: the fit value with its eq. (2.9) margin (circles; filled "
-                   "loading, open unloading; bars limited to +/- the value) beside the "
-                   "published mean-row value with its Student-t 95% margin (squares) and the "
-                   "range of the per-row values (grey), sec. 2.5.4, Tables A.4-A.39",
-                   report_dir / "figures" / "stiffness_mean_row_from_published_steps.png")
+                       "stiffness_fig_2_61_from_published_steps")
+    section.figure(_mean_row_figure(ds), "stiffness_mean_row_from_published_steps")
     section.write(out)

@@ -17,9 +17,8 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from contactlab.io import write_table
 from contactlab.published import per_step_fits, read_published
-from contactlab.report.section import Section, save_figure
+from contactlab.report.section import ReportSection, save_figure
 from contactlab.stiffness.compare import (
     MARGIN_CHECKS,
     margins_with_covariance,
@@ -30,7 +29,12 @@ from contactlab.stiffness.compare import (
 from contactlab.stiffness.process import flagged_steps
 from contactlab.stiffness.recovery import recovery_table
 
-__all__ = ["build_section", "summary_figure", "test_figures"]
+__all__ = ["TEST_FIGURES", "build_section", "summary_figure", "test_figures"]
+
+#: The figures of one test, by their stems in section 21's declaration
+#: (``contactlab/report/sections/21_stiffness_raw.yaml``), in the order drawn.
+TEST_FIGURES = ("stiffness_raw_{test}_normal", "stiffness_raw_{test}_tangential",
+                "stiffness_raw_{test}_steps", "stiffness_raw_{test}_mean_row")
 
 def _published_normal(test: str, published_dir: Path | None) -> pd.DataFrame:
     table = pd.concat([read_published("2.1", published_dir), read_published("2.7",
@@ -57,14 +61,14 @@ def _published_mean_row(test: str, published_dir: Path | None) -> pd.DataFrame:
 
 
 def test_figures(result: Path, out_dir: Path, published_dir: Path | None = None) -> list[Path]:
-    """Write the four figures of one test; return their PNG paths."""
+    """Write the four figures of one test (:data:`TEST_FIGURES`) in ``out_dir``; return
+    their PNG paths."""
     with xr.open_dataset(result) as opened:
         ds = opened.load()
     test = str(ds.attrs["test"])
     area = float(ds.attrs["nominal_area_mm2"])
     out_dir = Path(out_dir)
-    paths = [out_dir / f"stiffness_raw_{test}_{name}.png"
-             for name in ("normal", "tangential", "steps", "mean_row")]
+    paths = [out_dir / f"{stem.format(test=test)}.png" for stem in TEST_FIGURES]
     kind = ds["kind"].values.astype(str)
     direction = ds["direction"].values.astype(str)
     step_of = ds["frame_step"].values
@@ -247,44 +251,29 @@ def summary_figure(summary: xr.Dataset, published_dir: Path | None, png: Path) -
 
 
 def build_section(results: list[Path], summary_path: Path, report_dir: Path, out: Path,
-                  published_dir: Path | None = None, flags_out: Path | None = None) -> None:
-    """Write section 21: comparison, recovery and flag tables, summary and per-test figures.
+                  published_dir: Path | None = None) -> None:
+    """Write section 21: comparison, recovery and flag tables, summary and per-test figures
+    (``contactlab/report/sections/21_stiffness_raw.yaml``).
 
     Every table is written, empty when there is nothing to show (e.g. no thesis test to
     recover), so the workflow's declared outputs always exist.
     """
-    report_dir = Path(report_dir)
-    tables_dir = report_dir / "tables"
-    section = Section("Contact stiffness from raw data vs the thesis", "stiffness-raw",
-                      report_dir)
+    tables_dir = Path(report_dir) / "tables"
+    section = ReportSection("21_stiffness_raw", report_dir)
     demo = []
     for path in results:
         with xr.open_dataset(path) as ds:
             if int(ds.attrs.get("reconstructed", 0)):
                 demo.append(str(ds.attrs["test"]))
     if demo:
-        section.note(
-            f"The raw data of {', '.join(demo)} are RECONSTRUCTED: synthetic DIC fields and "
-            "load logs generated from the published fits (Tables 2.1, 2.7, A.2-A.39) "
-            "with calibrated noise (contactlab demo dataset, results/demo/). They "
-            "test that the pipeline recovers the thesis; they are not measurements."
-        )
-    section.paragraph(
-        "Each test's frames are reduced to contact displacements uc, vc (sec. 2.3.2), each "
-        "loading and unloading step is fitted with eq. (2.2) or (2.3) by least squares "
-        "(lmfit), and the aggregation of sec. 2.5 gives Tables 2.1-2.4 and 2.7-2.10. "
-        "Below: every published number next to ours from raw data and the difference; "
-        "'_cov' columns in the table CSVs give margins with the fit covariance kept."
-    )
+        section.caveat("reconstructed", tests=", ".join(demo))
+    section.paragraph("method")
     flags = [f for path in results for f in _flags(path)]
-    flag_table = pd.DataFrame({"flagged_fit": flags})
-    if flags_out is not None:
-        write_table(flag_table, flags_out)
+    section.table_file(pd.DataFrame({"flagged_fit": flags}), "stiffness_raw_flagged_fits")
     if flags:
-        section.note(f"{len(flags)} fit(s) flagged as not converged (kept out of the means): "
-                     + "; ".join(flags))
+        section.note("flagged", count=len(flags), fits="; ".join(flags))
     else:
-        section.paragraph("All step fits converged.")
+        section.paragraph("all_converged")
 
     recovery = recovery_table(results, published_dir)
     per_test = pd.DataFrame(columns=["test", "fraction_within", "steps_within", "steps"])
@@ -292,15 +281,11 @@ def build_section(results: list[Path], summary_path: Path, report_dir: Path, out
         per_test = recovery.groupby("test", sort=False)["within_margins"].agg(
             ["mean", "sum", "count"]).reset_index().rename(
             columns={"mean": "fraction_within", "sum": "steps_within", "count": "steps"})
-        overall = float(recovery["within_margins"].mean())
-        section.paragraph(
-            f"Recovery of the published per-step parameters (alpha, beta, P0 or Qs all within "
-            f"the published 95% margins): {recovery['within_margins'].sum()} of "
-            f"{len(recovery)} steps ({100 * overall:.1f}%)."
-        )
-    section.table(per_test, "Recovery per test: steps whose fitted parameters lie within "
-                  "the published margins", tables_dir / "stiffness_raw_recovery_by_test.csv")
-    write_table(recovery, tables_dir / "stiffness_raw_recovery.csv")
+        section.paragraph("recovery", within=recovery["within_margins"].sum(),
+                          steps=len(recovery),
+                          percent=100 * float(recovery["within_margins"].mean()))
+    section.table(per_test, "stiffness_raw_recovery_by_test")
+    section.table_file(recovery, "stiffness_raw_recovery")
 
     ours = {t: table for t in MARGIN_CHECKS
             if (table := read_recomputed(t, tables_dir)) is not None}
@@ -308,45 +293,30 @@ def build_section(results: list[Path], summary_path: Path, report_dir: Path, out
     by_quantity = cells.groupby("quantity", sort=False)["within"].agg(
         ["sum", "count"]).reset_index().rename(columns={"sum": "within", "count": "cells"})
     if len(cells):
-        section.paragraph(
-            f"Per-test summaries from raw data within the published 95% margins: "
-            f"{int(cells['within'].sum())} of {len(cells)} values (Tables 2.1, 2.2, 2.4, "
-            "2.7-2.9).")
-    section.table(by_quantity, "Summary values within the published margins, by quantity",
-                  tables_dir / "stiffness_raw_summary_margins_by_quantity.csv")
-    write_table(cells, tables_dir / "stiffness_raw_summary_margins.csv")
+        section.paragraph("margins", within=int(cells["within"].sum()), cells=len(cells))
+    section.table(by_quantity, "stiffness_raw_summary_margins_by_quantity")
+    section.table_file(cells, "stiffness_raw_summary_margins")
     outside = cells[~cells["within"].astype(bool)]
     if len(outside):
-        section.note("Outside the published margin: " + "; ".join(
-            f"Table {r.table} {r.test} {r.key} {r.quantity}" for r in outside.itertuples()))
+        section.note("outside", cells="; ".join(
+            section.say("outside_cell", table=r.table, test=r.test, key=r.key,
+                        quantity=r.quantity) for r in outside.itertuples()))
 
-    section.table(raw_vs_published(tables_dir, published_dir),
-                  "Tables 2.1-2.4 and 2.7-2.10: every published number, recomputed from the "
-                  "published per-step values, ours from raw data and the difference "
-                  "(raw - published)", tables_dir / "stiffness_raw_vs_published.csv")
+    section.table(raw_vs_published(tables_dir, published_dir), "stiffness_raw_vs_published")
     covariance = margins_with_covariance(tables_dir)
     if len(covariance):
-        section.paragraph(
-            "The thesis propagates margins without the covariance of the fit parameters "
-            "(sec. 2.5.1, footnote 2). With the covariance of each fit kept (beta_n with P0, "
-            "beta_t with Qs, strongly correlated), the margins of Kn, Kt0 and Cc shrink:")
-    section.table(covariance, "Margins from raw data: covariance neglected (thesis rule) "
-                  "and kept", tables_dir / "stiffness_raw_margins_covariance.csv")
+        section.paragraph("covariance")
+    section.table(covariance, "stiffness_raw_margins_covariance")
     with xr.open_dataset(summary_path) as summary:
         summary_figure(summary.load(), published_dir,
-                       report_dir / "figures" / "stiffness_raw_summary.png")
-    section.image(report_dir / "figures" / "stiffness_raw_summary.png",
-                  "Kn, Kt0, f and Cc from raw data vs published")
+                       section.figure_path("stiffness_raw_summary"))
+    section.image("stiffness_raw_summary")
     for path in results:
-        test_figures(path, report_dir / "figures", published_dir)
+        test_figures(path, Path(report_dir) / "figures", published_dir)
         with xr.open_dataset(path) as ds:
             test = str(ds.attrs["test"])
-        for name, caption in (("normal", "normal steps (like Figs 2.8-2.13)"),
-                              ("tangential", "tangential steps (like Figs 2.14, 2.15)"),
-                              ("steps", "per-step f, beta_t, Kt0 (like Figs 2.16, 2.17)"),
-                              ("mean_row", "mean-row Kt0 (like Fig. 2.17 bottom)")):
-            section.image(report_dir / "figures" / f"stiffness_raw_{test}_{name}.png",
-                          f"Test {test}: {caption}")
+        for stem in TEST_FIGURES:
+            section.image(stem, test=test)
     section.write(out)
 
 

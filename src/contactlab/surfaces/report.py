@@ -15,18 +15,11 @@ import pandas as pd
 import xarray as xr
 
 from contactlab.published import read_published
-from contactlab.report.section import Section
+from contactlab.report.section import ReportSection
 from contactlab.surfaces.texture import AREAL, PROFILE, refused_scans
 
 #: Thesis tables that print Seq per test (ground and structured tests).
 SEQ_TABLES = ("2.3", "2.10")
-#: Stated tolerances of the comparison with the published values (docs/FINDINGS.md,
-#: Surface texture).
-TOLERANCES = {
-    "Sq": "1 %", "Sa": "3 %", "Sp": "2 %", "Str": "+-(0.1 Str + 0.02)",
-    "Rq": "1 %", "Ra": "3 %", "Rz": "30 % (20x), 10 % (100x)",
-    "fractal dimension": "+-0.08 absolute (the thesis does not state its method)",
-}
 
 
 def published_seq(directory: Path | None = None) -> pd.DataFrame:
@@ -212,11 +205,11 @@ def _spectra_figure(datasets: dict[str, xr.Dataset]) -> plt.Figure:
 def build_section(seq_path: Path, report_dir: Path, published_dir: Path | None,
                   out: Path, texture_path: Path | None = None,
                   surface_dir: Path | None = None) -> None:
-    """Write the surfaces section with its tables and figures."""
+    """Write the surfaces section with its tables and figures
+    (``contactlab/report/sections/10_surfaces.yaml``)."""
     with xr.open_dataset(seq_path) as seq:
         table = seq_comparison(seq.load(), published_seq(published_dir))
-    section = Section("Surfaces: texture from scans and equivalent roughness Seq", "surfaces",
-                      report_dir)
+    section = ReportSection("10_surfaces", report_dir)
     if texture_path is not None:
         with xr.open_dataset(texture_path) as texture:
             texture = texture.load()
@@ -225,100 +218,35 @@ def build_section(seq_path: Path, report_dir: Path, published_dir: Path | None,
         texture = texture.drop_vars(["undefined_reason", "parameter", "refused_reason", "scan"])
         synthetic = [str(s) for s, flag in zip(texture["surface"].values,
                                                texture["synthetic"].values, strict=True) if flag]
-        section.paragraph(
-            "Every surface is evaluated from its scan file(s) named in the surface sheet, as in "
-            "sec. 2.3.4: least-squares plane (areal) or line (profile) removed, Gaussian filter "
-            "with the cut-off lambda_c (ISO 16610-21/61, end-corrected), areal parameters per "
-            "ISO 25178-2 over the scan (2 mm^2), profile parameters per ISO 4287 on 5 lines "
-            "of the stated length and direction, 10 % discarded at each end, averaged over "
-            "sampling lengths and lines. The sampling length is lambda_c (ISO 4288) unless the "
-            "sheet states one: the 100x profiles of Table 2.6 use 160 um, five sampling lengths "
-            "over their 0.8 mm evaluation length (ISO 4288's default number), because on "
-            "sampling lengths = lambda_c (30 pixels of 167 nm for S3) no profile with S3's "
-            "Ra/Rq reaches its published Rz (at most 6.3 Rq against 6.9 Rq)."
-        )
+        section.paragraph("method")
         if len(refused):
-            section.note(
-                f"{len(refused)} scan(s) were refused and not evaluated: their surfaces' "
-                "parameters are missing (NaN) in the tables below. The reasons are listed in "
-                "the table that follows; fix or replace the scan, or change the setting the "
-                "reason names."
-            )
-            section.table(refused, "Refused scans and why (no parameters from them)",
-                          report_dir / "tables" / "surfaces_refused.csv")
+            section.note("refused", count=len(refused))
+            section.table(refused, "surfaces_refused")
+        else:
+            section.table_file(refused, "surfaces_refused")
         if synthetic:
-            section.note(
-                f"{len(synthetic)} of {texture.sizes['surface']} surfaces are evaluated from "
-                "SYNTHETIC demo scans (seeded, by the rule surfaces_demo_scans): self-affine "
-                "surfaces made to have the published Sq, Sa/Sq, Sp and Str (areal) and Rq, "
-                "Ra/Rq (profiles; 100x also Rz), with the grooves of Table 2.6 on the structured "
-                "specimens. "
-                "Agreement with the published values therefore checks the analysis chain "
-                "(reading, filtering, parameters), not the thesis's measurements. Replace the "
-                "scan paths in the surface sheet by real scans to analyse those."
-            )
-        areal = areal_comparison(texture, published_dir)
-        section.table(areal, "Areal parameters (Tables A.1, A.27): ours beside published; "
-                      "Sa, Sq in nm, Sp in um", report_dir / "tables" / "surfaces_areal.csv")
-        profile = profile_comparison(texture, published_dir)
-        section.table(profile, "Profile parameters (Tables A.1, A.26): ours beside published; "
-                      "Ra, Rq in nm, Rz in um", report_dir / "tables" / "surfaces_profile.csv")
-        structured = structured_comparison(texture, published_dir)
-        section.table(structured, "Structured specimens, 100x profiles normal to the grooves "
-                      "(Table 2.6): ours beside published",
-                      report_dir / "tables" / "surfaces_100x.csv")
-        section.paragraph(
-            "Stated tolerances against the published values: "
-            + "; ".join(f"{k}: {v}" for k, v in TOLERANCES.items())
-            + ". Rz of the 20x synthetic profiles follows from their height distribution and "
-            "is not tuned; the 100x profiles are grooves plus per-pixel height noise whose "
-            "power transform and saturation are calibrated to the Ra/Rq and Rz/Rq of "
-            "Table 2.6. The "
-            "thesis does not state how its fractal dimension was computed; ours is cube "
-            "counting in physical units, which also gives values just above 2."
-        )
-        section.table(other_surfaces(texture, published_dir),
-                      "Surfaces not in the thesis's tables (own scans): Sa, Sq, Sp, Ra, Rq, Rz "
-                      "in um", report_dir / "tables" / "surfaces_other.csv")
-        limit = 100 * float(texture.attrs["max_undefined_fraction"])
+            section.caveat("synthetic", count=len(synthetic), total=texture.sizes["surface"])
+        section.table(areal_comparison(texture, published_dir), "surfaces_areal")
+        section.table(profile_comparison(texture, published_dir), "surfaces_profile")
+        section.table(structured_comparison(texture, published_dir), "surfaces_100x")
+        section.paragraph("tolerances")
+        section.table(other_surfaces(texture, published_dir), "surfaces_other")
         filled = filled_table(texture)
-        section.paragraph(
-            "Undefined (not measured) scan points are filled by harmonic interpolation (each "
-            "filled height the mean of its four neighbours, SurfaceTopography), as instrument "
-            "software fills non-measured points, when they are at most "
-            f"{limit:g} % of a scan (setting surfaces: max_undefined_fraction); a scan with more "
-            "is refused. "
-            + (f"{len(filled)} surface(s) had points filled (table below)." if len(filled)
-               else "No scan had undefined points.")
-        )
-        section.table(filled, "Scans with filled undefined points (% of the scan's points)",
-                      report_dir / "tables" / "surfaces_filled.csv")
-        section.table(undefined, "Parameters that ISO leaves undefined for a scan (NaN, not "
-                      "a number, in the results and tables above), and why",
-                      report_dir / "tables" / "surfaces_undefined.csv")
+        section.paragraph("undefined", limit=100 * float(texture.attrs["max_undefined_fraction"]),
+                          filled=section.say("filled", count=len(filled)) if len(filled)
+                          else section.say("none_filled"))
+        section.table(filled, "surfaces_filled")
+        section.table(undefined, "surfaces_undefined")
         if surface_dir is not None:
             datasets = {}
             for surface in texture["surface"].values:
                 with xr.open_dataset(Path(surface_dir) / f"{surface}.nc") as ds:
                     datasets[str(surface)] = ds.load()
-            section.figure(_maps_figure(datasets), "Roughness surface of every areal scan",
-                           report_dir / "figures" / "surfaces_maps.png")
-            section.figure(_profiles_figure(datasets),
-                           "First roughness profile of each profile-only scan "
-                           "(structured specimens, 20x and 100x)",
-                           report_dir / "figures" / "surfaces_profiles.png")
-            section.figure(_spectra_figure(datasets),
-                           "Power spectra and height distributions of the areal scans",
-                           report_dir / "figures" / "surfaces_spectra.png")
-    section.paragraph(
-        "Seq = sqrt(Sq_specimen^2 + Sq_pad^2) (eq. 2.1) of the imaged interface of each test "
-        "(specimen and pad sides named in the test sheet): Seq from the published areal Sq "
-        "of Tables A.1 and A.27, Seq_scan from the Sq computed from the scans, beside the Seq "
-        "printed in Tables 2.3 and 2.10. beta_n is the published loading value (Tables 2.1, "
-        "2.7). Units: um (beta_n 1/um, beta_n*Seq dimensionless)."
-    )
-    section.table(table, "Seq per test: ours and published (um)",
-                  report_dir / "tables" / "seq.csv")
+            section.figure(_maps_figure(datasets), "surfaces_maps")
+            section.figure(_profiles_figure(datasets), "surfaces_profiles")
+            section.figure(_spectra_figure(datasets), "surfaces_spectra")
+    section.paragraph("seq")
+    section.table(table, "seq")
     fig, ax = plt.subplots(figsize=(6, 3.2))
     x = np.arange(len(table))
     width = 0.27 if "Seq_scan" in table else 0.4
@@ -329,6 +257,5 @@ def build_section(seq_path: Path, report_dir: Path, published_dir: Path | None,
     ax.set_xticks(x, table["test"])
     ax.set_ylabel("Seq (um)")
     ax.legend(frameon=False, fontsize=7)
-    section.figure(fig, "Equivalent roughness of each test interface",
-                   report_dir / "figures" / "seq.png")
+    section.figure(fig, "seq")
     section.write(out)

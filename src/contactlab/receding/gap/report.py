@@ -10,17 +10,7 @@ import pandas as pd
 import xarray as xr
 
 from contactlab.receding.core.summary import sweep_counts, unsolved_points
-from contactlab.report.section import Section
-
-FIGURES = {
-    "regimes": "receding_gap_regimes.png",
-    "zones": "receding_gap_zones.png",
-    "densities": "receding_gap_densities.png",
-    "tractions": "receding_gap_tractions.png",
-    "displacements": "receding_gap_displacements.png",
-}
-TABLES = {"points": "receding_gap_points.csv", "thresholds": "receding_gap_thresholds.csv",
-          "summary": "receding_gap_summary.csv"}
+from contactlab.report.section import ReportSection
 
 
 def _open(path: Path) -> xr.Dataset:
@@ -196,93 +186,48 @@ def thresholds_table(regimes: xr.Dataset, every: int = 1) -> pd.DataFrame:
     return table.iloc[::every].reset_index(drop=True)
 
 
-def _diagnostics_note(sweeps: list[xr.Dataset]) -> str:
+def _diagnostics_note(section: ReportSection, sweeps: list[xr.Dataset]) -> str:
     """What the summary table counts, and every point left failed or inadmissible."""
     parts = []
     for one in sweeps:
         counts = sweep_counts(one)
         left = unsolved_points(one)
         shown_as_is = int(one.attrs.get("refine_max_n", one.attrs["N"])) == one.attrs["N"]
-        text = (f"N = {one.attrs['N']}{' (not refined)' if shown_as_is else ''}: "
-                f"{counts['points']} points, {counts['solved']} solved "
-                f"and within the check tolerance ({counts['stick_zone_limit']} in the limit "
-                f"of a vanishing stick zone, {counts['refined']} after raising N, "
-                f"{counts['continuation']} from a neighbour), {counts['failed']} not "
-                f"converged, {counts['inadmissible']} converged but outside the tolerance")
+        text = section.say("sweep_counts", N=one.attrs["N"], **counts,
+                           not_refined=section.say("not_refined") if shown_as_is else "")
         if left:
-            shown = left if len(left) <= 12 else [*left[:12], f"... {len(left) - 12} more"]
+            shown = left if len(left) <= 12 else [*left[:12],
+                                                  section.say("more", count=len(left) - 12)]
             text += " -- " + "; ".join(shown)
         parts.append(text)
-    return (
-        "; ".join(parts) + ". Checks run between the nodes on a dense grid; the typical "
-        "misses, a few 1e-3 p next to the kink of eq. (5.19) at |x| = b, fall with N, so "
-        "such points are solved again at larger N (flag refined; the largest check at the "
-        "sweep's N stays in the result as max_check_at_n). Where the central stick zone a1 "
-        "is below anything the log map resolves (near f_sep and as f -> 0) the slip regime "
-        "is solved in its limit a1 -> 0: a log-singular glide density carries the jump of "
-        "the shear traction at x = 0, a1 is reported as 0 and its size by matching as "
-        "log10_a1 (flag stick_zone_limit). Every point keeps its residual, checks and flags "
-        "in the results file."
-    )
+    return section.say("diagnostics", sweeps="; ".join(parts))
 
 
 def build_section(sweep_path: Path, compare_paths: list[Path], regimes_path: Path,
                   profile_paths: list[Path], report_dir: Path, out: Path,
                   f_fixed: float = 0.5, w_fixed: float = 2.5) -> None:
-    """Write the section with Figs 5.4-5.8 and two tables."""
-    report_dir = Path(report_dir)
+    """Write the section with Figs 5.4-5.8 and three tables
+    (``contactlab/report/sections/50_receding_gap.yaml``)."""
     sweep = _open(sweep_path)
     sweeps = [sweep] + [_open(p) for p in compare_paths]
     regimes = _open(regimes_path)
     profiles = [_open(p) for p in profile_paths]
-    figures = report_dir / "figures"
-    tables = report_dir / "tables"
-    section = Section("Receding contact: layer with a gap in the pressure (ch. 5)",
-                      "receding-gap", report_dir)
+    section = ReportSection("50_receding_gap", report_dir)
     onset = float(regimes["w_onset"]) if "w_onset" in regimes else np.nan
-    section.paragraph(
-        "A layer of thickness c pressed on a half-plane of the same material by a pressure p "
-        "everywhere except on |x| < w (Fig. 5.1), solved with distributed glide and climb "
-        "dislocations (eqs 5.1-5.28, Green's functions of App. B.1). Lengths in c, tractions "
-        "in p; dislocation densities and displacements scaled by 2 mu/((kappa+1) p) and "
-        "2 mu/((kappa+1) p c). The solution does not depend on the load level."
-    )
-    section.paragraph(
-        "Regimes: stick everywhere for f >= f_stick(w), slip without separation for "
-        "f_sep(w) < f < f_stick(w), slip and separation below f_sep(w). f_stick is the "
-        "largest |S/N| of the bilateral tractions; f_sep is found by root finding, not on "
-        "the grid: the slip branch is followed down in f until the centre normal traction "
-        "N(0) reaches zero, while its central stick zone a1 collapses faster than any power "
-        "(about 1e-6 c at f = 0.8 and 1e-14 c at f = 0.7 for w/c = 2.5), and the separation "
-        "branch b(f), b^2 nearly linear in f, is extrapolated to b = 0. "
-        + (f"Separation is possible (for small enough f) only for w/c > {onset:.5f}: the "
-           "frictionless limit (Fourier solution) puts the centre in tension there; the "
-           "thesis states no separation for w/c <= 1.5."
-           if np.isfinite(onset) else "")
-    )
-    section.note(_diagnostics_note(sweeps))
-    section.figure(regime_figure(regimes, sweep),
-                   "Solution regimes against w/c and f (cf. Fig. 5.4); hollow squares: slip "
-                   "solutions with the central stick zone in its limit a1 -> 0",
-                   figures / FIGURES["regimes"])
-    section.figure(zones_figure(sweeps, f_fixed, w_fixed),
-                   f"Transition points: against w/c at f = {f_fixed} (top), against f at "
-                   f"w/c = {w_fixed} for each N (bottom) (cf. Fig. 5.5)",
-                   figures / FIGURES["zones"])
+    section.paragraph("problem")
+    section.paragraph("regimes",
+                      onset=section.say("onset", onset=onset) if np.isfinite(onset) else "")
+    section.note_text(_diagnostics_note(section, sweeps))
+    section.figure(regime_figure(regimes, sweep), "receding_gap_regimes")
+    section.figure(zones_figure(sweeps, f_fixed, w_fixed), "receding_gap_zones",
+                   f_fixed=f_fixed, w_fixed=w_fixed)
     main = min(profiles, key=lambda p: abs(p.attrs["w_hat"] - w_fixed)
                + abs(p.attrs["f"] - f_fixed))
-    section.figure(densities_figure(main), "Climb and glide dislocation densities "
-                   "(cf. Fig. 5.6)", figures / FIGURES["densities"])
-    section.figure(tractions_figure(main), "Interface tractions (cf. Fig. 5.7)",
-                   figures / FIGURES["tractions"])
-    section.figure(displacements_figure(main), "Separation and slip (cf. Fig. 5.8)",
-                   figures / FIGURES["displacements"])
-    section.table(points_table(profiles), "Transition points and solver diagnostics at the "
-                  "profile points", tables / TABLES["points"], digits=4)
-    section.table(summary_table(sweeps), "How the sweep points were solved: solved (plain, "
-                  "in the stick-zone limit, from a neighbour, after raising N), failed, "
-                  "inadmissible", tables / TABLES["summary"], digits=0)
+    section.figure(densities_figure(main), "receding_gap_densities")
+    section.figure(tractions_figure(main), "receding_gap_tractions")
+    section.figure(displacements_figure(main), "receding_gap_displacements")
+    section.table(points_table(profiles), "receding_gap_points", digits=4)
+    section.table(summary_table(sweeps), "receding_gap_summary", digits=0)
     every = max(1, regimes["w_hat"].size // 10)
-    section.table(thresholds_table(regimes, every), "Friction thresholds of the regime map",
-                  tables / TABLES["thresholds"], digits=4)
+    section.table(thresholds_table(regimes, every), "receding_gap_thresholds", digits=4)
     section.write(out)

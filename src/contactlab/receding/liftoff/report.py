@@ -15,7 +15,7 @@ import xarray as xr
 from contactlab.receding.core.solution import FLAGS
 from contactlab.receding.core.summary import sweep_counts, unsolved_points
 from contactlab.receding.liftoff.sweep import WIDE_FIT_BASIS, wide_fits
-from contactlab.report.section import Section
+from contactlab.report.section import ReportSection
 
 LAW_NAMES = {"uniform": "constant (A1)", "hertz": "Hertzian (A2)", "punch": "flat punch (A3)"}
 LAW_COLORS = {"uniform": "C0", "hertz": "C1", "punch": "C2", "line": "k"}
@@ -254,59 +254,49 @@ def points_table(profiles: list[xr.Dataset]) -> pd.DataFrame:
     return pd.DataFrame([{k: p.attrs.get(k, np.nan) for k in keys} for p in profiles])
 
 
-def _diagnostics(line: xr.Dataset, patches: dict[str, xr.Dataset]) -> str:
+def _diagnostics(section: ReportSection, line: xr.Dataset, patches: dict[str, xr.Dataset]
+                 ) -> str:
+    """The note on the sweeps: how many points converged, the checks, every point left
+    failed or inadmissible and how the flagged points were solved."""
     parts = []
     for name, ds in [("line", line), *patches.items()]:
         conv = ds["converged"].values
         err = np.abs(ds["remote_slip_error"].values[conv == 1])
-        parts.append(f"{name}: {int(conv.sum())}/{conv.size} converged, |remote slip "
-                     f"error| <= {np.nanmax(err) if err.size else np.nan:.2e}, largest "
-                     f"residual {np.nanmax(ds['residual'].values):.1e}")
+        parts.append(section.say("sweep_diagnostics", name=name, converged=int(conv.sum()),
+                                 points=conv.size,
+                                 error=np.nanmax(err) if err.size else np.nan,
+                                 residual=np.nanmax(ds["residual"].values)))
         if "regime" in ds:
             nostick = int((ds["regime"].values == 1).sum())
             if nostick:
                 limit = int(((ds["regime"].values == 1) & (conv == 1)).sum())
-                parts[-1] += (f", {nostick} below the critical friction ({limit} of them "
-                              "solved in the limit of a vanishing stick zone)")
+                parts[-1] += section.say("below_critical", count=nostick, limit=limit)
     left = []
     for name, ds, suffix in [("line", line, ""), ("line, Chaise model", line, "_chaise"),
                              *[(k, v, "") for k, v in patches.items()]]:
         if "converged" + suffix in ds:
             left += [f"{name}: {text}" for text in unsolved_points(ds, suffix)]
-    text = "Diagnostics: " + "; ".join(parts) + "."
-    text += (" Every point failed or outside the check tolerance: " + "; ".join(left) + "."
-             if left else " No point is left failed or outside the check tolerance.")
+    sentences = [section.say("diagnostics", sweeps="; ".join(parts)),
+                 section.say("left", points="; ".join(left)) if left
+                 else section.say("none_left")]
     flagged = {name: 0 for name in FLAGS}
     for ds, suffix in [(line, ""), (line, "_chaise"), *[(v, "") for v in patches.values()]]:
         if "flags" + suffix in ds:
             for name, count in sweep_counts(ds, suffix).items():
                 if name in flagged:
                     flagged[name] += count
-    notes = {
-        "stick_zone_limit": "below the critical friction (the first glide node lies ~8.6 "
-                            "lambda/N^2 beyond a) the stick zone is solved in its limit "
-                            "a -> 0 (regime no_stick, a = 0, log10_a by matching)",
-        "continuous_slip_rule": "where the H(b - x)-switched slip rule has no root the "
-                                "friction term sits on every shear row, the same condition "
-                                "since N = 0 beyond b (the Chaise et al. model needs it for "
-                                "f >= 0.7 at N = 500: its missing roots were a property of "
-                                "the switched discretisation, not of the model)",
-        "refined": "points outside the check tolerance are solved again at larger N "
-                   "(n_used; max_check_at_n keeps the check at the sweep's N)",
-        "continuation": "points that failed from their seeds are solved from a solved "
-                        "neighbour",
-    }
-    used = [f"{notes[name]} ({count} points)" for name, count in flagged.items() if count]
+    used = [section.say(f"flag_{name}", count=count) for name, count in flagged.items()
+            if count]
     if used:
-        text += " How points were solved: " + "; ".join(used) + "."
-    return text + " See the summary table for the counts per sweep."
+        sentences.append(section.say("how_solved", ways="; ".join(used)))
+    return " ".join([*sentences, section.say("see_summary")])
 
 
 def build_section(line_path: Path, patch_paths: list[Path], profile_paths: list[Path],
                   report_dir: Path, out: Path, f_wide: float = 0.3, w_fixed: float = 1.0
                   ) -> None:
-    """Write section 51 with the figures and tables of chs 6-7."""
-    report_dir = Path(report_dir)
+    """Write section 51 with the figures and tables of chs 6-7
+    (``contactlab/report/sections/51_receding_line_patch.yaml``)."""
     line = _open(line_path)
     patches = {}
     for path in patch_paths:
@@ -314,52 +304,25 @@ def build_section(line_path: Path, patch_paths: list[Path], profile_paths: list[
         # a user's pressure shape (receding.patches.tables) is named by its file, table_<name>
         patches[Path(path).stem if ds.attrs["problem"] == "table" else ds.attrs["problem"]] = ds
     profiles = [_open(p) for p in profile_paths]
-    figures = report_dir / "figures"
-    tables = report_dir / "tables"
-    section = Section("Receding contact with lift-off at remote points: line load and "
-                      "pressure patches (chs 6-7)", "receding-line-patch", report_dir)
-    section.paragraph(
-        "A layer of thickness c pressed on a half-plane of the same material by a line load "
-        "(ch. 6) or a symmetric pressure on |x| <= w (ch. 7) sticks on |x| < a, slips on "
-        "a < |x| < b and lifts off beyond b with its ends rising at slope k_l. A preformed "
-        "climb density A_y (zero to b, a cubic to e, the remote form -K_T + g(x) beyond) "
-        "carries the remote behaviour; bounded-bounded glide and corrective climb densities "
-        "on [a, inf) and [b, inf) (map xi = a + lambda log(2/(1-s))) satisfy the contact "
-        "conditions, and B_yc(e) = 0 fixes K_T. The stresses of A_y are evaluated for any "
-        "load: the Cauchy part analytically, the rest by graded Gauss quadrature. Lengths in "
-        "c, tractions in T = load per thickness (P/c for the line load), "
-        "K_T = k_l 2 mu/((kappa+1) T). The Chaise et al. model uses bounded-bounded "
-        "densities only."
-    )
-    section.paragraph(
-        "Remote slip relation (eq. 6.32 with the sign of the K term corrected, generalised "
-        "as eq. 7.32): int_0^inf B_x = -1/8 - K_T/2 + (1/4) int_0^b x S dx in the units "
-        "above; 'remote_slip_error' is left minus right side on every solution."
-    )
-    section.note(_diagnostics(line, patches))
-    section.figure(line_zones_figure(line), "Line load: remote slope K_T and transition "
-                   "points a, b against f, with the Chaise et al. model (cf. Fig. 6.3)",
-                   figures / "receding_line_zones.png")
+    section = ReportSection("51_receding_line_patch", report_dir)
+    section.paragraph("problem")
+    section.paragraph("remote_slip")
+    section.note_text(_diagnostics(section, line, patches))
+    section.figure(line_zones_figure(line), "receding_line_zones")
     line_prof = [p for p in profiles if p.attrs.get("problem") == "line"]
     patch_prof = [p for p in profiles if p.attrs.get("problem") != "line"]
     if line_prof:
         lp = min(line_prof, key=lambda p: abs(p.attrs["f"] - 0.5))
         title = f"line load, f = {lp.attrs['f']:g}, N = {lp.attrs['N']}"
-        section.figure(densities_figure(lp, title), "Line load: climb densities B_y, A_y, "
-                       "B_yc and the glide density with its remote form (cf. Fig. 6.4)",
-                       figures / "receding_line_densities.png")
+        section.figure(densities_figure(lp, title), "receding_line_densities")
         section.figure(tractions_figure([lp], ["current model"], chaise=True),
-                       "Line load: tractions, current and Chaise et al. models "
-                       "(cf. Fig. 6.5)", figures / "receding_line_tractions.png")
-        section.figure(displacements_figure(lp, title), "Line load: separation and slip, "
-                       "current and Chaise et al. models, slip at infinity from the remote "
-                       "slip relation (cf. Fig. 6.6)", figures / "receding_line_displacements.png")
+                       "receding_line_tractions")
+        section.figure(displacements_figure(lp, title), "receding_line_displacements")
     near = [p for p in patch_prof if abs(p.attrs["w_hat"] - w_fixed) < 1e-9]
     if near:
         section.figure(tractions_figure(near, [LAW_NAMES.get(p.attrs["law"], p.attrs["law"])
                                                for p in near]),
-                       f"Pressure patches: tractions at w/c = {w_fixed:g} (cf. Fig. 7.2)",
-                       figures / "receding_patch_tractions.png")
+                       "receding_patch_tractions", w_fixed=w_fixed)
     hertz = [p for p in near if p.attrs["law"] == "hertz"] or near
     wide = [p for p in patch_prof if p.attrs["w_hat"] > 5.0]
     dens_prof = wide[0] if wide else (hertz[0] if hertz else None)
@@ -367,37 +330,23 @@ def build_section(line_path: Path, patch_paths: list[Path], profile_paths: list[
         section.figure(densities_figure(dens_prof, f"{dens_prof.attrs['law']}, w/c = "
                                                    f"{dens_prof.attrs['w_hat']:g}, f = "
                                                    f"{dens_prof.attrs['f']:g}"),
-                       "Pressure patch: densities (cf. Figs 7.3 and 7.8)",
-                       figures / "receding_patch_densities.png")
+                       "receding_patch_densities")
     if hertz:
         hp = hertz[0]
         section.figure(displacements_figure(hp, f"{hp.attrs['law']}, w/c = "
                                                 f"{hp.attrs['w_hat']:g}, f = {hp.attrs['f']:g}"),
-                       "Pressure patch: slip and separation (cf. Fig. 7.4)",
-                       figures / "receding_patch_displacements.png")
-    section.figure(patch_zones_figure(patches, w_fixed), "Pressure patches: a and b against "
-                   f"f at w/c = {w_fixed:g} (cf. Fig. 7.5)", figures / "receding_patch_zones.png")
-    section.figure(patch_slope_figure(patches, line, w_fixed), "Remote slope K_T against f "
-                   f"for the patches at w/c = {w_fixed:g} and the line load (cf. Fig. 7.6)",
-                   figures / "receding_patch_slope.png")
+                       "receding_patch_displacements")
+    section.figure(patch_zones_figure(patches, w_fixed), "receding_patch_zones",
+                   w_fixed=w_fixed)
+    section.figure(patch_slope_figure(patches, line, w_fixed), "receding_patch_slope",
+                   w_fixed=w_fixed)
     fits = wide_fits(patches, f_wide)
-    section.figure(wide_figure(patches, line, f_wide, fits), "Wide patches: slope normalised "
-                   "by B1, B2, B3 with the fits of sec. 7.6 (top, cf. Fig. 7.9); transition "
-                   "points relative to the patch edge (bottom, cf. Fig. 7.10)",
-                   figures / "receding_patch_wide.png")
-    section.table(summary_table(line, patches), "How the sweep points were solved: solved "
-                  "(plain, in the stick-zone limit, from a neighbour, after raising N, with "
-                  "the continuous slip rule), failed, inadmissible",
-                  tables / "receding_liftoff_summary.csv", digits=0)
-    section.table(line_table(line), "Line load: transition points, slope and diagnostics",
-                  tables / "receding_line_sweep.csv", digits=4)
-    section.table(points_table(profiles), "Profile points: solutions and diagnostics",
-                  tables / "receding_patch_points.csv", digits=4)
-    section.table(fits, f"Fits of K_B(w) at f = {f_wide:g} (sec. 7.6)",
-                  tables / "receding_patch_fits.csv", digits=4)
+    section.figure(wide_figure(patches, line, f_wide, fits), "receding_patch_wide")
+    section.table(summary_table(line, patches), "receding_liftoff_summary", digits=0)
+    section.table(line_table(line), "receding_line_sweep", digits=4)
+    section.table(points_table(profiles), "receding_patch_points", digits=4)
+    section.table(fits, "receding_patch_fits", digits=4, f_wide=f_wide)
     users = user_shapes_table(patches)
     if len(users):
-        section.table(users, "Your pressure shapes (receding.patches.tables): the shape as "
-                      "given and a, b, K_T over (f, w/c); also drawn in the figures above",
-                      tables / "receding_user_shapes.csv", digits=4)
+        section.table(users, "receding_user_shapes", digits=4)
     section.write(out)

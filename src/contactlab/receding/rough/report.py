@@ -18,7 +18,7 @@ import pandas as pd
 import xarray as xr
 
 from contactlab.receding.core.summary import sweep_counts, unsolved_points
-from contactlab.report.section import Section
+from contactlab.report.section import ReportSection
 
 #: The columns of the FE comparison table (one row per problem, C and transition point).
 FE_COLUMNS = ["problem", "compliance", "quantity", "ddt", "fe", "rel_diff"]
@@ -233,98 +233,54 @@ def fe_figure(fe: xr.Dataset) -> plt.Figure:
     return fig
 
 
-def _diagnostics(sweeps: Sequence[xr.Dataset], pairs: xr.Dataset) -> str:
+def _diagnostics(section: ReportSection, sweeps: Sequence[xr.Dataset], pairs: xr.Dataset
+                 ) -> str:
     parts, left = [], []
     for ds in sweeps:
         counts = sweep_counts(ds)
-        parts.append(f"{ds.attrs['problem']}: {counts['solved']}/{counts['points']} solved "
-                     f"and admissible ({counts['refined']} after raising N, "
-                     f"{counts['continuation']} from the smooth solution)")
+        parts.append(section.say("sweep_diagnostics", problem=ds.attrs["problem"], **counts))
         left += [f"{ds.attrs['problem']}: {line}" for line in unsolved_points(ds)]
-    text = "Diagnostics: " + "; ".join(parts) + "."
-    text += (" Failed or outside the check tolerance: " + "; ".join(left) + "."
-             if left else " No sweep point is left failed or outside the check tolerance.")
     bad = int(((pairs["converged"] == 0) & np.isfinite(pairs["C"])).sum())
-    text += f" Tested pairs: {bad} solution(s) not converged."
-    return text
+    return " ".join([section.say("diagnostics", sweeps="; ".join(parts)),
+                     section.say("left", points="; ".join(left)) if left
+                     else section.say("none_left"),
+                     section.say("pairs_diagnostics", count=bad)])
 
 
 def build_section(sweep_paths: Sequence[Path], profile_paths: Sequence[Path],
                   pairs_path: Path, fe_path: Path | None, report_dir: Path, out: Path) -> None:
-    """Write section 52: the rough interface's sweeps, pairs, profiles and FE comparison."""
-    report_dir = Path(report_dir)
+    """Write section 52: the rough interface's sweeps, pairs, profiles and FE comparison
+    (``contactlab/report/sections/52_receding_rough.yaml``)."""
     sweeps = [_open(p) for p in sweep_paths]
     profiles = [_open(p) for p in profile_paths]
     pairs = _open(pairs_path)
     fe = _open(fe_path) if fe_path is not None else None
-    figures, tables = report_dir / "figures", report_dir / "tables"
-    section = Section("Receding contacts on a rough interface (future work 8)",
-                      "receding-rough", report_dir)
-    section.paragraph(
-        "The lift-off problems of chs 6-7 on an interface that closes and shears "
-        "elastically before it slips (Part II): in contact the gap is minus the closure "
-        "under the pressure, in stick the slip is the tangential compliance times the "
-        "shear, in slip |S| = f|N|. Compliance numbers C = (2 mu/(kappa + 1))/(c k_n) and "
-        "C_T the same with k_t (k per unit area, c the layer thickness); C = 0 is the "
-        "thesis's smooth interface. The densities extend over the contact and stick zones "
-        "with Gaussian bridges through a and b (docs/FINDINGS.md, 'Receding contacts on a "
-        "rough interface'). Lengths in c, tractions in T (load per thickness), "
-        "K_T = k_l 2 mu/((kappa+1) T).")
-    section.note(_diagnostics(sweeps, pairs))
-    section.heading("Transition points and remote slope over the compliance")
+    section = ReportSection("52_receding_rough", report_dir)
+    section.paragraph("problem")
+    section.note_text(_diagnostics(section, sweeps, pairs))
+    section.heading("heading_sweeps")
     for ds in sweeps:
-        problem = ds.attrs["problem"]
-        section.figure(sweep_figure(ds), f"{problem}: b, a and K_T against the compliance C "
-                       "at each f (C = 0: smooth interface)",
-                       figures / f"receding_rough_{problem}.png")
-    section.table(smooth_limit_table(sweeps), "Smooth limit: the largest change of a, b, K_T "
-                  "from the smooth interface over the sweep's f (and w/c) at each small C",
-                  tables / "receding_rough_smooth_limit.csv", digits=6)
-    section.table(summary_table(sweeps), "How the sweep points were solved",
-                  tables / "receding_rough_summary.csv", digits=0)
-    section.table(sweep_table(sweeps), "Every sweep point: a, b, K_T at (f, w/c, C_T/C, C)",
-                  tables / "receding_rough_sweep.csv", digits=5)
-    section.heading("Tested pairs under a layer")
-    section.paragraph(
-        f"A {pairs.attrs['problem']} patch of half-width w = {pairs.attrs['w_hat']:g} c at "
-        "each pair's pressure on a layer of thickness c (E = "
-        f"{pairs.attrs['E_kN_mm2']:g} kN/mm^2, nu = {pairs.attrs['nu']:g}) pressed onto a "
-        "half-plane of the same material through the pair's interface: the measured law "
-        "(eqs 2.4, 2.7: k_n = beta_n (p + p0), k_t0 = Cc k_n, C and C_T at p = T), its "
-        "stiffness at the pair's pressure as a linear law, and the smooth interface, at "
-        "the pair's f. A fit with P0 >= 0 has no positive stiffness at the contact's "
-        "edge and is used linearised only.")
-    section.figure(pairs_figure(pairs), "Tested pairs: b, a and K_T against the layer "
-                   "thickness", figures / "receding_rough_pairs.png")
-    section.table(pairs_table(pairs), "Tested pairs: compliance numbers and a, b, K_T per "
-                  "layer thickness c [mm] and law", tables / "receding_rough_pairs.csv",
-                  digits=4)
-    section.heading("Interface tractions and relative displacements")
-    section.figure(profiles_figure(profiles, "tractions"), "Tractions on the rough interface "
-                   "(solid) beside the smooth interface's (dotted)",
-                   figures / "receding_rough_tractions.png")
-    section.figure(profiles_figure(profiles, "displacements"), "Gap and slip on the rough "
-                   "interface (solid) beside the smooth interface's (dotted); the "
-                   "irreversible slip u - c_t S vanishes in stick",
-                   figures / "receding_rough_displacements.png")
-    section.table(profile_points_table(profiles), "Profile points: rough and smooth a, b, "
-                  "K_T and the certificates", tables / "receding_rough_profile_points.csv",
-                  digits=5)
-    section.heading("Finite elements")
+        section.figure(sweep_figure(ds), "receding_rough_{problem}",
+                       problem=ds.attrs["problem"])
+    section.table(smooth_limit_table(sweeps), "receding_rough_smooth_limit", digits=6)
+    section.table(summary_table(sweeps), "receding_rough_summary", digits=0)
+    section.table(sweep_table(sweeps), "receding_rough_sweep", digits=5)
+    section.heading("heading_pairs")
+    section.paragraph("pairs", problem=pairs.attrs["problem"], w_hat=pairs.attrs["w_hat"],
+                      E=pairs.attrs["E_kN_mm2"], nu=pairs.attrs["nu"])
+    section.figure(pairs_figure(pairs), "receding_rough_pairs")
+    section.table(pairs_table(pairs), "receding_rough_pairs", digits=4)
+    section.heading("heading_profiles")
+    section.figure(profiles_figure(profiles, "tractions"), "receding_rough_tractions")
+    section.figure(profiles_figure(profiles, "displacements"), "receding_rough_displacements")
+    section.table(profile_points_table(profiles), "receding_rough_profile_points", digits=5)
+    section.heading("heading_fe")
     if fe is None:
-        section.paragraph("No FE comparison in this run (fe.enabled, "
-                          "receding.rough.fe.problems).")
+        section.paragraph("no_fe")
     else:
         meshes = ", ".join(f"{h:g}" for h in np.atleast_1d(fe.attrs.get("h", [])))
-        which = ("the Richardson limit h -> 0 of the finest three meshes"
-                 if int(fe.attrs.get("meshes", 1)) >= 3 else "the finest mesh's value")
-        section.paragraph(
-            f"CalculiX models of the same problems with the interface's stiffness per unit "
-            f"area (penalty contact k_n, stick slope k_t) on meshes h/c = {meshes}; b and a "
-            f"read off the nodal displacements; fe is {which}. The DDT side solves the "
-            "same C, C_T, f and w/c.")
-        section.figure(fe_figure(fe), "DDT (lines) against FE (circles): b and a over the "
-                       "compliance", figures / "receding_rough_fe.png")
-    section.table(fe_table(fe), "FE against DDT on a rough interface: transition points "
-                  "(rel_diff = (fe - ddt)/ddt)", tables / "receding_rough_fe.csv", digits=4)
+        which = ("fe_richardson" if int(fe.attrs.get("meshes", 1)) >= 3 else "fe_finest")
+        section.paragraph("fe", meshes=meshes, which=section.say(which))
+        section.figure(fe_figure(fe), "receding_rough_fe")
+    section.table(fe_table(fe), "receding_rough_fe", digits=4)
     section.write(out)
