@@ -29,13 +29,16 @@ from typing import Any
 
 #: Rules a parameter of each branch may rerun (prefixes), besides the report page.
 BRANCH_RULES = {
+    # the tested pairs of the rough interface take their laws from the stiffness summary
     "surfaces": ("surfaces_", "stiffness_summarize", "stiffness_report", "prediction_",
-                 "dic_report"),
+                 "dic_report", "receding_rough_pairs", "receding_report_rough"),
     # the image demo renders the stiffness demo of stiffness.raw.demo_seed; the image report
     # reads the stiffness results
-    "stiffness": ("stiffness_", "dic_", "prediction_summarize", "prediction_report"),
+    "stiffness": ("stiffness_", "dic_", "prediction_summarize", "prediction_report",
+                  "receding_rough_pairs", "receding_report_rough"),
     # an image test's fields feed its stiffness job and everything after it
-    "dic": ("dic_", "stiffness_", "prediction_summarize", "prediction_report"),
+    "dic": ("dic_", "stiffness_", "prediction_summarize", "prediction_report",
+            "receding_rough_pairs", "receding_report_rough"),
     "prediction": ("prediction_",),
     "asperity": ("asperity_", "fe_asperity"),
     # the FE cross-checks solve the line load and the patch with the receding settings, and

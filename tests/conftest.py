@@ -10,6 +10,7 @@ import os
 import shutil
 import subprocess
 import sys
+import tempfile
 import threading
 from collections.abc import Callable
 from pathlib import Path
@@ -110,6 +111,34 @@ def run_snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]
     return subprocess.run([sys.executable, "-m", "snakemake", *SNAKEMAKE_ARGS, *args],
                           cwd=workdir, env=_environment(), stdin=subprocess.DEVNULL,
                           capture_output=True, text=True, check=False)
+
+
+def run_snakemake_many(workdir: Path, commands: list[list[str]]
+                       ) -> list[subprocess.CompletedProcess[str]]:
+    """Several :func:`run_snakemake` commands started at the same moment, as a user starting
+    studies in two terminals (plain processes, output to files); their results in order."""
+    started = []
+    for args in commands:
+        out, err = tempfile.TemporaryFile("w+"), tempfile.TemporaryFile("w+")
+        command = [sys.executable, "-m", "snakemake", *SNAKEMAKE_ARGS, *args]
+        started.append((command, out, err, subprocess.Popen(
+            command, cwd=workdir, env=_environment(), stdin=subprocess.DEVNULL, stdout=out,
+            stderr=err, text=True)))
+    done = []
+    for command, out, err, process in started:
+        code = process.wait()
+        out.seek(0)
+        err.seek(0)
+        done.append(subprocess.CompletedProcess(command, code, out.read(), err.read()))
+        out.close()
+        err.close()
+    return done
+
+
+@pytest.fixture
+def snakemake_many() -> Callable[..., list[subprocess.CompletedProcess[str]]]:
+    """:func:`run_snakemake_many`, for tests that start several runs at once."""
+    return run_snakemake_many
 
 
 @pytest.fixture
