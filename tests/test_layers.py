@@ -170,3 +170,10 @@ def test_rule_files_import_no_heavy_science() -> None:
     heavy = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                            check=True).stdout.split()
     assert heavy == [], (modules, heavy)
+
+
+def test_test_modules_have_unique_names() -> None:
+    """pytest imports test modules by their base name (no packages under tests/): two of one
+    name in two folders stop the collection."""
+    names = [p.name for p in (SRC.parent / "tests").rglob("test_*.py")]
+    assert len(names) == len(set(names)), sorted({n for n in names if names.count(n) > 1})

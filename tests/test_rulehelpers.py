@@ -120,3 +120,15 @@ def test_an_image_test_reads_the_fields_its_correlation_writes(tmp_path) -> None
     assert image_inputs(sheet)(wildcards) == {"images": "data/U/frames", "load_log": "u.csv"}
     assert demo_reference_results(sheet) == ["results/stiffness/RU1.nc"]
     assert "results/demo/RU1_images" in demo_data_files()
+
+
+def test_the_image_demo_folders_a_sheet_names_are_shared_inputs() -> None:
+    """Only demo folders count (a user's own image folder is not built by any rule)."""
+    import pandas as pd
+
+    from contactlab.rulehelpers import demo_image_folders
+
+    sheet = pd.DataFrame({"id": ["RU1i", "mine", "RU1"],
+                          "images": ["results/demo/RU1_images", "data/my frames", None]})
+    assert demo_image_folders(sheet) == ["results/demo/RU1_images"]
+    assert demo_image_folders(sheet.drop(columns="images")) == []

@@ -132,6 +132,15 @@ def demo_data_files(directory: str = "results/demo") -> list[str]:
             *(demo_image_folder(test, directory) for test in PUBLISHED_TESTS)]
 
 
+def demo_image_folders(sheet: pd.DataFrame) -> list[str]:
+    """The image demo folders the test sheet's ``images`` column names (inputs all studies
+    share, built before a run plans them: :mod:`contactlab.studies.shared`)."""
+    demos = set(demo_data_files())
+    column = sheet["images"] if "images" in sheet else []
+    return sorted({str(cell).strip() for cell in column
+                   if isinstance(cell, str) and cell.strip() in demos})
+
+
 def demo_image_folder(test: str, directory: str = "results/demo") -> str:
     """The folder of the RECONSTRUCTED image demo of thesis test ``test`` (rule
     ``dic_demo``), which a test-sheet row may name in its ``images`` column."""

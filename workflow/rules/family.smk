@@ -7,6 +7,7 @@
 
 import os
 
+
 from contactlab.config_check import ConfigError, check_config, load_yaml_file, parse_yaml
 from contactlab.studies.family import (
     SHARED_RULES,
@@ -17,6 +18,7 @@ from contactlab.studies.family import (
     use_variant,
     variant_config,
 )
+from contactlab.rulehelpers import demo_image_folders
 from contactlab.studies import cluster, manifest, shared
 from contactlab.study import STUDIES_ENV, PROVENANCE_ENV, coerce
 
@@ -57,7 +59,8 @@ _MODULES = {v.name: globals()[v.prefix] for v in VARIANTS}
 FAMILY_TARGETS = [f for m in _MODULES.values() for f in m.STUDY_TARGETS]
 
 
-shared.attach(workflow, SHARED_RULES, _MODULES[VARIANTS[0].name].config)
+shared.attach(workflow, SHARED_RULES, _MODULES[VARIANTS[0].name].config,
+              demo_image_folders(_MODULES[VARIANTS[0].name].TESTS))
 cluster.install(workflow)  # why a Slurm job failed, in the run's own output
 RUN_STUDIES = [{"logs": m.LOGS, "targets": m.STUDY_TARGETS,
                 "all_rules": ["all", f"{v.prefix}__all"], **m.PROVENANCE}

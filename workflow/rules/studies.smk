@@ -7,6 +7,7 @@
 
 import os
 
+from contactlab.rulehelpers import demo_image_folders
 from contactlab.studies import cluster, manifest, shared
 from contactlab.studies.family import SHARED_RULES
 
@@ -20,7 +21,7 @@ CONFIG_FILES = manifest.run_config_files(workflow)
 if workflow.modifier.is_main_snakefile() and not os.environ.get(shared.BUILDING_ENV):
     RUN_STUDIES = [{"logs": LOGS, "targets": STUDY_TARGETS, "all_rules": ["all"],
                     **PROVENANCE}]
-    shared.attach(workflow, SHARED_RULES, config)
+    shared.attach(workflow, SHARED_RULES, config, demo_image_folders(TESTS))
     cluster.install(workflow)  # why a Slurm job failed, in the run's own output
 
     onsuccess:

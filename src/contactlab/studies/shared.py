@@ -110,14 +110,17 @@ def build_missing(files: Sequence[str], config: Mapping[str, Any], cores: int = 
         if run.returncode != 0:
             raise SharedInputsError(
                 f"building the shared inputs failed (exit status {run.returncode}); the "
-                "Snakemake output above says why, the logs are in logs/stiffness/demo.log "
-                "and logs/surfaces/demo_scans.log")
+                "Snakemake output above says why, the logs are in logs/stiffness/, "
+                "logs/surfaces/ and logs/dic/")
     return True
 
 
-def attach(workflow: Any, rule_names: Sequence[str], config: Mapping[str, Any]) -> None:
+def attach(workflow: Any, rule_names: Sequence[str], config: Mapping[str, Any],
+           files: Sequence[str] = ()) -> None:
     """Give the shared rules (``rule_names``, those that exist) an input function that, in a
-    real run, builds their missing outputs first (:func:`build_missing` with ``config``).
+    real run, builds their missing outputs first (:func:`build_missing` with ``config``):
+    the outputs of those without wildcards and ``files`` (the ones the run needs of the
+    rules with wildcards, e.g. the image demo of each image test).
 
     The function runs while Snakemake builds the DAG, before it locks the outputs it plans
     to make; it adds no inputs.
@@ -126,9 +129,11 @@ def attach(workflow: Any, rule_names: Sequence[str], config: Mapping[str, Any]) 
 
     def shared_inputs_first(wildcards: Any) -> list[str]:
         if is_real_run(workflow):
-            outputs = [str(f) for name in names for f in workflow.get_rule(name).output]
+            outputs = [str(f) for name in names for f in workflow.get_rule(name).output
+                       if not workflow.get_rule(name).has_wildcards()]
             settings = workflow.resource_settings
-            build_missing(outputs, config, cores=settings.local_cores or settings.cores or 1,
+            build_missing([*outputs, *files], config,
+                          cores=settings.local_cores or settings.cores or 1,
                           what=", ".join(f"rule {name}" for name in names))
         return []
 
