@@ -75,7 +75,8 @@ def test_examples_put_targets_before_configfile() -> None:
 def test_examples_use_the_bare_form() -> None:
     """The default profile reaches a bare ``snakemake`` (tests/test_default_profile.py), so no
     example names it."""
-    named = [f"{path.relative_to(REPO)}:{line}" for path in [*DOCUMENTS, REPO / "Makefile"]
+    current = [path for path in DOCUMENTS if path.name != "CHANGELOG.md"]  # history stays
+    named = [f"{path.relative_to(REPO)}:{line}" for path in [*current, REPO / "Makefile"]
              for line, text in enumerate(path.read_text(encoding="utf-8").splitlines(), 1)
              if "--workflow-profile" in text]
     assert named == []
@@ -132,30 +133,62 @@ def test_the_collector_finds_blocks_prompts_and_inline_commands(tmp_path: Path) 
         (7, "contactlab report index a.html --out b.html")]
 
 
-@pytest.mark.slow
-@pytest.mark.parametrize("document", RUN_DOCUMENTS, ids=lambda p: str(p.relative_to(REPO)))
-def test_every_documented_command_runs(document: Path, e2e_run: Path, tmp_path: Path) -> None:
-    """Each command the document shows runs as shown, in a copy of the session's end-to-end
-    run (its results are the inputs the commands name), in the document's order (an example
-    may read what the one before wrote): ``contactlab`` commands for real, Snakemake ones
-    as a dry run (``-n``) of the default study. A stale example fails here."""
-    commands = documented_commands(document)
-    if not commands:
-        pytest.skip("no commands")
+def _copy_of(e2e_run: Path, tmp_path: Path) -> tuple[Path, dict[str, str]]:
+    """A copy of the end-to-end run to run commands in, and the environment to run them."""
     work = tmp_path / "run"
     shutil.copytree(e2e_run, work, symlinks=True,
                     ignore=shutil.ignore_patterns(".snakemake", "logs"))
-    env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
-    failed = []
-    for line, text in commands:
-        if "--report " in text:  # Snakemake's report of a run: tests/test_workflow.py
-            continue
-        if text.startswith("snakemake "):
-            text = "snakemake -n --quiet " + text.removeprefix("snakemake ")
-        done = subprocess.run(["bash", "-c", text], cwd=work, env=env, capture_output=True,
-                              text=True, check=False)
-        if done.returncode != 0 and not any(
-                reason in done.stdout + done.stderr for reason in EXPECTED_REFUSALS):
-            failed.append(f"{document.relative_to(REPO)}:{line}: {text}\n"
-                          f"{(done.stderr or done.stdout)[-800:]}")
-    assert not failed, "\n".join(failed)
+    path = f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"
+    return work, {**os.environ, "PATH": path}
+
+
+def _failure(where: str, text: str, done: subprocess.CompletedProcess[str]) -> str | None:
+    """The report of a command that failed, None if it ran (or gave a documented answer)."""
+    if done.returncode == 0 or any(reason in done.stdout + done.stderr
+                                   for reason in EXPECTED_REFUSALS):
+        return None
+    return f"{where}: {text}\n{(done.stderr or done.stdout)[-800:]}"
+
+
+def _snakemake_commands() -> dict[str, list[str]]:
+    """Each distinct documented Snakemake command (a dry run proves it once) and where."""
+    found: dict[str, list[str]] = {}
+    for document in RUN_DOCUMENTS:
+        for line, text in documented_commands(document):
+            if text.startswith("snakemake ") and "--report " not in text:
+                found.setdefault(text, []).append(f"{document.relative_to(REPO)}:{line}")
+    return found
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("document", RUN_DOCUMENTS, ids=lambda p: str(p.relative_to(REPO)))
+def test_every_documented_contactlab_command_runs(document: Path, e2e_run: Path,
+                                                  tmp_path: Path) -> None:
+    """Each ``contactlab`` command the document shows runs as shown, for real, in a copy of
+    the session's end-to-end run (its results are the inputs the commands name), in the
+    document's order (an example may read what the one before wrote). A stale example
+    fails here."""
+    commands = [(line, text) for line, text in documented_commands(document)
+                if text.startswith("contactlab ")]
+    if not commands:
+        pytest.skip("no contactlab commands")
+    work, env = _copy_of(e2e_run, tmp_path)
+    failed = [_failure(f"{document.relative_to(REPO)}:{line}", text, subprocess.run(
+        ["bash", "-c", text], cwd=work, env=env, capture_output=True, text=True, check=False))
+        for line, text in commands]
+    assert not any(failed), "\n".join(f for f in failed if f)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("text", sorted(_snakemake_commands()))
+def test_every_documented_snakemake_command_plans(text: str, e2e_run: Path,
+                                                  tmp_path: Path) -> None:
+    """Each Snakemake command the README and the docs show plans as shown: a dry run
+    (``-n``) of the default study in a copy of the end-to-end run. (Snakemake's report of a
+    run, ``--report``, is built by tests/test_workflow.py.)"""
+    work, env = _copy_of(e2e_run, tmp_path)
+    dry = "snakemake -n --quiet " + text.removeprefix("snakemake ")
+    done = subprocess.run(["bash", "-c", dry], cwd=work, env=env, capture_output=True,
+                          text=True, check=False)
+    failure = _failure(", ".join(_snakemake_commands()[text]), dry, done)
+    assert failure is None, failure

@@ -117,8 +117,9 @@ DDT = {"n": {"line": 200, "uniform": 100}, "refine_max_n": {"line": 400, "unifor
 
 @pytest.mark.slow
 def test_fe_and_ddt_agree_on_a_rough_interface() -> None:
-    """Line load (f = 0.5) at C = 0.3, 1, 3 and uniform patch (w/c = 2.5, f = 0.3) at C = 1,
-    3, C_T = C/m at nu = 0.3 on both sides; far-field edges, two passes; meshes h/c = 0.1,
+    """Line load (f = 0.5) at C = 0.3, 1, 3 and uniform patch (w/c = 2.5, f = 0.3) at C = 3
+    (the example study config/studies/rough_interface.yaml adds the others), C_T = C/m at
+    nu = 0.3 on both sides; far-field edges, two passes; meshes h/c = 0.1,
     0.05, 0.025 extrapolated to h -> 0 (Richardson, finest three): every b and a within
     2 % of the DDT (measured: within 0.5 %), and the line load's b at C = 1 and 3 more
     than 10 % beyond the smooth interface's (+18 %, +40 %)."""
@@ -127,7 +128,7 @@ def test_fe_and_ddt_agree_on_a_rough_interface() -> None:
                                     farfield_passes=2), 10.0, 20.0, 4.0, (0.3, 1.0, 3.0)),
              "uniform": (RecedingModel("uniform", w=2.5, f=0.3, young=20000.0,
                                        edges="farfield", farfield_passes=2), 12.5, 25.0, 6.0,
-                         (1.0, 3.0))}
+                         (3.0,))}
     runs = []
     for model, length, depth, x_fine, compliances in cases.values():
         for C in compliances:
@@ -136,7 +137,7 @@ def test_fe_and_ddt_agree_on_a_rough_interface() -> None:
                                           layer_rows=max(8, round(0.4 / h)))
                 runs.append(run_rough(model, geom, C, C * ratio, level=f"h{h:g}"))
     table = rough_table(runs, rough_ddt(**DDT))
-    assert table.sizes["row"] == 10
+    assert table.sizes["row"] == 8
     rel = np.abs(table["rel_diff"].values)
     assert np.all(rel < 0.02), table[["problem", "compliance", "quantity", "ddt", "fe",
                                       "rel_diff"]].to_dataframe()
