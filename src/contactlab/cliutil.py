@@ -10,10 +10,11 @@ from __future__ import annotations
 import argparse
 import os
 import re
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from contactlab.command import Option
+from contactlab.command import Command, Option
 
 #: Negative numbers in any notation (``-1``, ``-.5``, ``-1e-5``, ``-2.5E+3``, ``-inf``).
 NEGATIVE_NUMBER = re.compile(
@@ -130,6 +131,15 @@ def section_outputs() -> tuple[Option, ...]:
 def chunks_option(what: str) -> Option:
     """The chunk files a gather command joins (positional)."""
     return Option("chunks", f"{what} chunk files", input_file, nargs="+")
+
+
+def gather_command(group: str, name: str, what: str, along: str,
+                   run: Callable[[argparse.Namespace], None]) -> Command:
+    """The ``<thing>-gather`` command of a group: join the ``what`` chunk files along
+    ``along`` into one file (``chunks... --out``)."""
+    return Command(group, name, f"join {what} chunks along {along}",
+                   description=f"Join {what} chunks along {along} into one file.",
+                   options=(chunks_option(what), out_option()), run=run)
 
 
 def published_dir_option(help: str = "directory of the transcribed thesis tables") -> Option:

@@ -10,7 +10,7 @@ import argparse
 
 from contactlab.cliutil import (
     check_memory,
-    chunks_option,
+    gather_command,
     input_file,
     json_value,
     out_option,
@@ -270,10 +270,7 @@ COMMANDS = (
                         kind="flag", default=False),
                  out_option()),
         run=_grid_bem),
-    Command(
-        NAME, "grid-bem-gather", "join grid-bem files along N",
-        description="Join grid-bem files of several N into one file along N.",
-        options=(chunks_option("grid-bem"), out_option()), run=_grid_bem_gather),
+    gather_command(NAME, "grid-bem-gather", "grid-bem", "N", _grid_bem_gather),
     Command(
         NAME, "report", "report section of the asperity branch",
         description="HTML report fragment of one part of the asperity branch: single "

@@ -13,7 +13,13 @@ import json
 import time
 from typing import Any
 
-from contactlab.cliutil import check_memory, chunks_option, input_file, out_option, section_outputs
+from contactlab.cliutil import (
+    check_memory,
+    gather_command,
+    input_file,
+    out_option,
+    section_outputs,
+)
 from contactlab.command import Command, Option
 from contactlab.receding.options import GAP, NAME, robustness
 
@@ -163,10 +169,7 @@ COMMANDS = (
                         default=False),
                  *robustness(GAP), out_option("netCDF output (one chunk)")),
         run=_sweep),
-    Command(
-        NAME, "gap-gather", "join gap-sweep chunks along w/c",
-        description="Join gap-sweep chunks (same N) along w/c into one sweep file.",
-        options=(chunks_option("gap-sweep"), out_option()), run=_gather),
+    gather_command(NAME, "gap-gather", "gap-sweep", "w/c", _gather),
     Command(
         NAME, "gap-regimes", "regime map (Fig. 5.4) from a sweep",
         description="Regime map of the gap problem (Fig. 5.4): f_stick(w), f_sep(w) and the "

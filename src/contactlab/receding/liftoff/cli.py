@@ -14,7 +14,13 @@ import json
 import time
 from typing import Any
 
-from contactlab.cliutil import check_memory, chunks_option, input_file, out_option, section_outputs
+from contactlab.cliutil import (
+    check_memory,
+    gather_command,
+    input_file,
+    out_option,
+    section_outputs,
+)
 from contactlab.command import Command, Option
 from contactlab.receding.options import (
     CHAISE,
@@ -273,10 +279,7 @@ COMMANDS = (
                  Option("--chaise", CHAISE, kind="switch", key=f"{LINE}.chaise"),
                  *robustness(LINE), out_option("netCDF output (one chunk)")),
         run=_line_sweep),
-    Command(
-        NAME, "line-gather", "join line-sweep chunks along f",
-        description="Join line-sweep chunks along f into one sweep file.",
-        options=(chunks_option("line-sweep"), out_option()), run=_gather),
+    gather_command(NAME, "line-gather", "line-sweep", "f", _gather),
     Command(
         NAME, "line-profile", "profiles of one line-load solution",
         description="Densities, tractions, separation and slip along the interface of the "
@@ -303,10 +306,7 @@ COMMANDS = (
                  n_option(PATCHES), *patch_options(), *robustness(PATCHES),
                  out_option("netCDF output (one chunk)")),
         run=_patch_sweep, select="problem"),
-    Command(
-        NAME, "patch-gather", "join patch-sweep chunks along f",
-        description="Join patch-sweep chunks of one pressure law along f.",
-        options=(chunks_option("patch-sweep"), out_option()), run=_gather),
+    gather_command(NAME, "patch-gather", "patch-sweep", "f", _gather),
     Command(
         NAME, "patch-profile", "profiles of one pressure-patch solution",
         description="Densities, tractions, separation and slip along the interface of one "

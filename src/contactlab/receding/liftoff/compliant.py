@@ -49,6 +49,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import Any
 
 import numpy as np
 
@@ -321,32 +322,37 @@ class CompliantPart:
         s, n = self.geometry.traction_matrices(x)
         return s @ self.values, n @ self.values
 
-    def density(self, kind: str, x: np.ndarray) -> np.ndarray:
-        """B_x (``glide``) or B_y (``climb``) of the added densities at x."""
-        x = np.atleast_1d(np.asarray(x, dtype=float))
+    def _part(self, kind: str) -> tuple[Any, Any, Any] | None:
+        """(block, interval, bridge) of the added glide (``stick``) or climb (``contact``)
+        density, None where the solution has none."""
         name = "stick" if kind == "glide" else "contact"
         block = self._block(name)
         if block is None:
-            return np.zeros_like(x)
+            return None
         geom = self.geometry
         interval, bridge = (geom.stick, geom.bridge_a) if name == "stick" else (
             geom.contact, geom.bridge_b)
         assert interval is not None and bridge is not None
+        return block, interval, bridge
+
+    def density(self, kind: str, x: np.ndarray) -> np.ndarray:
+        """B_x (``glide``) or B_y (``climb``) of the added densities at x."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        part = self._part(kind)
+        if part is None:
+            return np.zeros_like(x)
+        block, interval, bridge = part
         return interval.density(block[0], x) + block[1] * bridge.density(x)
 
     def integral_from_zero(self, kind: str, x: np.ndarray) -> np.ndarray:
         """int_0^x of the added glide or climb density."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        name = "stick" if kind == "glide" else "contact"
-        block = self._block(name)
-        if block is None:
+        part = self._part(kind)
+        if part is None:
             return np.zeros_like(x)
-        geom = self.geometry
-        interval, bridge = (geom.stick, geom.bridge_a) if name == "stick" else (
-            geom.contact, geom.bridge_b)
-        assert interval is not None and bridge is not None
-        part = interval._cumulative(block[0], x) - interval._cumulative(block[0], np.zeros(1))
-        return part + block[1] * bridge.integral_from_zero(x)
+        block, interval, bridge = part
+        dense = interval._cumulative(block[0], x) - interval._cumulative(block[0], np.zeros(1))
+        return dense + block[1] * bridge.integral_from_zero(x)
 
 
 def compliant_checks(x: np.ndarray, f: float, s: np.ndarray, n: np.ndarray, *,

@@ -17,7 +17,7 @@ from typing import Any
 
 from contactlab.cliutil import (
     check_memory,
-    chunks_option,
+    gather_command,
     input_file,
     json_value,
     out_option,
@@ -220,10 +220,7 @@ COMMANDS = (
                         key=f"{ROUGH}.C"),
                  *_ratios(), *_discretisation(), out_option("netCDF output (one chunk)")),
         run=_sweep, select="problem"),
-    Command(
-        NAME, "rough-gather", "join rough-sweep chunks along f",
-        description="Join rough-sweep chunks of one problem along f into one sweep file.",
-        options=(chunks_option("rough-sweep"), out_option()), run=_gather),
+    gather_command(NAME, "rough-gather", "rough-sweep", "f", _gather),
     Command(
         NAME, "rough-profile", "profiles of one solution on a rough interface",
         description="Tractions, gap and slip (relative displacements), densities, the "
