@@ -140,3 +140,22 @@ def test_rebase_links_keeps_anchors_and_urls() -> None:
     moved = rebase_links(text, "report", "report/sections")
     assert moved == text.replace("figures/a.png", "../figures/a.png")
     assert rebase_links(moved, "report/sections", "report") == text
+
+
+def test_the_report_page_lists_the_comparison_pages(tmp_path: Path) -> None:
+    """The rule passes every compare file's page (config/compare/): the page links them."""
+    import json
+
+    from contactlab.cli import main
+
+    section = tmp_path / "sections" / "10_x.html"
+    section.parent.mkdir()
+    section.write_text("<section id='x'><h2>X</h2><p>text</p></section>\n")
+    out = tmp_path / "index.html"
+    links = [["Friction: a finer gap grid", "../compare/friction/index.html"]]
+    assert main(["report", "index", str(section), "--comparisons", json.dumps(links),
+                 "--out", str(out)]) == 0
+    page = out.read_text()
+    assert "<a href='../compare/friction/index.html'>Friction: a finer gap grid</a>" in page
+    assert main(["report", "index", str(section), "--comparisons", '[["only a title"]]',
+                 "--out", str(out)]) == 2

@@ -1,9 +1,11 @@
 # The report page: stitches every branch's section fragment into index.html, headed by the
-# run's provenance (study, config hash, version, commit) and what a named study changes.
+# run's provenance (study, config hash, version, commit), what a named study changes and
+# links to the comparison pages of studies (config/compare/).
 
 import json
 
 from contactlab.rulehelpers import command_args
+from contactlab.studies.compare import index_links
 
 
 rule report_index:
@@ -14,7 +16,11 @@ rule report_index:
         result("report/index.html"),
     params:
         args=lambda wc: command_args(
-            "report index", config, changes=json.dumps(STUDY_CHANGES, sort_keys=True)
+            "report index",
+            config,
+            changes=json.dumps(STUDY_CHANGES, sort_keys=True),
+            # the comparison pages of config/compare/ (built by their own runs)
+            comparisons=json.dumps(index_links(result("report"))),
         ),
     log:
         logs("report/index.log"),

@@ -17,7 +17,11 @@ def _index(args: argparse.Namespace) -> None:
     from contactlab.study import provenance
 
     changes = args.changes or {}
-    build_index(args.sections, args.out, args.title, args.intro, provenance(), changes)
+    comparisons = [tuple(link) for link in (args.comparisons or [])]
+    if not all(len(link) == 2 for link in comparisons):
+        raise ValueError("--comparisons must be a JSON list of [title, link] pairs")
+    build_index(args.sections, args.out, args.title, args.intro, provenance(), changes,
+                comparisons=comparisons)
 
 
 NAME = "report"
@@ -32,6 +36,9 @@ COMMANDS = (
                  Option("--intro", "introductory paragraph", default=""),
                  Option("--changes", "JSON {key: [default, study]} of what a named study "
                         "changes", json_value, default=None),
+                 Option("--comparisons", "JSON [[title, link], ...] of the comparison pages "
+                        "of studies to list (links relative to the page)", json_value,
+                        default=None),
                  out_option("HTML page to write")),
         run=_index),
 )
