@@ -176,13 +176,21 @@ def _e2e_root(tmp_path_factory: pytest.TempPathFactory) -> Path:
     return root.parent if os.environ.get("PYTEST_XDIST_WORKER") else root
 
 
+@pytest.fixture(scope="session")
+def workers_folder(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A folder shared by the session's xdist workers (the session's own without xdist)."""
+    return _e2e_root(tmp_path_factory)
+
+
 #: Session and module fixtures that take seconds to build (the demo surfaces processed, a
 #: stiffness run from raw fields, a sweep through the CLI).
 SHARED_FIXTURES = ("processed", "raw_run", "small_sweep")
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """The users of a :data:`SHARED_FIXTURES` fixture first, each fixture's together: xdist
+    """The Slurm test that needs no end-to-end run first: it waits minutes for Slurm to
+    cancel a job at its time limit, which the end-to-end build and the other worker's tests
+    fill. Then the users of a :data:`SHARED_FIXTURES` fixture, each fixture's together: xdist
     hands each worker a first batch of ~100 consecutive tests, so they all run on one worker
     and each fixture is built once (split between workers, each built it). The tests that
     read the end-to-end run last: it builds in the background meanwhile

@@ -9,6 +9,7 @@ of the same study. Without root it skips locally; in CI (``CI`` set) it fails in
 
 from __future__ import annotations
 
+import fcntl
 import os
 import re
 import shutil
@@ -48,21 +49,27 @@ def _slurm_answers() -> bool:
 
 
 @pytest.fixture(scope="module")
-def slurm_cluster():
-    """The local one-node Slurm, started for this module (stopped again if we started it)."""
+def slurm_cluster(workers_folder: Path):
+    """The local one-node Slurm, started for this module and stopped again if this process
+    started it, once no other pytest worker uses it (each user holds a shared lock on a file
+    of the session; the stop waits for an exclusive one)."""
     if os.geteuid() != 0:
         reason = "the local Slurm needs root to install slurm-wlm/munge and start daemons"
         if os.environ.get("CI"):
             pytest.fail(f"{reason}; CI must run the tests as root")
         pytest.skip(reason)
-    with pytest.MonkeyPatch.context() as env:
+    users = workers_folder / "slurm_cluster.lock"
+    with pytest.MonkeyPatch.context() as env, open(users, "a", encoding="utf-8") as lock:
         env.delenv("SLURM_CONF", raising=False)  # the host's slurm.conf (conftest.py)
+        fcntl.flock(lock, fcntl.LOCK_EX)  # one worker starts it at a time
         was_running = _slurm_answers()
         start = subprocess.run([str(SLURM_LOCAL), "start"], capture_output=True, text=True,
                                check=False)
+        fcntl.flock(lock, fcntl.LOCK_SH)
         assert start.returncode == 0, start.stdout + start.stderr
         yield
         if not was_running:
+            fcntl.flock(lock, fcntl.LOCK_EX)
             subprocess.run([str(SLURM_LOCAL), "stop"], capture_output=True, check=False)
 
 
@@ -126,7 +133,7 @@ def test_study_through_slurm_equals_the_local_run(
 
 @pytest.mark.slow
 def test_a_chunk_cancelled_at_its_time_limit_is_retried_and_explained(
-        e2e_copy: Path, slurm_cluster, e2e_run: Path, tmp_path: Path) -> None:
+        e2e_copy: Path, slurm_cluster, tmp_path: Path, request: pytest.FixtureRequest) -> None:
     """A sweep chunk given one minute is cancelled by Slurm "DUE TO TIME LIMIT"; the profile
     retries it with twice the time, the retry finishes, the run's output says why the first
     attempt failed and where its log is, and the result equals the local run's.
@@ -134,7 +141,8 @@ def test_a_chunk_cancelled_at_its_time_limit_is_retried_and_explained(
     The first attempt is made too slow for its minute by a ``contactlab`` first on PATH that
     sleeps before its first line sweep (a chunk that long would cost minutes of CPU); Slurm's
     cancellation, the retry and the report are the real ones. Snakemake runs as users run it,
-    in a process of its own.
+    in a process of its own. The session's end-to-end run is asked for only at the end, so
+    the test runs first and that build fills its minutes of waiting.
     """
     cluster = e2e_copy
     wrapper = tmp_path / "bin" / "contactlab"
@@ -181,6 +189,8 @@ def test_a_chunk_cancelled_at_its_time_limit_is_retried_and_explained(
     assert Path(explained.group(1)).name == f"{timed_out[0]}.log"
     assert Path(explained.group(1)).exists()
 
+    # the local run: the session's end-to-end run, asked for only now (it builds meanwhile)
+    e2e_run = request.getfixturevalue("e2e_run")
     target = "results/receding/line.nc"
     with xr.open_dataset(e2e_run / target) as a, xr.open_dataset(cluster / target) as b:
         a, b = _timing_free(a.load()), _timing_free(b.load())
