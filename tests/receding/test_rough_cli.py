@@ -18,26 +18,6 @@ from contactlab.receding.liftoff.rough import rough_point
 KEY = "receding.rough.pairs.tests"
 
 
-@pytest.fixture(scope="module")
-def summary_file(tmp_path_factory: pytest.TempPathFactory, repo: Path) -> Path:
-    """A stiffness summary of the thesis's tests (published fits, as stiffness
-    summarize-published aggregates them)."""
-    from contactlab.stiffness.errors import ErrorModel
-    from contactlab.stiffness.summary import published_inputs, summary_dataset
-    from contactlab.stiffness.tables import build_tables
-    from contactlab.testsheet import read_test_sheet
-
-    sheet = read_test_sheet(repo / "config" / "tests.csv")
-    inputs = published_inputs()
-    tables = build_tables(inputs["steps"], inputs["normal"], sheet, None,
-                          ErrorModel(tangential_pressure="multiply"), threshold=0.5,
-                          texture_wavelength=inputs["texture_wavelength"]
-                          ["texture_wavelength"])
-    path = tmp_path_factory.mktemp("summary") / "summary.nc"
-    summary_dataset(tables, sheet, inputs["mean_row"]).to_netcdf(path)
-    return path
-
-
 def test_solve_on_a_rough_interface_is_the_rough_point(
         capsys: pytest.CaptureFixture[str]) -> None:
     """--interface-compliance C (C_T = C/m at the schema's nu) gives rough_point's numbers
@@ -63,19 +43,20 @@ def test_solve_on_a_rough_interface_is_the_rough_point(
         assert "C" not in smooth and smooth["b"] < out["b"]
 
 
-def test_pairs_from_a_summary_and_from_numbers(tmp_path: Path, summary_file: Path) -> None:
+def test_pairs_from_a_summary_and_from_numbers(tmp_path: Path,
+                                               published_summary_file: Path) -> None:
     """A from_test law and the same law from its fit's numbers give the same answers; a
     linearised-only pair has no measured law."""
     numbers = {"beta_n_per_um": 0.070, "P0_kN": -4.490, "area_mm2": 20.0, "cc": 0.272,
                "f": 0.629, "pressure": 0.4}
-    with xr.open_dataset(summary_file) as summary:
+    with xr.open_dataset(published_summary_file) as summary:
         numbers["cc"] = float(summary["Cc"].sel(test="S3", basis="mean"))
         numbers["f"] = float(summary["f"].sel(test="S3", tangential_direction="combined"))
     pairs = {"S3": {"from_test": "S3"}, "mine": numbers,
              "RU1": {"from_test": "RU1", "law": "linearised"}}
     out = tmp_path / "pairs.nc"
-    assert main(["receding", "rough-pairs", "--summary", str(summary_file), "--pairs",
-                 json.dumps(pairs), "--c", "10", "--n", "40", "--out", str(out)]) == 0
+    assert main(["receding", "rough-pairs", "--summary", str(published_summary_file),
+                 "--pairs", json.dumps(pairs), "--c", "10", "--n", "40", "--out", str(out)]) == 0
     with xr.open_dataset(out) as ds:
         b = ds["b"].sel(c=10.0)
         assert float(b.sel(test="S3", law="measured")) == pytest.approx(
@@ -125,10 +106,11 @@ def _bad(summary: Path, out: Path) -> list[tuple[list[str], list[str]]]:
 
 
 @pytest.mark.parametrize("case", range(13))
-def test_bad_input_names_the_key_and_value(case: int, tmp_path: Path, summary_file: Path,
+def test_bad_input_names_the_key_and_value(case: int, tmp_path: Path,
+                                           published_summary_file: Path,
                                            capsys: pytest.CaptureFixture[str]) -> None:
     out = tmp_path / "out.nc"
-    argv, words = _bad(summary_file, out)[case]
+    argv, words = _bad(published_summary_file, out)[case]
     assert main(argv) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "Traceback" not in err, err
