@@ -93,7 +93,8 @@ BAD_INPUTS: dict[str, tuple[Callable[[Path], None], str]] = {
                                                      "frame_0000.png has 32 x 24"),
     "other depth": (lambda p: save(p, GREY16), "16-bit samples .* the reference "
                                                "frame_0000.png has 8-bit"),
-    "colour": (colour, r"colour image \(3 channels\); convert it"),
+    "colour": (colour, r"colour image \(3 channels\); convert it to grey, or have it "
+                       r"converted to luminance \(option --colour luminance"),
 }
 
 

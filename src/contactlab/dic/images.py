@@ -123,7 +123,8 @@ def read_image(path: str | Path, *, colour: str) -> np.ndarray:
     if info.channels != 1 and colour == "refuse":
         kind = "grey + alpha" if info.channels == 2 else "colour"
         raise ValueError(f"{info.path}: {kind} image ({info.channels} channels); convert it "
-                         "to grey or ask for colour conversion (luminance)")
+                         "to grey, or have it converted to luminance (option --colour "
+                         "luminance, config dic.colour: luminance)")
     try:
         if info.path.suffix.lower() == ".png":
             from PIL import Image
