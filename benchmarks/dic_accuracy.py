@@ -43,7 +43,8 @@ def errors(order: int, prefilter: float, speckle: float, noise: float, subset: i
     reference, images = render(pattern, SHAPE, fields, camera, seed=seed + 1)
     grid = subset_grid(SHAPE, [Region("all", 0, SHAPE[1])], subset=subset, step=16)
     settings = Settings(order=order, max_iterations=20, tolerance=1e-3, zncc_min=0.9,
-                        prefilter_sigma=prefilter)
+                        prefilter_sigma=prefilter, outlier_threshold=2.0,
+                        outlier_epsilon=0.1)
     results = correlate_sequence(reference, [(f"{s:.1f} px", im) for s, im in
                                              zip(SHIFTS, images, strict=True)],
                                  grid, settings, incremental=False)
@@ -92,7 +93,8 @@ def errors_by_axis(speckle: float, aspect: float, seed: int) -> list[float]:
     reference, images = render(pattern, SHAPE, fields, camera, seed=seed + 1)
     grid = subset_grid(SHAPE, [Region("all", 0, SHAPE[1])], subset=31, step=16)
     settings = Settings(order=5, max_iterations=20, tolerance=1e-3, zncc_min=0.9,
-                        prefilter_sigma=0.0)
+                        prefilter_sigma=0.0, outlier_threshold=2.0,
+                        outlier_epsilon=0.1)
     results = correlate_sequence(reference, [(f"{s:.1f} px", im) for s, im in
                                              zip(SHIFTS, images, strict=True)],
                                  grid, settings, incremental=False)

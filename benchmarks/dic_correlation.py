@@ -55,7 +55,8 @@ def run(reference: np.ndarray, images: list[np.ndarray], fields: list[AffineFiel
         order: int, step: int) -> str:
     grid = subset_grid(SHAPE, [Region("image", 0, SHAPE[1])], subset=31, step=step)
     settings = Settings(order=order, max_iterations=20, tolerance=1e-3, zncc_min=0.9,
-                        prefilter_sigma=0.0)
+                        prefilter_sigma=0.0, outlier_threshold=2.0,
+                        outlier_epsilon=0.1)
     cpu, wall = time.process_time(), time.perf_counter()
     ref = Reference(reference, grid, settings)
     t_ref = time.process_time() - cpu

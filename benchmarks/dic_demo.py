@@ -46,7 +46,8 @@ def main() -> None:
         cpu, wall = time.process_time(), time.perf_counter()
         fields = fields_from_images(folder, log["frame"].tolist(), subset=None, step=None,
                                     order=5, max_iterations=20, tolerance=1e-3,
-                                    zncc_min=0.9, prefilter_sigma=0.0, incremental=True,
+                                    zncc_min=0.9, prefilter_sigma=0.0, outlier_threshold=2.0,
+                                    outlier_epsilon=0.1, incremental=True,
                                     colour="refuse")
         correlate_cpu, correlate_wall = time.process_time() - cpu, time.perf_counter() - wall
         write_netcdf(fields, Path(tmp) / "fields.nc")

@@ -9,7 +9,7 @@ from contactlab.dic.speckle import Camera, DisplacementField, render, speckle_pa
 
 #: The recommended correlation parameters (docs/dic.md), as the tests use them.
 RECOMMENDED = {"order": 5, "max_iterations": 20, "tolerance": 1e-3, "zncc_min": 0.9,
-               "prefilter_sigma": 0.0}
+               "prefilter_sigma": 0.0, "outlier_threshold": 2.0, "outlier_epsilon": 0.1}
 
 
 def settings(**changes: float) -> Settings:

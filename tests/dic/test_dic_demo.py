@@ -20,7 +20,8 @@ from contactlab.stiffness.readers import read_fields_netcdf, read_load_log
 SEED = 20180501
 FRAMES = [1, 2, 11, 12, 13, 14, 40]
 CORRELATION = {"order": 5, "max_iterations": 20, "tolerance": 1e-3, "zncc_min": 0.9,
-               "prefilter_sigma": 0.0, "incremental": True, "colour": "refuse"}
+               "prefilter_sigma": 0.0, "outlier_threshold": 2.0, "outlier_epsilon": 0.1,
+               "incremental": True, "colour": "refuse"}
 
 
 def test_the_rendered_motion_is_that_of_the_stiffness_demo() -> None:

@@ -7,7 +7,15 @@ import numpy as np
 import pytest
 from speckle_cases import RECOMMENDED, images, settings
 
-from contactlab.dic.correlate import STATUS_MEANINGS, Settings, correlate_sequence
+from contactlab.dic.correlate import (
+    OUTLIER,
+    STATUS_MEANINGS,
+    VALID,
+    FrameResult,
+    Settings,
+    correlate_sequence,
+    flag_outliers,
+)
 from contactlab.dic.regions import Region, subset_grid
 from contactlab.dic.speckle import AffineField, TwoBlockField
 
@@ -111,6 +119,8 @@ def test_bad_regions_are_refused(regions: list[Region], kwargs: dict, words: str
     ({"tolerance": 0.0}, "tolerance"),
     ({"zncc_min": 1.5}, "zncc_min"),
     ({"prefilter_sigma": -1.0}, "prefilter_sigma"),
+    ({"outlier_threshold": -1.0}, "outlier_threshold"),
+    ({"outlier_epsilon": 0.0}, "outlier_epsilon"),
 ])
 def test_impossible_settings_are_refused(change: dict, words: str) -> None:
     with pytest.raises(ValueError, match=words):
@@ -124,3 +134,34 @@ def test_an_image_of_another_size_is_refused_naming_it() -> None:
     with pytest.raises(ValueError, match=r"^frame 9: image has shape \(160, 239\)"):
         correlate_sequence(reference, [("frame 9", image[:, :-1])], grid, settings(),
                            incremental=True)
+
+
+def test_a_vector_far_from_its_neighbours_is_an_outlier_the_interface_jump_is_not() -> None:
+    """Two bodies 2.5 px apart in u (a contact step), each with a strain and 0.005 px of
+    noise, one specimen vector 0.3 px off in v and one pad vector already rejected: the
+    normalised median test flags the wrong vector alone, keeps the rejected one's reason, and
+    tests nothing at threshold 0."""
+    grid = subset_grid(SHAPE, [Region("pad", 0, 110), Region("specimen", 130, 240)],
+                       subset=21, step=10)
+    rng = np.random.default_rng(5)
+    p = np.zeros((grid.size, 6))
+    pad = grid.region == 0
+    p[:, 0] = np.where(pad, 0.5, 3.0) + 1e-3 * grid.xc + rng.normal(0, 0.005, grid.size)
+    p[:, 3] = -0.2 + 5e-4 * grid.yc + rng.normal(0, 0.005, grid.size)
+    status = np.full(grid.size, VALID, dtype=np.int8)
+    wrong = np.flatnonzero(~pad)[17]
+    p[wrong, 3] += 0.3
+    status[np.flatnonzero(pad)[5]] = 5  # low_zncc
+
+    def result() -> FrameResult:
+        return FrameResult(p.copy(), np.ones(grid.size), np.full(grid.size, 3),
+                           np.zeros(grid.size), status.copy())
+
+    tested = result()
+    flag_outliers(grid, tested, threshold=2.0, epsilon=0.1)
+    assert np.flatnonzero(tested.status == OUTLIER).tolist() == [wrong]
+    assert tested.status[np.flatnonzero(pad)[5]] == 5
+    assert (tested.status == VALID).sum() == grid.size - 2
+    untested = result()
+    flag_outliers(grid, untested, threshold=0.0, epsilon=0.1)
+    assert (untested.status == status).all()

@@ -59,6 +59,11 @@ def settings_options() -> tuple[Option, ...]:
                key=f"{DIC}.zncc_min"),
         Option("--prefilter-sigma", "Gaussian smoothing of every frame before "
                "interpolation (0: none)", float, unit="px", key=f"{DIC}.prefilter_sigma"),
+        Option("--outlier-threshold", "normalised median residual above which a valid "
+               "vector is rejected as outlier (0: no test)", float,
+               key=f"{DIC}.outlier_threshold"),
+        Option("--outlier-epsilon", "the median test's allowance for the vectors' noise",
+               positive_float, unit="px", key=f"{DIC}.outlier_epsilon"),
         Option("--incremental", "each frame starts from the previous frames' solution "
                "(--no-incremental: from each region's FFT shift)", kind="switch",
                key=f"{DIC}.incremental"),
@@ -70,7 +75,9 @@ def settings_options() -> tuple[Option, ...]:
 def _settings(args: argparse.Namespace) -> dict[str, object]:
     return {"order": args.order, "max_iterations": args.max_iterations,
             "tolerance": args.tolerance, "zncc_min": args.zncc_min,
-            "prefilter_sigma": args.prefilter_sigma, "incremental": args.incremental,
+            "prefilter_sigma": args.prefilter_sigma,
+            "outlier_threshold": args.outlier_threshold,
+            "outlier_epsilon": args.outlier_epsilon, "incremental": args.incremental,
             "colour": args.colour}
 
 

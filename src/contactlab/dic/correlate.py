@@ -48,9 +48,10 @@ Flags (``status``; ``valid`` is ``status == 0``): 1 ``textureless`` (the referen
 no usable gradient), 2 ``left_image`` (a warped pixel centre left the image's area),
 3 ``left_region`` (its footprint crossed into a neighbouring region, moved by that region's
 median displacement), 4 ``not_converged`` (``max_iterations`` reached), 5 ``low_zncc``
-(final ZNCC below ``zncc_min``); 6 ``no_subset`` marks grid positions without a subset in
-the output fields. A region whose subsets are all rejected is an error naming the frame and
-the region.
+(final ZNCC below ``zncc_min``), 7 ``outlier`` (a valid vector that the normalised
+median test finds far from its valid neighbours of the same region, :func:`flag_outliers`);
+6 ``no_subset`` marks grid positions without a subset in the output fields. A region whose
+subsets are all rejected is an error naming the frame and the region.
 
 Why written here: the pip-installable DIC codes are global finite-element methods
 (muDIC, pyxel), compiled GPL code (spam), or local codes that pull GUI toolkits and
@@ -74,6 +75,7 @@ from contactlab.dic.regions import SubsetGrid
 
 __all__ = [
     "PARAMETERS",
+    "REJECTED",
     "STATUS_MEANINGS",
     "Frame",
     "FrameResult",
@@ -82,14 +84,20 @@ __all__ = [
     "coarse_guess",
     "correlate_frame",
     "correlate_sequence",
+    "flag_outliers",
     "next_guess",
     "prepare",
 ]
 
 PARAMETERS = ("u", "dudx", "dudy", "v", "dvdx", "dvdy")
 STATUS_MEANINGS = ("valid", "textureless", "left_image", "left_region", "not_converged",
-                   "low_zncc", "no_subset")
-VALID, TEXTURELESS, LEFT_IMAGE, LEFT_REGION, NOT_CONVERGED, LOW_ZNCC, NO_SUBSET = range(7)
+                   "low_zncc", "no_subset", "outlier")
+(VALID, TEXTURELESS, LEFT_IMAGE, LEFT_REGION, NOT_CONVERGED, LOW_ZNCC, NO_SUBSET,
+ OUTLIER) = range(8)
+#: the flags of a placed subset that was rejected (every status but valid and no_subset)
+REJECTED = tuple(k for k in range(len(STATUS_MEANINGS)) if k not in (VALID, NO_SUBSET))
+#: fewest valid neighbours (of the eight) for the normalised median test of a vector
+MEDIAN_TEST_NEIGHBOURS = 3
 _RETRY = (LEFT_IMAGE, LEFT_REGION, NOT_CONVERGED, LOW_ZNCC)
 #: pixels (subsets x pixels per subset) solved together; bounds the memory (~10 arrays)
 BLOCK_PIXELS = 1 << 21
@@ -112,6 +120,9 @@ class Settings:
     zncc_min : subsets with a lower final ZNCC are flagged ``low_zncc``.
     prefilter_sigma : Gaussian smoothing of both images before interpolation, pixels
         (0: none).
+    outlier_threshold : normalised median residual above which a valid vector is flagged
+        ``outlier`` (:func:`flag_outliers`; 0: no test).
+    outlier_epsilon : the test's allowance for the noise of the vectors, pixels.
     """
 
     order: int
@@ -119,6 +130,8 @@ class Settings:
     tolerance: float
     zncc_min: float
     prefilter_sigma: float
+    outlier_threshold: float
+    outlier_epsilon: float
 
     def __post_init__(self) -> None:
         if self.order not in bspline.ORDERS:
@@ -133,11 +146,19 @@ class Settings:
         if not self.prefilter_sigma >= 0:
             raise ValueError(f"prefilter_sigma must be >= 0 pixels, got "
                              f"{self.prefilter_sigma}")
+        if not self.outlier_threshold >= 0:
+            raise ValueError(f"outlier_threshold must be >= 0 (0: no test), got "
+                             f"{self.outlier_threshold}")
+        if not self.outlier_epsilon > 0:
+            raise ValueError(f"outlier_epsilon must be > 0 pixels, got "
+                             f"{self.outlier_epsilon}")
 
     def as_attrs(self) -> dict[str, float | int]:
         return {"order": int(self.order), "max_iterations": int(self.max_iterations),
                 "tolerance_px": float(self.tolerance), "zncc_min": float(self.zncc_min),
-                "prefilter_sigma_px": float(self.prefilter_sigma)}
+                "prefilter_sigma_px": float(self.prefilter_sigma),
+                "outlier_threshold": float(self.outlier_threshold),
+                "outlier_epsilon_px": float(self.outlier_epsilon)}
 
 
 @dataclass(frozen=True)
@@ -436,8 +457,9 @@ def _check_regions(ref: Reference, result: FrameResult, label: str) -> None:
     for r in order:
         mine = valid & (grid.region == r)
         if not mine.any():
-            counts = np.bincount(result.status[grid.region == r], minlength=6)
-            reasons = ", ".join(f"{counts[k]} {STATUS_MEANINGS[k]}" for k in range(1, 6)
+            counts = np.bincount(result.status[grid.region == r],
+                                 minlength=len(STATUS_MEANINGS))
+            reasons = ", ".join(f"{counts[k]} {STATUS_MEANINGS[k]}" for k in REJECTED
                                 if counts[k])
             raise ValueError(f"{label}: region {grid.regions[r].name!r}: all "
                              f"{int(counts.sum())} subsets rejected ({reasons}); is the "
@@ -451,6 +473,44 @@ def _check_regions(ref: Reference, result: FrameResult, label: str) -> None:
         crossed = ((grid.region == left) & (x_high > b.x_min + moved[right])) | \
                   ((grid.region == right) & (x_low < a.x_max + moved[left]))
         result.status[valid & crossed] = LEFT_REGION
+
+
+def flag_outliers(grid: SubsetGrid, result: FrameResult, *, threshold: float,
+                  epsilon: float) -> None:
+    """Flag valid vectors far from their neighbours as ``outlier`` (in place).
+
+    The normalised median test (Westerweel and Scarano, Exp. Fluids 39 (2005) 1096): for each
+    displacement component of a vector, with ``m`` the median of its valid neighbours among
+    the eight around it on the grid *in the same region* (the interface's jump is no
+    outlier) and ``r`` the median of their distances ``|u_i - m|``,
+
+        |u - m| / (r + epsilon) > threshold    in u or v  ->  outlier,
+
+    ``epsilon`` (pixels) standing for the vectors' noise, so that a smooth field whose
+    neighbours agree to within the noise is not tested against zero. Vectors with fewer than
+    :data:`MEDIAN_TEST_NEIGHBOURS` valid neighbours are not tested; ``threshold`` 0 tests
+    nothing. One pass: the neighbours are the valid vectors before the test.
+    """
+    if threshold <= 0:
+        return
+    rows, cols = len(grid.y), len(grid.x)
+    row, col = grid.row + 1, grid.column + 1  # a border of empty grid positions around
+    region = np.full((rows + 2, cols + 2), -1)
+    region[row, col] = np.where(result.valid, grid.region, -1)
+    around = [(dy, dx) for dy in (-1, 0, 1) for dx in (-1, 0, 1) if dy or dx]
+    mates = np.stack([region[row + dy, col + dx] for dy, dx in around], axis=1) \
+        == grid.region[:, None]
+    tested = result.valid & (mates.sum(axis=1) >= MEDIAN_TEST_NEIGHBOURS)
+    far = np.zeros(grid.size, dtype=bool)
+    for k in (0, 3):  # u, v
+        value = np.full((rows + 2, cols + 2), np.nan)
+        value[row, col] = result.p[:, k]
+        near = np.stack([value[row + dy, col + dx] for dy, dx in around], axis=1)[tested]
+        near[~mates[tested]] = np.nan
+        median = np.nanmedian(near, axis=1)
+        spread = np.nanmedian(np.abs(near - median[:, None]), axis=1)
+        far[tested] |= np.abs(result.p[tested, k] - median) / (spread + epsilon) > threshold
+    result.status[far] = OUTLIER
 
 
 def correlate_frame(ref: Reference, frame: Frame, guess: np.ndarray | None, *,
@@ -477,6 +537,8 @@ def correlate_frame(ref: Reference, frame: Frame, guess: np.ndarray | None, *,
                                                  "status"))))
         result.iterations[retry] = spent  # both attempts count
     _check_regions(ref, result, label)
+    flag_outliers(ref.grid, result, threshold=ref.settings.outlier_threshold,
+                  epsilon=ref.settings.outlier_epsilon)
     return result
 
 

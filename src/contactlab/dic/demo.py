@@ -240,7 +240,8 @@ def _render(out: Path, final: Path, *, test: str, seed: int, shape: tuple[int, i
 
 def fields_from_images(folder: str | Path, frames: Sequence[int], *, subset: int | None,
                        step: int | None, order: int, max_iterations: int, tolerance: float,
-                       zncc_min: float, prefilter_sigma: float, incremental: bool,
+                       zncc_min: float, prefilter_sigma: float, outlier_threshold: float,
+                       outlier_epsilon: float, incremental: bool,
                        colour: str, test: str | None = None,
                        history: str | None = None) -> xr.Dataset:
     """DIC fields (stiffness format) of ``frames`` of an image folder with a sidecar.
@@ -251,7 +252,8 @@ def fields_from_images(folder: str | Path, frames: Sequence[int], *, subset: int
     frames : frame ids to correlate (e.g. the load log's), in order.
     subset, step : pixels, where the sidecar gives none: the sidecar's ``subset`` and
         ``step`` win, as they belong to the images (an error if neither gives one).
-    order, max_iterations, tolerance, zncc_min, prefilter_sigma : see
+    order, max_iterations, tolerance, zncc_min, prefilter_sigma, outlier_threshold,
+    outlier_epsilon : see
         :class:`contactlab.dic.correlate.Settings`.
     incremental : each frame starts from the previous frame's solution.
     colour : ``"refuse"`` or ``"luminance"`` for colour files.
@@ -279,7 +281,8 @@ def fields_from_images(folder: str | Path, frames: Sequence[int], *, subset: int
             LOG.info("%s: the sidecar's %s of %d px wins over the %d px given", setup.path,
                      name, value, given[name])
     settings = Settings(order=order, max_iterations=max_iterations, tolerance=tolerance,
-                        zncc_min=zncc_min, prefilter_sigma=prefilter_sigma)
+                        zncc_min=zncc_min, prefilter_sigma=prefilter_sigma,
+                        outlier_threshold=outlier_threshold, outlier_epsilon=outlier_epsilon)
     try:
         grid = subset_grid(setup.shape, list(setup.regions()), subset=subset, step=step,
                            roi=setup.roi())

@@ -144,7 +144,8 @@ def _parameters(grid: SubsetGrid, settings: Settings) -> dict[str, object]:
 def correlate_images(reference: str | Path | np.ndarray,
                      images: Sequence[str | Path | np.ndarray], *, subset: int, step: int,
                      order: int, max_iterations: int, tolerance: float, zncc_min: float,
-                     prefilter_sigma: float, incremental: bool,
+                     prefilter_sigma: float, outlier_threshold: float,
+                     outlier_epsilon: float, incremental: bool,
                      colour: str, roi: tuple[float, float, float, float] | None = None,
                      pixel_size_um: float | None = None,
                      history: str | None = None) -> xr.Dataset:
@@ -154,8 +155,8 @@ def correlate_images(reference: str | Path | np.ndarray,
     ----------
     reference, images : file paths (8/16-bit grey TIFF or PNG) or 2-D arrays.
     subset, step : subset size and grid step, pixels.
-    order, max_iterations, tolerance, zncc_min, prefilter_sigma : see
-        :class:`contactlab.dic.correlate.Settings`.
+    order, max_iterations, tolerance, zncc_min, prefilter_sigma, outlier_threshold,
+    outlier_epsilon : see :class:`contactlab.dic.correlate.Settings`.
     incremental : each image starts from the previous image's solution (a sequence);
         otherwise every image starts from the FFT guess.
     roi : (x0, x1, y0, y1) in pixels from the image's left/top edge (columns
@@ -171,7 +172,8 @@ def correlate_images(reference: str | Path | np.ndarray,
     reference's and for an image whose subsets are all rejected.
     """
     settings = Settings(order=order, max_iterations=max_iterations, tolerance=tolerance,
-                        zncc_min=zncc_min, prefilter_sigma=prefilter_sigma)
+                        zncc_min=zncc_min, prefilter_sigma=prefilter_sigma,
+                        outlier_threshold=outlier_threshold, outlier_epsilon=outlier_epsilon)
     if pixel_size_um is not None and not pixel_size_um > 0:
         raise ValueError(f"pixel size must be > 0 um, got {pixel_size_um}")
 

@@ -1,7 +1,7 @@
 """The quality of a correlation, from its fields: valid vectors, rejections and ZNCC.
 
 Every vector of a fields file (:func:`contactlab.dic.fields.fields_dataset`) carries its
-``status`` (0 valid, 1-5 a rejection reason, 6 no subset at that grid position) and its
+``status`` (0 valid, 1-5 and 7 a rejection reason, 6 no subset at that grid position) and its
 ``zncc``. :func:`frame_quality` counts them per frame, :func:`worst_frame` picks the frame
 with the most rejected vectors (ties: the lowest median ZNCC of its valid vectors) and
 :func:`quality_summary` sums a whole sequence up.
@@ -13,12 +13,12 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from contactlab.dic.correlate import NO_SUBSET, STATUS_MEANINGS, VALID
+from contactlab.dic.correlate import NO_SUBSET, REJECTED, STATUS_MEANINGS, VALID
 
 __all__ = ["REJECTIONS", "frame_quality", "quality_summary", "worst_frame"]
 
-#: The rejection reasons (status 1-5), in flag order.
-REJECTIONS = STATUS_MEANINGS[1:NO_SUBSET]
+#: The rejection reasons, in flag order.
+REJECTIONS = tuple(STATUS_MEANINGS[code] for code in REJECTED)
 
 
 def frame_quality(fields: xr.Dataset) -> pd.DataFrame:
@@ -34,8 +34,7 @@ def frame_quality(fields: xr.Dataset) -> pd.DataFrame:
     with np.errstate(invalid="ignore"):
         table = pd.DataFrame({
             "placed": placed.sum(axis=1), "valid": valid.sum(axis=1),
-            **{reason: (status == code).sum(axis=1)
-               for code, reason in enumerate(REJECTIONS, start=1)},
+            **{STATUS_MEANINGS[code]: (status == code).sum(axis=1) for code in REJECTED},
             "zncc_median": _nan_reduce(np.nanmedian, good),
             "zncc_lowest": _nan_reduce(np.nanmin, good),
             "iterations_mean": np.where(placed, iterations, 0).sum(axis=1)

@@ -20,8 +20,8 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from contactlab.dic.correlate import NO_SUBSET, VALID
-from contactlab.dic.quality import REJECTIONS, frame_quality, quality_summary, worst_frame
+from contactlab.dic.correlate import NO_SUBSET, REJECTED, STATUS_MEANINGS, VALID
+from contactlab.dic.quality import frame_quality, quality_summary, worst_frame
 from contactlab.dic.recovery import (
     STEP_COLUMNS,
     TABLE_ROW_COLUMNS,
@@ -34,9 +34,10 @@ from contactlab.report.section import ReportSection, save_figure
 __all__ = ["build_section", "quality_figure"]
 
 _MARKERS = {"textureless": "s", "left_image": "^", "left_region": "D", "not_converged": "x",
-            "low_zncc": "v"}
+            "low_zncc": "v", "outlier": "o"}
 _SETTINGS = ("subset_px", "step_px", "order", "max_iterations", "tolerance_px", "zncc_min",
-             "prefilter_sigma_px", "incremental", "colour")
+             "prefilter_sigma_px", "outlier_threshold", "outlier_epsilon_px", "incremental",
+             "colour")
 
 
 def _test_of(fields: xr.Dataset, path: Path) -> str:
@@ -66,7 +67,8 @@ def quality_figure(fields: xr.Dataset, result: xr.Dataset | None,
                          vmin=limits[0], vmax=max(limits[1], limits[0] + 1e-4))
     fig.colorbar(mesh, ax=ax, label="ZNCC (valid vectors)")
     xx, yy = np.meshgrid(x, y)
-    for code, reason in enumerate(REJECTIONS, start=1):
+    for code in REJECTED:
+        reason = STATUS_MEANINGS[code]
         where = status == code
         if where.any():
             ax.plot(xx[where], yy[where], _MARKERS[reason], color="red", mfc="none",
