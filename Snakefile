@@ -7,8 +7,10 @@ from snakemake.exceptions import WorkflowError
 from snakemake.utils import min_version
 
 from contactlab.config_check import ConfigError, load_yaml_file
+from contactlab.studies.shared import keep_other_runs_locks
 
 min_version("9.14.8")  # 9.5.1-9.14.7 skipped validation in remote jobs (#3614)
+keep_other_runs_locks()  # runs side by side (studies) keep each other's locks
 
 
 # read the default study first, so that a broken file is named with its YAML line

@@ -9,7 +9,8 @@ it then finds them made and plans no job that writes them.
 
 :func:`build_missing` does that; the Snakefile calls it from an input function of the shared
 rules (so it runs while Snakemake builds the DAG, and only in a real run of the main
-process: :func:`is_real_run`). Only the standard library is imported.
+process: :func:`is_real_run`). Only the standard library is imported (and Snakemake's
+persistence by :func:`keep_other_runs_locks`, which the Snakefile calls).
 """
 
 from __future__ import annotations
@@ -67,6 +68,38 @@ def build_command(files: Sequence[str], configfile: str, cores: int) -> list[str
             "--configfile", configfile, "--", *files]
 
 
+def keep_other_runs_locks() -> None:
+    """Make a Snakemake run that ends remove its own lock files only.
+
+    Snakemake (9.27) removes the whole ``.snakemake/locks`` folder when a run ends, with the
+    lock files of every other run in it: a run started beside it (another study) loses the
+    locks that keep a third run off its files, and fails with ``FileNotFoundError`` if it
+    writes its locks just after the folder went. The Snakefile calls this once: a run that
+    ends now deletes the lock files it wrote, and ``snakemake --unlock`` still clears the
+    folder. Patches ``snakemake.persistence.file.FilePersistence``, the default backend.
+    """
+    import shutil
+
+    from snakemake.persistence.file import FilePersistence
+
+    if getattr(FilePersistence, "_own_locks_only", False):
+        return
+
+    def delete_own_locks(self: Any) -> None:
+        for lockfile in self._lockfile.values():
+            with contextlib.suppress(FileNotFoundError):
+                os.remove(lockfile)
+        self._lockfile.clear()
+
+    def clear_every_lock(self: Any) -> None:  # --unlock: stale locks of killed runs
+        delete_own_locks(self)
+        shutil.rmtree(self._lockdir, ignore_errors=True)
+
+    FilePersistence._delete_locks = delete_own_locks  # type: ignore[method-assign]
+    FilePersistence.cleanup_locks = clear_every_lock  # type: ignore[method-assign]
+    FilePersistence._own_locks_only = True  # type: ignore[attr-defined]
+
+
 def write_config(config: Mapping[str, Any], path: Path) -> None:
     """``config`` as a YAML config file that Snakemake reads back with the same types
     (YAML, not JSON: Snakemake's YAML reader takes JSON's ``1e-06`` for a string)."""
@@ -104,9 +137,6 @@ def build_missing(files: Sequence[str], config: Mapping[str, Any], cores: int = 
                 stdout=2)
         finally:
             configfile.unlink(missing_ok=True)
-            # Snakemake removes .snakemake/locks/ as a whole when a run ends; the asking run
-            # has not written its locks yet and expects the folder
-            (root / ".snakemake" / "locks").mkdir(parents=True, exist_ok=True)
         if run.returncode != 0:
             raise SharedInputsError(
                 f"building the shared inputs failed (exit status {run.returncode}); the "
