@@ -18,7 +18,8 @@ import yaml
 
 import contactlab
 from contactlab.cli import build_parser, command, groups, main
-from contactlab.command import REQUIRED, Command, schema_default, schema_node
+from contactlab.command import REQUIRED, Command
+from contactlab.schema import schema_default, schema_node
 
 HEAVY = ("numpy", "scipy", "xarray", "pandas", "matplotlib", "lmfit", "SurfaceTopography")
 CONTACTLAB = str(Path(sys.executable).parent / "contactlab")

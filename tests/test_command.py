@@ -6,7 +6,8 @@ from __future__ import annotations
 import argparse
 
 from contactlab.cliutil import json_value
-from contactlab.command import Command, Option, schema_default
+from contactlab.command import Command, Option
+from contactlab.schema import schema_default
 
 
 def test_a_mapping_from_the_config_is_passed_as_json_its_type_parses_back() -> None:

@@ -3,7 +3,7 @@
 The map (also in docs/CONVENTIONS.md, "Layers"), lowest first; a module may import modules
 of its own layer and of the layers below it, never above:
 
-0. ground floor: ``contactlab`` itself, ``io``, ``study``, ``published``, ``testsheet``,
+0. ground floor: ``contactlab`` itself, ``io``, ``schema``, ``study``, ``published``, ``testsheet``,
    ``csvlines``, ``config_check``, ``config_docs``, ``setup_check``, ``progress``, ``blas``
    -- files, provenance, the thesis's transcribed tables, the test sheet, the set-up's
    system packages, the log format and progress reports, one BLAS thread;
@@ -33,7 +33,8 @@ import pytest
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = SRC / "contactlab"
-GROUND = {"contactlab", "contactlab.__init__", "contactlab.io", "contactlab.study",
+GROUND = {"contactlab", "contactlab.__init__", "contactlab.io", "contactlab.schema",
+          "contactlab.study",
           "contactlab.published", "contactlab.testsheet", "contactlab.csvlines",
           "contactlab.config_check", "contactlab.config_docs", "contactlab.setup_check",
           "contactlab.progress", "contactlab.blas"}

@@ -47,7 +47,7 @@ class HelpFormatter(argparse.HelpFormatter):
 
 def config_default_text(key: str | dict[str, str]) -> str:
     """The schema default(s) of a config-fed option, as its help shows them."""
-    from contactlab.command import schema_default
+    from contactlab.schema import schema_default
 
     if isinstance(key, str):
         return f"{schema_default(key)!r}, config {key}"

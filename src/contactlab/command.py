@@ -24,12 +24,9 @@ import json
 import shlex
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from functools import cache
-from pathlib import Path
 from typing import Any
 
-#: The config schema, the one home of every default (``workflow/schemas/`` of the checkout).
-SCHEMA_PATH = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
+from contactlab.schema import config_value, schema_default
 
 
 class _Required:
@@ -42,51 +39,20 @@ class _Required:
 REQUIRED: Any = _Required()
 
 
-@cache
-def _schema() -> dict:
-    import yaml
-
-    if not SCHEMA_PATH.is_file():
-        raise FileNotFoundError(f"config schema {SCHEMA_PATH} not found: contactlab reads its "
-                                "defaults from the checkout it is installed from (pip install -e)")
-    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
-    with SCHEMA_PATH.open(encoding="utf-8") as stream:
-        return yaml.load(stream, Loader=loader)
-
-
-def schema_node(key: str, schema: Mapping[str, Any] | None = None) -> Mapping[str, Any]:
-    """The schema node of the dotted config ``key`` (e.g. ``receding.line.lambda``)."""
-    node: Mapping[str, Any] = _schema() if schema is None else schema
-    for part in key.split("."):
-        props = node.get("properties", {})
-        if part not in props:
-            raise KeyError(f"config key {key!r} is not in the schema {SCHEMA_PATH.name}")
-        node = props[part]
-    return node
-
-
-def schema_default(key: str) -> Any:
-    """The schema's default of the dotted config ``key``."""
-    node = schema_node(key)
-    if "default" not in node:
-        raise KeyError(f"config key {key!r} has no default in the schema {SCHEMA_PATH.name}")
-    return node["default"]
-
-
-def config_value(config: Mapping[str, Any], key: str) -> Any:
-    """The value of the dotted ``key`` in an effective (validated) config."""
-    node: Any = config
-    for part in key.split("."):
-        if not isinstance(node, Mapping) or part not in node:
-            raise KeyError(f"config key {key!r} is not set")
-        node = node[part]
-    return node
+def _plain(value: Any) -> Any:
+    """A config value as plain JSON data (a mapping view of the config read entry by
+    entry)."""
+    if isinstance(value, Mapping):
+        return {key: _plain(item) for key, item in value.items()}
+    if isinstance(value, list | tuple):
+        return [_plain(item) for item in value]
+    return value
 
 
 def _word(value: Any) -> str:
     """One value as a command-line word: a mapping (e.g. ``asperity.multi.tables``) as JSON,
     which its option's type parses back (:func:`contactlab.cliutil.json_value`)."""
-    return json.dumps(value) if isinstance(value, Mapping) else str(value)
+    return json.dumps(_plain(value)) if isinstance(value, Mapping) else str(value)
 
 
 @dataclass(frozen=True)

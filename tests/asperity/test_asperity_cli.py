@@ -43,7 +43,7 @@ def test_bad_parameters_exit_2(tmp_path, capsys, argv, message):
 def test_rules_pass_each_law_its_options_and_the_tables_as_json():
     """The words a rule passes: the config's values, the options of the law only."""
     from contactlab.cli import command
-    from contactlab.command import schema_default
+    from contactlab.schema import schema_default
 
     config = {"asperity": {"nu": 0.25, "q_ratio_points": 21,
                            "bem": {"cells": 16, "friction": 0.5, "tau_max": [0.7]}}}

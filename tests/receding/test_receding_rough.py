@@ -362,7 +362,7 @@ def test_default_sweep_meets_the_smooth_limit_at_its_stiffest_point() -> None:
     point (smallest C > 0) a, b and K_T of the line load and the patch are within 1e-4 of
     the smooth interface's at every default f, and the differences grow with C over the
     next two compliances (converging to the smooth answer as C -> 0)."""
-    from contactlab.command import schema_default
+    from contactlab.schema import schema_default
 
     rough = "receding.rough"
     C = sorted(float(c) for c in schema_default(f"{rough}.C"))

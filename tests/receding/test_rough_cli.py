@@ -11,9 +11,9 @@ import pytest
 import xarray as xr
 
 from contactlab.cli import main
-from contactlab.command import schema_default
 from contactlab.receding.core.interface import mindlin_ratio
 from contactlab.receding.liftoff.rough import rough_point
+from contactlab.schema import schema_default
 
 KEY = "receding.rough.pairs.tests"
 

@@ -12,8 +12,9 @@ import argparse
 from pathlib import Path
 
 from contactlab.cliutil import input_file, out_option, section_outputs
-from contactlab.command import Command, Group, Option, schema_default
+from contactlab.command import Command, Group, Option
 from contactlab.receding.options import line_options, patch_options
+from contactlab.schema import schema_default
 
 EXAMPLES = """\
   contactlab fe receding --problem gap --h 0.1 --out gap.nc

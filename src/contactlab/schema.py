@@ -1,0 +1,61 @@
+"""The config schema, the one home of every default, and the values it describes.
+
+``workflow/schemas/config.schema.yaml`` declares every config key with its type, limits,
+default and meaning; the workflow validates each study's config against it, the commands
+take their defaults from it, and the studies' tools compare configs key by key. This module
+reads it (once, lazily, with libyaml) and walks it by dotted key. Standard library only;
+PyYAML is imported when the schema is first read.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from functools import cache
+from pathlib import Path
+from typing import Any
+
+#: The config schema, the one home of every default (``workflow/schemas/`` of the checkout).
+SCHEMA_PATH = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
+
+
+@cache
+def _schema() -> dict:
+    import yaml
+
+    if not SCHEMA_PATH.is_file():
+        raise FileNotFoundError(f"config schema {SCHEMA_PATH} not found: contactlab reads its "
+                                "defaults from the checkout it is installed from (pip install -e)")
+    loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+    with SCHEMA_PATH.open(encoding="utf-8") as stream:
+        return yaml.load(stream, Loader=loader)
+
+
+def schema_node(key: str, schema: Mapping[str, Any] | None = None) -> Mapping[str, Any]:
+    """The schema node of the dotted config ``key`` (e.g. ``receding.line.lambda``)."""
+    node: Mapping[str, Any] = _schema() if schema is None else schema
+    for part in key.split("."):
+        props = node.get("properties", {})
+        if part not in props:
+            raise KeyError(f"config key {key!r} is not in the schema {SCHEMA_PATH.name}")
+        node = props[part]
+    return node
+
+
+def schema_default(key: str) -> Any:
+    """The schema's default of the dotted config ``key``."""
+    node = schema_node(key)
+    if "default" not in node:
+        raise KeyError(f"config key {key!r} has no default in the schema {SCHEMA_PATH.name}")
+    return node["default"]
+
+
+def config_value(config: Mapping[str, Any], key: str) -> Any:
+    """The value of the dotted ``key`` in an effective (validated) config."""
+    node: Any = config
+    for part in key.split("."):
+        if not isinstance(node, Mapping) or part not in node:
+            raise KeyError(f"config key {key!r} is not set")
+        node = node[part]
+    return node
+
+
