@@ -105,12 +105,14 @@ def _environment() -> dict[str, str]:
     return env
 
 
-def run_snakemake(workdir: Path, *args: str) -> subprocess.CompletedProcess[str]:
+def run_snakemake(workdir: Path, *args: str, env: dict[str, str] | None = None
+                  ) -> subprocess.CompletedProcess[str]:
     """``python -m snakemake`` on the end-to-end config in ``workdir``, as a user runs it:
-    a fresh process, no standard input, its output captured."""
+    a fresh process, no standard input, its output captured; ``env``: variables to set."""
     return subprocess.run([sys.executable, "-m", "snakemake", *SNAKEMAKE_ARGS, *args],
-                          cwd=workdir, env=_environment(), stdin=subprocess.DEVNULL,
-                          capture_output=True, text=True, check=False)
+                          cwd=workdir, env={**_environment(), **(env or {})},
+                          stdin=subprocess.DEVNULL, capture_output=True, text=True,
+                          check=False)
 
 
 def run_snakemake_many(workdir: Path, commands: list[list[str]]

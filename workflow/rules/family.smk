@@ -12,14 +12,14 @@ from contactlab.config_check import ConfigError, check_config, load_yaml_file, p
 from contactlab.studies.family import (
     SHARED_RULES,
     FamilyError,
-    name_clash,
     rename_localrules,
     split_family,
     use_variant,
     variant_config,
 )
 from contactlab.rulehelpers import demo_image_folders
-from contactlab.studies import cluster, manifest, shared
+from contactlab.studies import cluster, manifest, names, reads, reuse, shared
+from contactlab.studies.jobkeys import StudyFolders
 from contactlab.study import STUDIES_ENV, PROVENANCE_ENV, coerce
 
 _FAMILY_FILE = next((str(f) for f in workflow.config_settings.configfiles
@@ -28,9 +28,9 @@ try:
     FAMILY, VARIANTS, _FAMILY_BASE = split_family(config, _FAMILY_FILE)
 except FamilyError as exc:
     raise WorkflowError(f"invalid family: {exc}") from None
-_CLASH = name_clash(FAMILY, ".", family=True)
+_CLASH = names.clash(FAMILY, _FAMILY_FILE)
 if _CLASH:
-    raise WorkflowError(f"invalid family: {_FAMILY_FILE}: {_CLASH}")
+    raise WorkflowError(f"invalid family: {_CLASH}")
 
 FAMILY_GRID = config["grid"]
 
@@ -59,10 +59,14 @@ _MODULES = {v.name: globals()[v.prefix] for v in VARIANTS}
 FAMILY_TARGETS = [f for m in _MODULES.values() for f in m.STUDY_TARGETS]
 
 
-shared.attach(workflow, SHARED_RULES, _MODULES[VARIANTS[0].name].config,
+shared.attach(workflow, SHARED_RULES, reads.data(_MODULES[VARIANTS[0].name].config),
               demo_image_folders(_MODULES[VARIANTS[0].name].TESTS))
 cluster.install(workflow)  # why a Slurm job failed, in the run's own output
-RUN_STUDIES = [{"logs": m.LOGS, "targets": m.STUDY_TARGETS,
+# the variants' jobs with the same key run once; those another study ran are linked
+reuse.install(workflow, [StudyFolders(v.study, m.RESULTS, m.LOGS)
+                         for v, m in zip(VARIANTS, _MODULES.values(), strict=True)],
+              shared.SHARED_FOLDERS)
+RUN_STUDIES = [{"logs": m.LOGS, "targets": m.STUDY_TARGETS, "recorder": m.READS,
                 "all_rules": ["all", f"{v.prefix}__all"], **m.PROVENANCE}
                for v, m in zip(VARIANTS, _MODULES.values(), strict=True)]
 

@@ -8,8 +8,9 @@
 import os
 
 from contactlab.rulehelpers import demo_image_folders
-from contactlab.studies import cluster, manifest, shared
+from contactlab.studies import cluster, manifest, reads, reuse, shared
 from contactlab.studies.family import SHARED_RULES
+from contactlab.studies.jobkeys import StudyFolders
 
 #: every final result of the study and its report page (the inputs of rule `all`)
 STUDY_TARGETS = [*ALL_TARGETS, result("report/index.html")]
@@ -20,8 +21,11 @@ CONFIG_FILES = manifest.run_config_files(workflow)
 # (the run that builds the shared inputs for another leaves no record: it is not a study's)
 if workflow.modifier.is_main_snakefile() and not os.environ.get(shared.BUILDING_ENV):
     RUN_STUDIES = [{"logs": LOGS, "targets": STUDY_TARGETS, "all_rules": ["all"],
-                    **PROVENANCE}]
-    shared.attach(workflow, SHARED_RULES, config, demo_image_folders(TESTS))
+                    "recorder": READS, **PROVENANCE}]
+    shared.attach(workflow, SHARED_RULES, reads.data(config), demo_image_folders(TESTS))
+    # jobs whose key another study has run are linked, not run (contactlab.studies.reuse)
+    reuse.install(workflow, [StudyFolders(PROVENANCE["study"], RESULTS, LOGS)],
+                  shared.SHARED_FOLDERS)
     cluster.install(workflow)  # why a Slurm job failed, in the run's own output
 
     onsuccess:

@@ -28,6 +28,8 @@ from typing import Any
 LOCK = ".snakemake/contactlab/shared-inputs.lock"
 #: Set in the environment of the run that builds the shared inputs (it must not recurse).
 BUILDING_ENV = "CONTACTLAB_BUILDING_SHARED_INPUTS"
+#: The folders of the inputs every study shares (the demo data): no study's results.
+SHARED_FOLDERS = ("results/demo/", "results/surfaces/demo_scans/")
 #: Config keys that make a run a named study or a family: left out of the shared build.
 STUDY_KEYS = ("study", "family", "grid")
 
