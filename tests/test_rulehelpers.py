@@ -82,8 +82,11 @@ def test_rough_interface_runs_take_one_c_t_for_both_sides() -> None:
         rough_fe_run(config, "line", "3", "0.05")
     names = [rough_profile_name(p) for p in rough["profiles"]]
     assert names == ["line_f0.5_C1", "uniform_w1_f0.3_C0.3"]
-    assert rough_profile_point(rough["profiles"], names[1]) == {
+    assert rough_profile_point(names[1]) == {
         "problem": "uniform", "f": 0.3, "C": 0.3, "w_hat": 1.0}
+    assert rough_profile_point(names[0]) == {"problem": "line", "f": 0.5, "C": 1.0}
+    with pytest.raises(ValueError, match="a uniform patch needs w"):
+        rough_profile_name({"problem": "uniform", "f": 0.3, "C": 1.0})
     assert rough_pairs_summary(rough, "r/") == ["r/stiffness/summary.nc"]
     assert rough_pairs_summary({"pairs": {"tests": {"X": {"beta_n_per_um": 1}}}}) == []
 

@@ -16,6 +16,7 @@ names); finite elements (the values of a run that are not config values, file li
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -240,17 +241,54 @@ def chunk_values(values: Sequence[float], chunk: int, chunks: int) -> list[str]:
     return [str(v) for v in values[int(chunk) :: chunks]]
 
 
+def sweep_chunks(section: Mapping[str, Any], key: str) -> list[int]:
+    """The chunks of a sweep over ``section[key]`` (at most ``section["chunks"]``, one value
+    each at least)."""
+    return list(range(min(section["chunks"], len(sweep_values(section[key])))))
+
+
+def sweep_chunk(section: Mapping[str, Any], key: str, chunk: int | str) -> list[str]:
+    """The values of ``section[key]`` in one chunk of its sweep (:func:`chunk_values`)."""
+    return chunk_values(sweep_values(section[key]), int(chunk), len(sweep_chunks(section, key)))
+
+
+def gap_compare_n(gap: Mapping[str, Any]) -> list[int]:
+    """The comparison N of the gap problem (Fig. 5.5): ``compare_n`` without the main N."""
+    return [n for n in gap["compare_n"] if n != gap["n"]]
+
+
+def number_name(value: float) -> str:
+    """A number in a file name: as ``:g`` writes it where that reads back as the same
+    number (``2.5``, ``1``), else its exact shortest form (``1.23456789``)."""
+    text = f"{float(value):g}"
+    return text if float(text) == float(value) else repr(float(value))
+
+
 def gap_profile_name(point: Mapping[str, float]) -> str:
     """File stem of a profile point, e.g. ``w2.5_f0.5``."""
-    return f"w{point['w']:g}_f{point['f']:g}"
+    return f"w{number_name(point['w'])}_f{number_name(point['f'])}"
 
 
-def gap_profile_point(points: Sequence[Mapping[str, float]], name: str) -> Mapping[str, float]:
-    """The configured profile point with this file stem."""
-    for point in points:
-        if gap_profile_name(point) == name:
-            return point
-    raise ValueError(f"no receding.gap.profiles entry named {name!r}")
+def gap_profile_point(name: str) -> dict[str, float]:
+    """The profile point of a file stem (:func:`gap_profile_name`), read from the name
+    alone, so that each profile job depends on its own point only."""
+    match = re.fullmatch(r"w(?P<w>[^_]+)_f(?P<f>[^_]+)", name)
+    if match is None:
+        raise ValueError(f"{name!r} is not a gap profile name w<w>_f<f>")
+    return {"w": float(match["w"]), "f": float(match["f"])}
+
+
+#: The file stems of pressure patches (rule wildcard ``law``): a named law of
+#: ``receding.patches.laws`` or a user's shape ``table_<name>`` (the schema's name pattern).
+#: Written out rather than read from the config, so that a patch's jobs depend on their own
+#: law only.
+PATCH_LAW_PATTERN = "uniform|hertz|punch|table_[A-Za-z][A-Za-z0-9_]*"
+
+
+def patch_names(patches: Mapping[str, Any]) -> list[str]:
+    """The pressure patches of ``receding.patches``: the named laws and the user's shapes
+    (``table_<name>``, results/receding/table_<name>.nc), one rule for both."""
+    return [*patches["laws"], *(f"table_{name}" for name in patches["tables"])]
 
 
 def patch_shape(law: str, tables: Mapping[str, Mapping[str, Sequence[float]]]
@@ -266,17 +304,17 @@ def patch_shape(law: str, tables: Mapping[str, Mapping[str, Sequence[float]]]
 def liftoff_profile_name(point: Mapping[str, float] | float, law: str = "line") -> str:
     """File stem of a line/patch profile: ``line_f0.5`` or ``patch_uniform_w1_f0.3``."""
     if isinstance(point, Mapping):
-        return f"patch_{point['law']}_w{point['w']:g}_f{point['f']:g}"
-    return f"{law}_f{float(point):g}"
+        return f"patch_{point['law']}_w{number_name(point['w'])}_f{number_name(point['f'])}"
+    return f"{law}_f{number_name(point)}"
 
 
-def liftoff_profile_point(points: Sequence[Mapping[str, float]], name: str
-                          ) -> Mapping[str, float]:
-    """The configured patch profile point with this file stem."""
-    for point in points:
-        if liftoff_profile_name(point) == name:
-            return point
-    raise ValueError(f"no receding.patches.profiles entry named {name!r}")
+def liftoff_profile_point(name: str) -> dict[str, Any]:
+    """The patch profile point of a file stem (:func:`liftoff_profile_name`), from the name
+    alone."""
+    match = re.fullmatch(r"patch_(?P<law>[a-z]+)_w(?P<w>[^_]+)_f(?P<f>[^_]+)", name)
+    if match is None:
+        raise ValueError(f"{name!r} is not a patch profile name patch_<law>_w<w>_f<f>")
+    return {"law": match["law"], "w": float(match["w"]), "f": float(match["f"])}
 
 
 def rough_ct_ratio(rough: Mapping[str, Any]) -> float:
@@ -289,23 +327,28 @@ def rough_ct_ratio(rough: Mapping[str, Any]) -> float:
 
 
 def rough_profile_name(point: Mapping[str, Any]) -> str:
-    """File stem of a rough-interface profile: ``line_f0.5_C1`` or ``uniform_w1_f0.3_C1``."""
-    where = f"_w{point['w']:g}" if point["problem"] != "line" else ""
-    return f"{point['problem']}{where}_f{point['f']:g}_C{point['C']:g}"
+    """File stem of a rough-interface profile: ``line_f0.5_C1`` or ``uniform_w1_f0.3_C1``.
+
+    A patch needs ``w``: ValueError naming the entry if it has none."""
+    if point["problem"] != "line" and "w" not in point:
+        raise ValueError(f"receding.rough.profiles entry {dict(point)}: a "
+                         f"{point['problem']} patch needs w")
+    where = f"_w{number_name(point['w'])}" if point["problem"] != "line" else ""
+    return f"{point['problem']}{where}_f{number_name(point['f'])}_C{number_name(point['C'])}"
 
 
-def rough_profile_point(points: Sequence[Mapping[str, Any]], name: str) -> dict[str, Any]:
-    """The options of ``receding rough-profile`` for the configured profile named ``name``."""
-    for point in points:
-        if rough_profile_name(point) == name:
-            values = {"problem": point["problem"], "f": point["f"], "C": point["C"]}
-            if point["problem"] != "line":
-                if "w" not in point:
-                    raise ValueError(f"receding.rough.profiles entry {dict(point)}: a "
-                                     f"{point['problem']} patch needs w")
-                values["w_hat"] = point["w"]
-            return values
-    raise ValueError(f"no receding.rough.profiles entry named {name!r}")
+def rough_profile_point(name: str) -> dict[str, Any]:
+    """The options of ``receding rough-profile`` for the profile named ``name``
+    (:func:`rough_profile_name`), from the name alone."""
+    match = re.fullmatch(r"(?P<problem>[a-z]+)(_w(?P<w>[^_]+))?_f(?P<f>[^_]+)_C(?P<C>[^_]+)",
+                         name)
+    if match is None:
+        raise ValueError(f"{name!r} is not a rough profile name <problem>[_w<w>]_f<f>_C<C>")
+    values: dict[str, Any] = {"problem": match["problem"], "f": float(match["f"]),
+                              "C": float(match["C"])}
+    if match["w"] is not None:
+        values["w_hat"] = float(match["w"])
+    return values
 
 
 def rough_pairs_summary(rough: Mapping[str, Any], results: str = "results/") -> list[str]:
@@ -341,6 +384,11 @@ def rough_fe_run(config: Mapping[str, Any], problem: str, C: str, h: str) -> dic
 
 
 # --------------------------------------------------------------------------- finite elements
+
+
+def fe_problems(fe: Mapping[str, Any]) -> list[str]:
+    """The receding problems the FE branch checks (none when it is off)."""
+    return list(fe["problems"]) if fe["enabled"] else []
 
 
 def comparison_run(fe: dict, problem: str, results: str = "results/") -> str:

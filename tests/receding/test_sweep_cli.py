@@ -142,8 +142,10 @@ def test_workflow_helpers() -> None:
     assert sweep_values([1, 2.5]) == [1.0, 2.5]
     chunks = [chunk_values(values, c, 6) for c in range(6)]
     assert sorted(float(v) for chunk in chunks for v in chunk) == values
-    points = [{"w": 2.5, "f": 0.5}, {"w": 1.0, "f": 0.3}]
+    points = [{"w": 2.5, "f": 0.5}, {"w": 1.0, "f": 0.3}, {"w": 1.23456789, "f": 0.1}]
     assert gap_profile_name(points[1]) == "w1_f0.3"
-    assert gap_profile_point(points, "w2.5_f0.5") == points[0]
-    with pytest.raises(ValueError, match="w9_f9"):
-        gap_profile_point(points, "w9_f9")
+    # a point reads back from its name alone, exactly (a job depends on its own point)
+    assert [gap_profile_point(gap_profile_name(p)) for p in points] == points
+    assert gap_profile_name(points[2]) == "w1.23456789_f0.1"
+    with pytest.raises(ValueError, match="not a gap profile name"):
+        gap_profile_point("profile_9")

@@ -8,8 +8,6 @@
 from contactlab.rulehelpers import command_args
 
 ASPERITY = config["asperity"]
-ASPERITY_BEM_LAWS = ASPERITY["bem"]["laws"]
-ASPERITY_GRID_BEM_N = ASPERITY["grid_bem"]["N"]
 
 
 rule asperity_bem:
@@ -45,7 +43,7 @@ rule asperity_transverse:
 rule asperity_single:
     """results/asperity/single.nc: eqs 3.1, 3.5, the BEM families and Hertz references."""
     input:
-        expand(result("asperity/bem/{law}.nc"), law=ASPERITY_BEM_LAWS),
+        expand(result("asperity/bem/{law}.nc"), law=ASPERITY["bem"]["laws"]),
     output:
         result("asperity/single.nc"),
     params:
@@ -111,7 +109,7 @@ rule asperity_grid_bem:
 rule asperity_grid_bem_gather:
     """results/asperity/grid_bem.nc: the BEM grids joined along N."""
     input:
-        expand(result("asperity/grid_bem/N{n}.nc"), n=ASPERITY_GRID_BEM_N),
+        expand(result("asperity/grid_bem/N{n}.nc"), n=ASPERITY["grid_bem"]["N"]),
     output:
         result("asperity/grid_bem.nc"),
     log:

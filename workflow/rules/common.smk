@@ -25,7 +25,7 @@ from contactlab.published import (
 )
 from contactlab.dic.sheet import check_image_folders
 from contactlab.rulehelpers import demo_data_files, section_files, section_page, table_files
-from contactlab.studies.family import name_clash
+from contactlab.studies import names, reads
 from contactlab.study import changes, coerce, export_provenance, logs_dir, results_dir
 from contactlab.surfaces.sheet import check_demo_scan_surfaces, read_surface_sheet
 from contactlab.testsheet import (
@@ -65,10 +65,11 @@ except ConfigError as exc:
 validate(config, "../schemas/config.schema.yaml")  # fills in the schema's defaults
 
 STUDY = config.get("study")  # absent: the default study
-# a study may not share its folder with a family's (results/studies/<name>/)
-_CLASH = name_clash(STUDY, ".", family=False) if STUDY and "/" not in STUDY else None
+# one name, one folder: no other study or family file gives the name, and not "default"
+_STUDY_FILE = next((f for f, data in reversed(_SOURCES) if "study" in (data or {})), None)
+_CLASH = names.clash(STUDY, _STUDY_FILE) if STUDY and "/" not in STUDY else None
 if _CLASH:
-    raise WorkflowError(f"invalid configuration in {_config_files()}: {_CLASH}")
+    raise WorkflowError(f"invalid configuration: {_CLASH}")
 RESULTS = results_dir(STUDY)
 LOGS = logs_dir(STUDY)
 
@@ -135,6 +136,12 @@ try:
                         generated=demo_data_files())
 except (TestSheetError, ValueError, FileNotFoundError) as exc:
     raise WorkflowError(str(exc)) from None
+
+# from here on every value a rule reads from the config is noted for the rule, the job or
+# the study (contactlab.studies.reads): a study's record says which results a change reaches
+reads.install()
+READS = reads.Recorder()
+config = reads.traced(config, READS)
 
 TEST_IDS = list(TESTS["id"])
 PUBLISHED = Path(config["published_dir"])

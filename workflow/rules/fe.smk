@@ -9,11 +9,6 @@ from contactlab import rulehelpers
 from contactlab.rulehelpers import command_args
 
 FE = config["fe"]
-FE_ON = FE["enabled"]
-FE_PROBLEMS = list(FE["problems"]) if FE_ON else []
-FE_ASPERITY = rulehelpers.asperity_runs(FE, RESULTS)
-FE_CONVERGENCE = rulehelpers.convergence_files(FE, RESULTS)
-FE_STUDY = rulehelpers.study_files(FE, RESULTS)
 
 
 rule fe_receding:
@@ -147,7 +142,7 @@ rule fe_asperity:
 rule fe_asperity_gather:
     """results/fe/asperity_plastic.nc: Fig. 3.8 curves with elastic stuck, Mindlin and BEM."""
     input:
-        runs=FE_ASPERITY,
+        runs=rulehelpers.asperity_runs(FE, RESULTS),
         bem=lambda wc: [p for p in [result("asperity/single.nc")] if p in ALL_TARGETS],
     output:
         result("fe/asperity_plastic.nc"),
@@ -204,17 +199,18 @@ rule fe_rough_compare:
 rule fe_report:
     """Report section: FE against DDT (Figs 8.3-8.19), agreement and convergence, Fig. 3.8."""
     input:
-        results=expand(result("fe/{problem}.nc"), problem=FE_PROBLEMS),
-        convergence=FE_CONVERGENCE,
-        study=FE_STUDY,
-        asperity=[result("fe/asperity_plastic.nc")] if FE_ASPERITY else [],
+        results=expand(result("fe/{problem}.nc"), problem=rulehelpers.fe_problems(FE)),
+        convergence=rulehelpers.convergence_files(FE, RESULTS),
+        study=rulehelpers.study_files(FE, RESULTS),
+        asperity=[result("fe/asperity_plastic.nc")] if rulehelpers.asperity_runs(FE, RESULTS)
+        else [],
     output:
         **report_section(
             "70_fe",
-            problem=FE_PROBLEMS,
-            convergence=bool(FE_CONVERGENCE),
-            study=bool(FE_STUDY),
-            asperity=bool(FE_ASPERITY),
+            problem=rulehelpers.fe_problems(FE),
+            convergence=bool(rulehelpers.convergence_files(FE, RESULTS)),
+            study=bool(rulehelpers.study_files(FE, RESULTS)),
+            asperity=bool(rulehelpers.asperity_runs(FE, RESULTS)),
         ),
     params:
         asperity=lambda wc, input: ["--asperity", *input.asperity] if input.asperity else [],
@@ -233,11 +229,12 @@ rule fe_report:
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
 
 
-if FE_ON:
-    ALL_TARGETS.extend(expand(result("fe/{problem}.nc"), problem=FE_PROBLEMS))
-    ALL_TARGETS.extend(FE_CONVERGENCE)
-    ALL_TARGETS.extend(FE_STUDY)
-    ALL_TARGETS.extend([result("fe/asperity_plastic.nc")] if FE_ASPERITY else [])
+if FE["enabled"]:
+    ALL_TARGETS.extend(expand(result("fe/{problem}.nc"), problem=rulehelpers.fe_problems(FE)))
+    ALL_TARGETS.extend(rulehelpers.convergence_files(FE, RESULTS))
+    ALL_TARGETS.extend(rulehelpers.study_files(FE, RESULTS))
+    if rulehelpers.asperity_runs(FE, RESULTS):
+        ALL_TARGETS.append(result("fe/asperity_plastic.nc"))
     if rulehelpers.rough_fe_runs(config, RESULTS):
         ALL_TARGETS.append(result("fe/rough_compare.nc"))
     REPORT_SECTIONS.append(report_page("70_fe"))

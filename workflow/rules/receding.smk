@@ -3,27 +3,29 @@
 # map, interface profiles and the report section. Small dense solves: one BLAS thread per
 # job, Snakemake runs the jobs in parallel.
 
+# A value derived from the config is computed where a rule uses it (its directives or
+# functions), so that the value is noted for that rule (contactlab.studies.reads).
+
 from contactlab.rulehelpers import (
-    chunk_values,
+    PATCH_LAW_PATTERN,
     command_args,
+    gap_compare_n,
     gap_profile_name,
     gap_profile_point,
     liftoff_profile_name,
     liftoff_profile_point,
+    patch_names,
     patch_shape,
     rough_fe_runs,
     rough_pairs_summary,
     rough_profile_name,
     rough_profile_point,
+    sweep_chunk,
+    sweep_chunks,
     sweep_values,
 )
 
 RECEDING = config["receding"]["gap"]
-RECEDING_W = sweep_values(RECEDING["w"])
-RECEDING_F = sweep_values(RECEDING["f"])
-RECEDING_CHUNKS = list(range(min(RECEDING["chunks"], len(RECEDING_W))))
-RECEDING_PROFILES = [gap_profile_name(p) for p in RECEDING["profiles"]]
-RECEDING_COMPARE = [n for n in RECEDING["compare_n"] if n != RECEDING["n"]]
 
 
 rule receding_gap_sweep:
@@ -37,8 +39,8 @@ rule receding_gap_sweep:
         args=lambda wc: command_args(
             "receding gap-sweep",
             config,
-            w_hat=chunk_values(RECEDING_W, wc.chunk, len(RECEDING_CHUNKS)),
-            f=RECEDING_F,
+            w_hat=sweep_chunk(RECEDING, "w", wc.chunk),
+            f=sweep_values(RECEDING["f"]),
             n=wc.n,
             # f_stick/f_sep only at the main N (the comparison sweeps show the zones)
             no_thresholds=int(wc.n) != RECEDING["n"],
@@ -59,7 +61,7 @@ rule receding_gap_gather:
     """results/receding/gap.nc: the sweep chunks at the main N joined along w/c."""
     input:
         expand(result("receding/chunks/gap_N{n}_{chunk}.nc"), n=RECEDING["n"],
-               chunk=RECEDING_CHUNKS),
+               chunk=sweep_chunks(RECEDING, "w")),
     output:
         result("receding/gap.nc"),
     log:
@@ -74,7 +76,7 @@ rule receding_gap_gather_compare:
     """results/receding/gap_N<n>.nc: the same sweep at a comparison N (Fig. 5.5)."""
     input:
         lambda wc: expand(result("receding/chunks/gap_N{n}_{chunk}.nc"), n=wc.n,
-                          chunk=RECEDING_CHUNKS),
+                          chunk=sweep_chunks(RECEDING, "w")),
     output:
         result("receding/gap_N{n}.nc"),
     wildcard_constraints:
@@ -109,8 +111,8 @@ rule receding_gap_profile:
         args=lambda wc: command_args(
             "receding gap-profile",
             config,
-            w_hat=gap_profile_point(RECEDING["profiles"], wc.point)["w"],
-            f=gap_profile_point(RECEDING["profiles"], wc.point)["f"],
+            w_hat=gap_profile_point(wc.point)["w"],
+            f=gap_profile_point(wc.point)["f"],
             refine_max_n=max(RECEDING["profile_n"], RECEDING["refine_max_n"]),
         ),
     log:
@@ -125,9 +127,10 @@ rule receding_report_gap:
     """Report section: Figs 5.4-5.8 and tables of the gap problem."""
     input:
         sweep=result("receding/gap.nc"),
-        compare=expand(result("receding/gap_N{n}.nc"), n=RECEDING_COMPARE),
+        compare=expand(result("receding/gap_N{n}.nc"), n=gap_compare_n(RECEDING)),
         regimes=result("receding/gap_regimes.nc"),
-        profiles=expand(result("receding/profiles/gap_{point}.nc"), point=RECEDING_PROFILES),
+        profiles=expand(result("receding/profiles/gap_{point}.nc"),
+                        point=[gap_profile_name(p) for p in RECEDING["profiles"]]),
     output:
         **report_section("50_receding_gap"),
     params:
@@ -146,9 +149,10 @@ rule receding_report_gap:
 ALL_TARGETS.extend(
     [
         result("receding/gap.nc"),
-        *expand(result("receding/gap_N{n}.nc"), n=RECEDING_COMPARE),
+        *expand(result("receding/gap_N{n}.nc"), n=gap_compare_n(RECEDING)),
         result("receding/gap_regimes.nc"),
-        *expand(result("receding/profiles/gap_{point}.nc"), point=RECEDING_PROFILES),
+        *expand(result("receding/profiles/gap_{point}.nc"),
+                point=[gap_profile_name(p) for p in RECEDING["profiles"]]),
     ]
 )
 REPORT_SECTIONS.append(report_page("50_receding_gap"))
@@ -158,18 +162,7 @@ REPORT_SECTIONS.append(report_page("50_receding_gap"))
 # Sweeps split per problem and f-chunk (interleaved f values), gathered along f.
 
 LINE = config["receding"]["line"]
-LINE_F = sweep_values(LINE["f"])
-LINE_CHUNKS = list(range(min(LINE["chunks"], len(LINE_F))))
-LINE_PROFILES = [liftoff_profile_name(f) for f in LINE["profiles"]]
 PATCHES = config["receding"]["patches"]
-PATCH_F = sweep_values(PATCHES["f"])
-PATCH_W = sweep_values(PATCHES["w"])
-PATCH_CHUNKS = list(range(min(PATCHES["chunks"], len(PATCH_F))))
-PATCH_PROFILES = [liftoff_profile_name(p) for p in PATCHES["profiles"]]
-PATCH_TABLES = PATCHES["tables"]
-# the named laws and the user's shapes (results/receding/table_<name>.nc), one rule for both
-PATCH_NAMES = [*PATCHES["laws"], *(f"table_{name}" for name in PATCH_TABLES)]
-PATCH_LAWS = "|".join(PATCH_NAMES)
 
 
 rule receding_line_sweep:
@@ -180,7 +173,7 @@ rule receding_line_sweep:
         chunk=r"\d+",
     params:
         args=lambda wc: command_args(
-            "receding line-sweep", config, f=chunk_values(LINE_F, wc.chunk, len(LINE_CHUNKS))
+            "receding line-sweep", config, f=sweep_chunk(LINE, "f", wc.chunk)
         ),
     # long jobs first, so that none of them starts last (greedy scheduler)
     priority: 10
@@ -195,7 +188,7 @@ rule receding_line_sweep:
 rule receding_line_gather:
     """results/receding/line.nc: the line-load sweep over f (Figs 6.3, 7.6)."""
     input:
-        expand(result("receding/chunks/line_{chunk}.nc"), chunk=LINE_CHUNKS),
+        expand(result("receding/chunks/line_{chunk}.nc"), chunk=sweep_chunks(LINE, "f")),
     output:
         result("receding/line.nc"),
     log:
@@ -212,15 +205,15 @@ rule receding_patch_sweep:
     output:
         temp(result("receding/chunks/patch_{law}_{chunk}.nc")),
     wildcard_constraints:
-        law=PATCH_LAWS,
+        law=PATCH_LAW_PATTERN,
         chunk=r"\d+",
     params:
         args=lambda wc: command_args(
             "receding patch-sweep",
             config,
             **patch_shape(wc.law, PATCHES["tables"]),
-            f=chunk_values(PATCH_F, wc.chunk, len(PATCH_CHUNKS)),
-            w_hat=PATCH_W,
+            f=sweep_chunk(PATCHES, "f", wc.chunk),
+            w_hat=sweep_values(PATCHES["w"]),
         ),
     log:
         logs("receding/patch_{law}_{chunk}.log"),
@@ -235,11 +228,11 @@ rule receding_patch_gather:
     or a user-given shape (table_<name>.nc)."""
     input:
         lambda wc: expand(result("receding/chunks/patch_{law}_{chunk}.nc"), law=wc.law,
-                          chunk=PATCH_CHUNKS),
+                          chunk=sweep_chunks(PATCHES, "f")),
     output:
         result("receding/{law}.nc"),
     wildcard_constraints:
-        law=PATCH_LAWS,
+        law=PATCH_LAW_PATTERN,
     log:
         logs("receding/patch_gather_{law}.log"),
     benchmark:
@@ -272,9 +265,9 @@ rule receding_patch_profile:
         args=lambda wc: command_args(
             "receding patch-profile",
             config,
-            problem=liftoff_profile_point(PATCHES["profiles"], wc.point)["law"],
-            w_hat=liftoff_profile_point(PATCHES["profiles"], wc.point)["w"],
-            f=liftoff_profile_point(PATCHES["profiles"], wc.point)["f"],
+            problem=liftoff_profile_point(wc.point)["law"],
+            w_hat=liftoff_profile_point(wc.point)["w"],
+            f=liftoff_profile_point(wc.point)["f"],
         ),
     log:
         logs("receding/{point}.log"),
@@ -288,15 +281,15 @@ rule receding_report_line_patch:
     """Report section: Figs 6.3-6.6 and 7.2-7.10 and tables of the lifting-off problems."""
     input:
         line=result("receding/line.nc"),
-        patches=[
-            *expand(result("receding/{law}.nc"), law=PATCH_NAMES),
-        ],
+        patches=expand(result("receding/{law}.nc"), law=patch_names(PATCHES)),
         profiles=[
-            *expand(result("receding/profiles/{p}.nc"), p=LINE_PROFILES),
-            *expand(result("receding/profiles/{p}.nc"), p=PATCH_PROFILES),
+            *expand(result("receding/profiles/{p}.nc"),
+                    p=[liftoff_profile_name(f) for f in LINE["profiles"]]),
+            *expand(result("receding/profiles/{p}.nc"),
+                    p=[liftoff_profile_name(p) for p in PATCHES["profiles"]]),
         ],
     output:
-        **report_section("51_receding_line_patch", user_shapes=bool(PATCH_TABLES)),
+        **report_section("51_receding_line_patch", user_shapes=bool(PATCHES["tables"])),
     params:
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
@@ -312,9 +305,11 @@ rule receding_report_line_patch:
 ALL_TARGETS.extend(
     [
         result("receding/line.nc"),
-        *expand(result("receding/{law}.nc"), law=PATCH_NAMES),
-        *expand(result("receding/profiles/{p}.nc"), p=LINE_PROFILES),
-        *expand(result("receding/profiles/{p}.nc"), p=PATCH_PROFILES),
+        *expand(result("receding/{law}.nc"), law=patch_names(PATCHES)),
+        *expand(result("receding/profiles/{p}.nc"),
+                p=[liftoff_profile_name(f) for f in LINE["profiles"]]),
+        *expand(result("receding/profiles/{p}.nc"),
+                p=[liftoff_profile_name(p) for p in PATCHES["profiles"]]),
     ]
 )
 REPORT_SECTIONS.append(report_page("51_receding_line_patch"))
@@ -326,9 +321,6 @@ REPORT_SECTIONS.append(report_page("51_receding_line_patch"))
 # (results/fe/rough_compare.nc, made in fe.smk when fe.enabled).
 
 ROUGH = config["receding"]["rough"]
-ROUGH_CHUNKS = list(range(min(ROUGH["chunks"], len(ROUGH["f"]))))
-ROUGH_PROFILES = [rough_profile_name(p) for p in ROUGH["profiles"]]
-ROUGH_FE = [result("fe/rough_compare.nc")] if rough_fe_runs(config, RESULTS) else []
 
 
 
@@ -344,7 +336,7 @@ rule receding_rough_sweep:
             "receding rough-sweep",
             config,
             problem=wc.problem,
-            f=chunk_values(ROUGH["f"], wc.chunk, len(ROUGH_CHUNKS)),
+            f=sweep_chunk(ROUGH, "f", wc.chunk),
         ),
     # long jobs first, so that none of them starts last (greedy scheduler)
     priority: 10
@@ -360,7 +352,7 @@ rule receding_rough_gather:
     """results/receding/rough/<problem>.nc: one problem over (f, w/c, C_T/C, C)."""
     input:
         lambda wc: expand(result("receding/chunks/rough_{problem}_{chunk}.nc"),
-                          problem=wc.problem, chunk=ROUGH_CHUNKS),
+                          problem=wc.problem, chunk=sweep_chunks(ROUGH, "f")),
     output:
         result("receding/rough/{problem}.nc"),
     wildcard_constraints:
@@ -379,7 +371,7 @@ rule receding_rough_profile:
         result("receding/rough/profiles/{point}.nc"),
     params:
         args=lambda wc: command_args(
-            "receding rough-profile", config, **rough_profile_point(ROUGH["profiles"], wc.point)
+            "receding rough-profile", config, **rough_profile_point(wc.point)
         ),
     log:
         logs("receding/rough_profile_{point}.log"),
@@ -411,11 +403,13 @@ rule receding_report_rough:
     """Report section: a, b, K_T over the compliance, tested pairs, profiles, FE against DDT."""
     input:
         sweeps=expand(result("receding/rough/{problem}.nc"), problem=ROUGH["problems"]),
-        profiles=expand(result("receding/rough/profiles/{p}.nc"), p=ROUGH_PROFILES),
+        profiles=expand(result("receding/rough/profiles/{p}.nc"),
+                        p=[rough_profile_name(p) for p in ROUGH["profiles"]]),
         pairs=result("receding/rough/pairs.nc"),
-        fe=ROUGH_FE,
+        fe=[result("fe/rough_compare.nc")] if rough_fe_runs(config, RESULTS) else [],
     output:
-        **report_section("52_receding_rough", problem=ROUGH["problems"], fe=bool(ROUGH_FE)),
+        **report_section("52_receding_rough", problem=ROUGH["problems"],
+                         fe=bool(rough_fe_runs(config, RESULTS))),
     params:
         fe=lambda wc, input: ["--fe", *input.fe] if input.fe else [],
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
@@ -432,7 +426,8 @@ rule receding_report_rough:
 ALL_TARGETS.extend(
     [
         *expand(result("receding/rough/{problem}.nc"), problem=ROUGH["problems"]),
-        *expand(result("receding/rough/profiles/{p}.nc"), p=ROUGH_PROFILES),
+        *expand(result("receding/rough/profiles/{p}.nc"),
+                p=[rough_profile_name(p) for p in ROUGH["profiles"]]),
         result("receding/rough/pairs.nc"),
     ]
 )

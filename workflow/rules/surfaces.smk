@@ -52,7 +52,7 @@ rule surfaces_texture:
     """
     input:
         scans=SCANS,
-        sheet=SURFACE_SHEET,
+        sheet=SURFACES_CONFIG["sheet"],
     output:
         surfaces=expand(result("surfaces/{surface}.nc"), surface=SURFACE_IDS),
         summary=result("surfaces/texture.nc"),
