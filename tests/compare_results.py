@@ -6,7 +6,7 @@ A refactoring that leaves behaviour unchanged must leave the results unchanged: 
 study before and after, copy ``results/`` aside, and compare. netCDF files are compared
 with xarray (dimensions, coordinates, variables, dtypes, values with NaN equal to NaN, and
 every attribute except the provenance that legitimately changes from run to run:
-``history``, ``git_commit``, ``config_sha256``); CSV tables with pandas (columns, rows,
+``history``, ``git_commit``, ``config_sha256``, ``study``); CSV tables with pandas (columns, rows,
 values; ``#`` lines are comments). Numbers must be equal (``--rtol`` allows a relative
 tolerance). Every other file (figures, HTML, Markdown) is compared byte for byte and only
 reported: the HTML page carries the commit, and a refactoring may move a figure by a
@@ -29,7 +29,7 @@ import pandas as pd
 import xarray as xr
 
 #: Attributes that record when, from which commit and config a file was made.
-PROVENANCE = frozenset({"history", "git_commit", "config_sha256"})
+PROVENANCE = frozenset({"history", "git_commit", "config_sha256", "study"})
 COMPARED = (".nc", ".csv")
 
 

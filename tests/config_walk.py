@@ -177,14 +177,45 @@ def shared_runs(cases: list[Case], unchanged: set[str]) -> tuple[list[list[Case]
     return groups, alone
 
 
+def planned_outputs(output: str) -> set[str]:
+    """The output files of the jobs a dry run lists."""
+    return {f for line in re.findall(r"^\s+output: (.+)$", output, re.M)
+            for f in line.split(", ")}
+
+
+#: What ``contactlab studies list`` says a changed config makes stale: a function of the
+#: branch walked and its changed config section giving the stale results
+#: (:func:`contactlab.studies.catalog.stale_results`), and the study's results (the record's
+#: targets present).
+Stale = tuple[Callable[[str, Mapping[str, Any]], set[str]], set[str]]
+
+
+def stale_mismatch(run: subprocess.CompletedProcess[str], branch: str,
+                   section: Mapping[str, Any], stale: Stale | None) -> str | None:
+    """How the results ``studies list`` calls stale differ from those whose jobs the dry run
+    reruns (None: the same)."""
+    if stale is None:
+        return None
+    judge, present = stale
+    expected = planned_outputs(run.stdout) & present
+    found = judge(branch, section)
+    if found == expected:
+        return None
+    return (f"studies list calls stale {sorted(found - expected)} that no rerun job makes, "
+            f"and not {sorted(expected - found)} that one does")
+
+
 def check_all(config: dict, schema: Mapping[str, Any], branch: str,
-              dry_run: Callable[..., subprocess.CompletedProcess[str]]) -> list[str]:
+              dry_run: Callable[..., subprocess.CompletedProcess[str]],
+              stale: Stale | None = None) -> list[str]:
     """Walk every parameter of ``branch``; return one line per parameter that fails its
     check.
 
     ``dry_run(*args)`` runs ``snakemake -n -p *args -- all`` in the finished study. One run
     with ``--forceall`` lists every job's command; then one run per group of
-    :func:`shared_runs`, and one per parameter that needs its own.
+    :func:`shared_runs`, and one per parameter that needs its own. With ``stale``, each
+    change must also make ``studies list`` call stale exactly the study's results whose jobs
+    the dry run reruns (:func:`stale_mismatch`).
     """
     cases = list(walk(config, schema))
     assert len(cases) > 40, f"only {len(cases)} parameters walked"
@@ -194,26 +225,33 @@ def check_all(config: dict, schema: Mapping[str, Any], branch: str,
     assert everything.returncode == 0, everything.stderr[-3000:]
     groups, alone = shared_runs(cases, command_words(everything.stdout))
 
-    def override(changes: list[Case]) -> str:
+    def changed(changes: list[Case]) -> dict:
         section = config
         for _, keys, value, _ in changes:
             section = _set(section, keys, value)
-        return f"{branch}={json.dumps(section[branch])}"
+        return section
+
+    def override(changes: list[Case]) -> str:
+        return f"{branch}={json.dumps(changed(changes)[branch])}"
 
     for group in groups:
         run = dry_run("--config", override(group))
         rules, _ = planned(run.stdout)
         own = {r for r in rules if r.startswith(BRANCH_RULES[branch])}
-        if run.returncode != 0 or not own or rules - own - set(ALWAYS):
+        if run.returncode != 0 or not own or rules - own - set(ALWAYS) or stale_mismatch(
+                run, branch, changed(group)[branch], stale):
             alone.extend(group)  # undecided: each on its own says which and why
             continue
         found = command_words(run.stdout)
         alone.extend(case for case in group if case[3] not in found)
-    failures = (_failure(case, dry_run("--config", override([case]))) for case in alone)
+    failures = (_failure(case, dry_run("--config", override([case])),
+                         changed([case])[branch], stale) for case in alone)
     return [failure for failure in failures if failure]
 
 
-def _failure(case: Case, run: subprocess.CompletedProcess[str]) -> str | None:
+def _failure(case: Case, run: subprocess.CompletedProcess[str],
+             section: Mapping[str, Any] | None = None, stale: Stale | None = None
+             ) -> str | None:
     """Why a parameter's dry run fails the check, or None."""
     branch, keys, value, text = case
     name = ".".join(keys)
@@ -228,4 +266,6 @@ def _failure(case: Case, run: subprocess.CompletedProcess[str]) -> str | None:
         return f"{name}: reruns jobs of other branches: {sorted(other)}"
     if text and text not in commands:
         return f"{name} = {value!r}: '{text}' on no rerun command line"
+    if section is not None and (mismatch := stale_mismatch(run, branch, section, stale)):
+        return f"{name} = {value!r}: {mismatch}"
     return None

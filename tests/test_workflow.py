@@ -19,6 +19,10 @@ from cf_check import cf_errors, one_per_layout
 from config_walk import BRANCH_RULES, check_all
 from snakemake.utils import validate
 
+from contactlab.studies.catalog import stale_results
+from contactlab.studies.effective import finish, merged_config
+from contactlab.studies.manifest import read_manifest
+
 
 def planned_rules(result: subprocess.CompletedProcess[str]) -> set[str]:
     """Rule names of the jobs a dry run would execute (its ``rule x:`` lines)."""
@@ -96,8 +100,19 @@ def test_every_parameter_reaches_its_jobs_and_only_them(e2e_run: Path, snakemake
     config = yaml.safe_load((e2e_run / "config" / "e2e.yaml").read_text())
     validate(config, str(e2e_run / "workflow/schemas/config.schema.yaml"))  # + defaults
     schema = yaml.safe_load((e2e_run / "workflow/schemas/config.schema.yaml").read_text())
+    # what `contactlab studies list` calls stale after each change: the study's effective
+    # config (config.yaml and e2e.yaml, defaults filled) with the walked branch replaced
+    record = read_manifest(e2e_run / "logs")
+    present = {t for t in record["targets"] if (e2e_run / t).exists()}
+    effective = finish(merged_config(["config/e2e.yaml"], root=e2e_run), schema)
+
+    def stale(walked: str, section: dict) -> set[str]:
+        found, _ = stale_results(record, present, {**effective, walked: section}, e2e_run)
+        return set(found)
+
     failures = check_all(config, schema, branch,
-                         lambda *args: snakemake(e2e_run, "-n", "-p", *args, "--", "all"))
+                         lambda *args: snakemake(e2e_run, "-n", "-p", *args, "--", "all"),
+                         stale=(stale, present))
     assert not failures, "\n".join(failures)
 
 

@@ -10,7 +10,7 @@ import numpy as np
 import xarray as xr
 
 from contactlab.studies.catalog import made_with
-from contactlab.studies.manifest import read_manifest, record_run, requested_targets
+from contactlab.studies.manifest import FORMAT, read_manifest, record_run, requested_targets
 
 
 def _result(path: Path, sha: str, commit: str) -> None:
@@ -61,5 +61,5 @@ def test_requested_targets() -> None:
 
 def test_a_record_is_written_whole(tmp_path: Path) -> None:
     path = _record(tmp_path, [], [])
-    assert json.loads(path.read_text())["format"] == 1
+    assert json.loads(path.read_text())["format"] == FORMAT
     assert [p.name for p in path.parent.iterdir()] == ["study.json"]  # no temporary left

@@ -12,11 +12,15 @@ For each, from files only (no Snakemake, no numpy unless a result changed since 
 - **state**: ``complete`` (every target of its last run's record exists), ``partial``
   (some do), ``not built`` (no record and no results), ``unrecorded`` (results without a
   record: built before records were kept);
-- **stale**: whether a run now would use another config or code than its results were
-  made with: ``config`` if a target's config hash (the last successful run that requested
-  it, else its own attribute) differs from the hash of the effective config the same
-  command gives now (:mod:`contactlab.studies.effective`), ``code`` if a target was made
-  at another git commit than the checkout's (``-dirty`` included);
+- **stale**, per result: ``config`` when a config value that reached the result (through
+  its job or any job before it, as the record notes them: :mod:`contactlab.studies.reads`)
+  differs in the effective config the same command gives now
+  (:mod:`contactlab.studies.effective`); ``input`` when an input file no job makes (a sheet,
+  a data file, a transcribed table) that reached it has changed; ``code`` when it was made
+  at another git commit than the checkout's (``-dirty`` included); and for the study,
+  ``results`` when a value that decides which results it has changed (a run makes the new
+  ones). A record of the first layout (no per-result reads) falls back to comparing the
+  whole config's hash;
 - **built**: when its newest target was written.
 
 :func:`list_studies` returns them; :func:`render_table` and :func:`render_json` print them;
@@ -34,10 +38,18 @@ from pathlib import Path
 from typing import Any
 
 from contactlab.config_check import ConfigError, load_yaml_file
-from contactlab.studies.effective import finish, load_schema, merged_config
-from contactlab.studies.family import FamilyError, split_family, variant_config
-from contactlab.studies.manifest import netcdf_provenance, read_manifest
-from contactlab.study import changes, config_sha256, git_commit, logs_dir, results_dir
+from contactlab.studies.effective import finish, finish_variant, load_schema, merged_config
+from contactlab.studies.family import FamilyError, split_family
+from contactlab.studies.manifest import netcdf_provenance, read_manifest, result_reads
+from contactlab.studies.shared import SHARED_FOLDERS
+from contactlab.studies.store import STORE
+from contactlab.study import (
+    changes,
+    check_study_name,
+    config_sha256,
+    git_commit,
+    results_dir,
+)
 
 STUDIES_DIR = "config/studies"
 FAMILIES_DIR = "config/families"
@@ -52,11 +64,13 @@ class StudyRecord:
     config_file: str | None = None
     family: str | None = None
     manifest: dict[str, Any] | None = None
+    #: why the study cannot run as it is (a bad or taken name, a broken family file)
+    problem: str | None = None
 
     @property
     def logs(self) -> str:
         """The study's log folder, where its record is."""
-        return logs_dir(None if self.name == "default" else self.name)
+        return "logs/" if self.results == "results/" else f"{self.results}logs/"
 
     @property
     def kind(self) -> str:
@@ -89,6 +103,10 @@ class StudyStatus:
     targets_total: int = 0
     stale: bool | None = None
     stale_reasons: list[str] = field(default_factory=list)
+    #: each stale result -> the config keys and input files that changed for it
+    stale_results: dict[str, list[str]] = field(default_factory=dict)
+    #: results whose files another study's job made (shared through the store)
+    shared_results: int = 0
     built: str | None = None
     last_run: str | None = None
     last_run_succeeded: bool | None = None
@@ -102,36 +120,65 @@ def _relative(path: Path, root: Path) -> str:
 
 
 def discover(root: str | os.PathLike[str] = ".") -> dict[str, StudyRecord]:
-    """Every study of the repository at ``root`` by name (the default study first)."""
+    """Every study of the repository at ``root`` by name (the default study first).
+
+    A file that names no valid study or family, a name two files give, a family whose grid
+    cannot be expanded (or is larger than ``studies.max_variants``) and a folder of
+    ``results/studies/`` that is no study's are listed too, each with its ``problem``.
+    """
+    from contactlab.studies.names import duplicates, names, without_file
+
     root = Path(root)
     found: dict[str, StudyRecord] = {"default": StudyRecord("default", "results/")}
-    for path in sorted((root / STUDIES_DIR).glob("*.yaml")):
+    clashes = {path: name for name, paths in duplicates(root).items() for path in paths}
+
+    def add(name: str, record: StudyRecord) -> None:
+        while name in found:  # a second file of the same name is listed too
+            name += "'"
+        record.name = name
+        found[name] = record
+
+    for named in names(root):
+        label = named.name or f"({Path(named.path).stem})"
+        problem = named.problem
+        if problem is None and named.path in clashes:
+            others = [p for p in _files_of(named.name, clashes) if p != named.path]
+            problem = (f"the name {named.name!r} is given by {', '.join(others)} too: "
+                       "rename one" if others else
+                       f"the name {named.name!r} is the default study's: rename it")
+        if named.kind == "study" or problem:
+            add(label, StudyRecord(label, f"results/studies/{named.name}/" if named.name
+                                   else "-", named.path, problem=problem))
+            continue
         try:
-            name = load_yaml_file(path).get("study")
-        except ConfigError:
-            name = None
-        name = name if isinstance(name, str) and name else path.stem
-        found.setdefault(name, StudyRecord(name, results_dir(name) if "/" not in name
-                                           else f"results/studies/{name}/",
-                                           _relative(path, root)))
-    for path in sorted((root / FAMILIES_DIR).glob("*.yaml")):
-        try:
-            _, variants, _ = split_family(load_yaml_file(path), _relative(path, root))
-        except (ConfigError, FamilyError):
+            _, variants, _ = split_family(load_yaml_file(root / named.path), named.path)
+        except (ConfigError, FamilyError) as exc:
+            add(label, StudyRecord(label, f"results/studies/{named.name}/", named.path,
+                                   named.name, problem=without_file(str(exc), named.path)))
             continue
         for variant in variants:
-            found.setdefault(variant.study, StudyRecord(
-                variant.study, results_dir(variant.study), _relative(path, root),
-                variant.family))
+            add(variant.study, StudyRecord(variant.study, results_dir(variant.study),
+                                           named.path, variant.family))
     for path in sorted((root / "results/studies").glob("**/logs/study.json")):
         folder = _relative(path.parent.parent, root)
         name = folder.removeprefix("results/studies/")
-        if name not in found:
-            found[name] = StudyRecord(name, f"{folder}/", None,
-                                      name.split("/")[0] if "/" in name else None)
+        if any(record.results == f"{folder}/" for record in found.values()):
+            continue
+        try:
+            check_study_name(name)
+            problem = None
+        except ValueError:
+            problem = f"{folder}/ holds a record but is no study's folder (its name is none)"
+        add(name, StudyRecord(name, f"{folder}/", None,
+                              name.split("/")[0] if "/" in name else None, problem=problem))
     for record in found.values():
-        record.manifest = read_manifest(root / record.logs)
+        if record.results != "-":
+            record.manifest = read_manifest(root / record.logs)
     return found
+
+
+def _files_of(name: str, clashes: Mapping[str, str]) -> list[str]:
+    return sorted(path for path, other in clashes.items() if other == name)
 
 
 def _own_file(record: StudyRecord, files: Sequence[str], root: Path) -> str | None:
@@ -149,25 +196,39 @@ def _own_file(record: StudyRecord, files: Sequence[str], root: Path) -> str | No
 
 
 def study_configs(record: StudyRecord, root: str | os.PathLike[str] = ".",
-                  schema: Mapping[str, Any] | None = None) -> tuple[dict[str, Any], dict[str, Any]]:
+                  schema: Mapping[str, Any] | None = None,
+                  memo: dict[Any, Any] | None = None) -> tuple[dict[str, Any], dict[str, Any]]:
     """The study's effective config as the same command gives it now, and the default
-    study's (the same command without the study's own file).
+    study's (the same command without the study's own file). ``memo`` keeps what the
+    studies of one listing share (the default's config, a family's variants).
 
-    Raises ConfigError or FamilyError (or a jsonschema error) if a config is invalid.
+    Raises ConfigError or FamilyError if a config is invalid.
     """
     root = Path(root)
     schema = load_schema(root) if schema is None else schema
+    memo = {} if memo is None else memo
     files, overrides = record.command_files(), record.command_overrides()
     own = _own_file(record, files, root) if record.kind != "default" else None
-    base = finish(merged_config([f for f in files if f != own], overrides, root), schema)
-    merged = merged_config(files, overrides, root)
+    command = (tuple(files), json.dumps(overrides, sort_keys=True, default=str))
+    base_key = ("base", command, own)
+    if base_key not in memo:
+        memo[base_key] = finish(merged_config([f for f in files if f != own], overrides, root),
+                                schema)
+    merged_key = ("merged", command)
+    if merged_key not in memo:
+        memo[merged_key] = merged_config(files, overrides, root)
+    merged = memo[merged_key]
     if record.kind == "variant":
-        _, variants, family_base = split_family(merged, own or str(record.config_file))
-        match = [v for v in variants if v.study == record.name]
-        if not match:
+        family_key = ("family", command, own)
+        if family_key not in memo:
+            _, variants, family_base = split_family(merged, own or str(record.config_file))
+            memo[family_key] = ({v.study: v for v in variants}, finish(family_base, schema))
+        variants, finished = memo[family_key]
+        if record.name not in variants:
             raise FamilyError(f"{own}: the family has no variant {record.name!r} any more")
-        merged = variant_config(family_base, match[0])
-    return finish(merged, schema), base
+        variant = variants[record.name]
+        return finish_variant(finished, variant.values, variant.study, schema), memo[base_key]
+    return finish(merged, schema), memo[base_key]
 
 
 def _iso(ns: int) -> str:
@@ -206,16 +267,20 @@ def _count_of(values: list[str]) -> str:
 
 
 def study_status(record: StudyRecord, root: str | os.PathLike[str] = ".",
-                 schema: Mapping[str, Any] | None = None, commit: str | None = None
-                 ) -> StudyStatus:
+                 schema: Mapping[str, Any] | None = None, commit: str | None = None,
+                 memo: dict[Any, Any] | None = None) -> StudyStatus:
     """What :func:`list_studies` reports of one study (``commit``: the checkout's, computed
-    if not given)."""
+    if not given; ``memo``: see :func:`study_configs`)."""
     root = Path(root)
     status = StudyStatus(record.name, record.kind, record.results, record.config_file)
     commit = git_commit(root) if commit is None else commit
     status.git_commit = commit
+    config: dict[str, Any] | None = None
+    if record.problem is not None:
+        status.state, status.error = "invalid", record.problem
+        return status
     try:
-        config, base = study_configs(record, root, schema)
+        config, base = study_configs(record, root, schema, memo)
         status.config_sha256 = config_sha256(config)
         status.changes = {k: [old, new] for k, (old, new)
                           in changes(config, base).items() if k != "study"}
@@ -224,9 +289,12 @@ def study_status(record: StudyRecord, root: str | os.PathLike[str] = ".",
     manifest = record.manifest
     if manifest is None:
         folder = root / record.results
+        # the default study's folder also holds the other studies, the store and the
+        # inputs all studies share
+        others = ("results/studies/", f"{STORE}/", *SHARED_FOLDERS)
         results = [p for p in folder.rglob("*.nc")
-                   if record.kind != "default" or "studies" not in p.relative_to(folder).parts
-                   ] if folder.is_dir() else []
+                   if record.kind != "default"
+                   or not _relative(p, root).startswith(others)] if folder.is_dir() else []
         if results:
             status.state = "unrecorded"
             status.targets_present = len(results)
@@ -241,7 +309,14 @@ def study_status(record: StudyRecord, root: str | os.PathLike[str] = ".",
                     else "partial" if present else "not built")
     if present:
         status.built = _iso(max(p["mtime_ns"] for p in present.values()))
-        if status.config_sha256 is not None:
+        status.shared_results = sum(
+            1 for target in present
+            if manifest.get("files", {}).get(target, {}).get("made_by") not in (None, record.name))
+        if manifest.get("format", 1) >= 2 and config is not None:
+            status.stale_results, study_changed = stale_results(manifest, present, config, root)
+            status.stale_reasons += describe_stale(manifest, status.stale_results,
+                                                   study_changed, config, len(present))
+        elif status.config_sha256 is not None:
             other = [p["config_sha256"] for p in present.values()
                      if p["config_sha256"] != status.config_sha256]
             if other:
@@ -257,12 +332,114 @@ def study_status(record: StudyRecord, root: str | os.PathLike[str] = ".",
     return status
 
 
+#: A config key's value missing from the effective config.
+MISSING = "<missing>"
+
+
+def leaf_value(config: Mapping[str, Any], leaf: str) -> Any:
+    """The value of a leaf as :mod:`contactlab.studies.reads` names it (``a.b.c``; ``a.b.*``:
+    the sorted names of the mapping ``a.b``; a whole mapping read at once is its plain
+    data) in ``config``, or :data:`MISSING`."""
+    parts = leaf.split(".")
+    node: Any = config
+    i = 0
+    while i < len(parts):
+        if parts[i] == "*" and i == len(parts) - 1:
+            return sorted(map(str, node)) if isinstance(node, Mapping) else MISSING
+        if not isinstance(node, Mapping):
+            return MISSING
+        # a key with dots in it (a user's table name cannot have one, a level can)
+        for j in range(len(parts), i, -1):
+            name = ".".join(parts[i:j])
+            if name in node:
+                node, i = node[name], j
+                break
+        else:
+            return MISSING
+    return node
+
+
+def stale_results(manifest: Mapping[str, Any], present: Mapping[str, Any],
+                  config: Mapping[str, Any], root: str | os.PathLike[str] = "."
+                  ) -> tuple[dict[str, list[str]], list[str]]:
+    """Which existing results of a record are out of date with ``config`` (the effective
+    config a run of the study would use now) and the files on disk: each stale result with
+    the config keys and input files that changed for it; and the keys read outside any rule
+    that changed (the study's list of results)."""
+    from contactlab.studies.manifest import value_id
+    from contactlab.studies.reuse import load_hashes
+    from contactlab.studies.store import file_sha256
+
+    now: dict[str, str] = {}
+
+    def current(leaf: str) -> str:
+        if leaf not in now:
+            value = leaf_value(config, leaf)
+            now[leaf] = MISSING if value is MISSING else value_id(value)
+        return now[leaf]
+
+    hashes = load_hashes(root)
+    digests: dict[str, str] = {}
+
+    def changed_file(path: str, sha: str) -> bool:
+        if path not in digests:
+            try:
+                digests[path] = file_sha256(Path(root) / path, hashes)
+            except OSError:
+                digests[path] = MISSING
+        return digests[path] != sha
+
+    out: dict[str, list[str]] = {}
+    for target in present:
+        reached = result_reads(manifest, target)
+        why = [leaf for leaf, vid in reached["reads"].items() if current(leaf) != vid]
+        why += [path for path, sha in reached["sources"].items() if changed_file(path, sha)]
+        if why:
+            out[target] = sorted(why)
+    study = [leaf for leaf, vid in manifest.get("study_reads", {}).items()
+             if current(leaf) != vid]
+    return out, sorted(study)
+
+
+def describe_stale(manifest: Mapping[str, Any], stale: Mapping[str, list[str]],
+                   study_changed: Sequence[str], config: Mapping[str, Any], present: int
+                   ) -> list[str]:
+    """One line per changed config key or input file: what changed and how many results it
+    makes stale (the first few named); one line if the list of results changed."""
+    values = manifest.get("values", {})
+    by_cause: dict[str, list[str]] = {}
+    was: dict[str, str] = {}
+    for target, causes in stale.items():
+        reads = result_reads(manifest, target)["reads"]
+        for cause in causes:
+            by_cause.setdefault(cause, []).append(target)
+            if cause in reads:
+                was[cause] = reads[cause]
+    lines = []
+    for cause, targets in sorted(by_cause.items(), key=lambda kv: (-len(kv[1]), kv[0])):
+        names = ", ".join(sorted(targets)[:3]) + (", ..." if len(targets) > 3 else "")
+        if cause in was:
+            old = _short(values.get(was[cause], "?"), 30)
+            lines.append(f"config: {cause} changed ({old} -> "
+                         f"{_short(leaf_value(config, cause), 30)}): {len(targets)} of "
+                         f"{present} results ({names})")
+        else:
+            lines.append(f"input: {cause} changed: {len(targets)} of {present} results "
+                         f"({names})")
+    if study_changed:
+        lines.append(f"results: {', '.join(study_changed)} changed, which decides the "
+                     "study's results: a run makes those it now has")
+    return lines
+
+
 def list_studies(root: str | os.PathLike[str] = ".") -> list[StudyStatus]:
     """Every study of the repository at ``root`` (:func:`discover`) with its status."""
     root = Path(root)
     schema = load_schema(root)
     commit = git_commit(root)
-    return [study_status(record, root, schema, commit) for record in discover(root).values()]
+    memo: dict[Any, Any] = {}
+    return [study_status(record, root, schema, commit, memo)
+            for record in discover(root).values()]
 
 
 def _short(value: Any, limit: int = 24) -> str:
@@ -288,7 +465,9 @@ def render_table(studies: Sequence[StudyStatus], width: int = 60) -> str:
              for row in rows]
     lines.insert(1, "  ".join("-" * w for w in widths))
     notes = [f"{s.name}: {reason}" for s in studies for reason in s.stale_reasons]
-    notes += [f"{s.name}: invalid config: {s.error}" for s in studies if s.error]
+    notes += [f"{s.name}: {'' if s.state == 'invalid' else 'invalid config: '}"
+              f"{s.config_file + ': ' if s.config_file and s.state == 'invalid' else ''}"
+              f"{s.error}" for s in studies if s.error]
     return "\n".join(lines + (["", *notes] if notes else [])) + "\n"
 
 

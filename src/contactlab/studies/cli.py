@@ -21,6 +21,7 @@ EXAMPLES = """\
   contactlab studies list --json
   contactlab studies diff default fine_friction
   contactlab studies diff default fine_friction line_lambda --csv
+  contactlab studies show results/studies/line_lambda/receding/gap.nc
   contactlab studies compare --spec config/compare/friction.yaml \\
       --out results/compare/friction/index.html
 Run them in the repository's top folder (or give --root). A study is a config file of
@@ -47,6 +48,12 @@ def _diff(args: argparse.Namespace) -> None:
         raise ValueError("give --json or --csv, not both")
     output = "json" if args.json else "csv" if args.csv else "text"
     sys.stdout.write(studies_diff(args.studies, args.root, output, args.quantity))
+
+
+def _show(args: argparse.Namespace) -> None:
+    from contactlab.studies.origin import studies_show
+
+    sys.stdout.write(studies_show(args.result, args.root, as_json=args.json))
 
 
 def _compare(args: argparse.Namespace) -> None:
@@ -90,6 +97,16 @@ GROUP = Group(
                          Option("--json", "print JSON", kind="flag", default=False),
                          Option("--csv", "print CSV", kind="flag", default=False), _root()),
                 run=_diff),
+        Command(NAME, "show", "where a result comes from and which studies share it",
+                description="The key of the job that made a result, the study whose job "
+                            "made it and when, its command line, the config values and "
+                            "input files that reached it, and the other studies whose "
+                            "folders hold the same file (shared through results/store/).",
+                options=(Option("result", "a result file of any study",
+                                metavar="RESULT"),
+                         Option("--json", "print JSON", kind="flag", default=False),
+                         _root()),
+                run=_show),
         Command(NAME, "compare", "the comparison page of a compare file",
                 description="results/compare/<name>/index.html from config/compare/<name>."
                             "yaml: the studies' parameter differences and one figure per "

@@ -24,7 +24,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
-from contactlab.studies.catalog import discover, study_configs
+from contactlab.studies.catalog import discover, study_configs, study_status
 from contactlab.studies.effective import load_schema
 from contactlab.studies.headline import QUANTITIES, Quantity, headline, quantity
 
@@ -65,6 +65,10 @@ class StudyDiff:
     results_equal: int = 0
     not_common: dict[str, int] = field(default_factory=dict)
     missing: dict[str, list[str]] = field(default_factory=dict)
+    #: studies with no headline result file at all
+    unbuilt: list[str] = field(default_factory=list)
+    #: each study's compared result files that are stale -> what changed for them
+    stale: dict[str, dict[str, list[str]]] = field(default_factory=dict)
 
 
 def flatten(configs: Sequence[Mapping[str, Any]], prefix: str = "") -> list[dict[str, Any]]:
@@ -151,6 +155,14 @@ def diff_studies(names: Sequence[str], root: str | os.PathLike[str] = ".",
 
     quantities = list(QUANTITIES if quantities is None else quantities)
     tables = [headline(root / r.results, quantities) for r in records]
+    diff.unbuilt = [n for n, t in zip(names, tables, strict=True) if not t]
+    files = {q.file for q in quantities}
+    for name, record in zip(names, records, strict=True):
+        stale = study_status(record, root, schema).stale_results
+        shown = {target.removeprefix(record.results): why for target, why in stale.items()
+                 if target.removeprefix(record.results) in files}
+        if shown:
+            diff.stale[name] = shown
     for q in quantities:
         have = [t.get(q.id) for t in tables]
         if all(h is None for h in have):
@@ -240,6 +252,14 @@ def render_text(diff: StudyDiff) -> str:
         lacking.setdefault(tuple(names), []).append(q)
     notes += [f"no result in {', '.join(names)} ('-' above): {', '.join(qs)}"
               for names, qs in lacking.items()]
+    notes += [f"stale in {name} (a run now would change them): " + "; ".join(
+        f"{file} ({', '.join(why)} changed)" for file, why in files.items())
+        for name, files in diff.stale.items()]
+    if diff.unbuilt:
+        notes.append(f"nothing built to compare in {', '.join(diff.unbuilt)}: build a study "
+                     "with snakemake -j2 all --configfile config/studies/<file>.yaml (the "
+                     "default study: snakemake -j2 all); contactlab studies list says which "
+                     "are built")
     if notes:
         lines += ["", *notes]
     return "\n".join(lines) + "\n"

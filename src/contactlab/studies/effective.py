@@ -16,7 +16,7 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from contactlab.config_check import load_yaml_file
+from contactlab.config_check import ConfigError, load_yaml_file
 from contactlab.study import coerce, config_sha256
 
 #: The default study's config file and the config schema, relative to the repository root.
@@ -43,23 +43,42 @@ def fill_defaults(config: dict[str, Any], schema: Mapping[str, Any]) -> dict[str
     ``snakemake.utils.validate(config, schema, set_default=True)`` does (a default enters
     only an object that exists; a nested block needs its own ``default: {}``).
 
-    Raises ``jsonschema.ValidationError`` if ``config`` is invalid.
+    Raises ConfigError naming the key, the value and what the schema asks for if
+    ``config`` is invalid.
     """
+    from jsonschema import ValidationError
+
+    try:
+        _filling_validator(schema).validate(config)
+    except ValidationError as exc:
+        where = ".".join(str(p) for p in exc.absolute_path) or "the config"
+        raise ConfigError(f"{where}: {exc.message}") from None
+    return config
+
+
+#: The validators built, by the schema they check (kept with it: its id is the key).
+_VALIDATORS: dict[int, tuple[Mapping[str, Any], Any]] = {}
+
+
+def _filling_validator(schema: Mapping[str, Any]) -> Any:
+    """A validator of ``schema`` that fills in defaults (one per schema: building it reads
+    the whole schema). Each default is copied as it is filled in, so that no two configs
+    share a default's list or mapping, as Snakemake reads the schema afresh each time."""
     from jsonschema import Draft202012Validator, validators
 
     check_properties = Draft202012Validator.VALIDATORS["properties"]
 
     def set_defaults(validator, properties, instance, subschema):
-        for name, prop in properties.items():
-            if "default" in prop:
-                instance.setdefault(name, prop["default"])
+        if isinstance(instance, dict):
+            for name, prop in properties.items():
+                if "default" in prop and name not in instance:
+                    instance[name] = copy.deepcopy(prop["default"])
         yield from check_properties(validator, properties, instance, subschema)
 
-    filling = validators.extend(Draft202012Validator, {"properties": set_defaults})
-    # Snakemake reads the schema afresh for each validation: its default objects are not
-    # shared between configs
-    filling(copy.deepcopy(dict(schema))).validate(config)
-    return config
+    if id(schema) not in _VALIDATORS:
+        filling = validators.extend(Draft202012Validator, {"properties": set_defaults})
+        _VALIDATORS[id(schema)] = (schema, filling(schema))
+    return _VALIDATORS[id(schema)][1]
 
 
 def load_schema(root: str | Path = ".") -> dict[str, Any]:
@@ -85,6 +104,35 @@ def merged_config(config_files: Sequence[str | Path], overrides: Mapping[str, An
 def finish(config: Mapping[str, Any], schema: Mapping[str, Any]) -> dict[str, Any]:
     """A merged config as a run uses it: coerced to the schema's types, defaults filled in."""
     return fill_defaults(coerce(dict(config), schema), schema)
+
+
+def finish_variant(finished: Mapping[str, Any], values: Mapping[str, Any], study: str,
+                   schema: Mapping[str, Any]) -> dict[str, Any]:
+    """A family variant's config from its family's base config already finished
+    (:func:`finish`): the variant's grid ``values`` (dotted key -> value), each coerced to
+    and checked against its own part of the schema, and its ``study`` name. The same as
+    finishing the variant's merged config, with the base validated once for all variants.
+
+    Raises ConfigError naming the key if a value does not fit the schema.
+    """
+    from contactlab.schema import schema_node
+    from contactlab.studies.family import set_dotted
+
+    out = copy.deepcopy(dict(finished))
+    for key, value in values.items():
+        try:
+            node = schema_node(key, schema)
+        except KeyError:
+            raise ConfigError(f"{key}: no such config key") from None
+        value = fill_defaults(coerce(copy.deepcopy(value), node), node) \
+            if isinstance(value, dict) else coerce(copy.deepcopy(value), node)
+        try:
+            _filling_validator(node).validate(value)
+        except Exception as exc:  # jsonschema.ValidationError
+            raise ConfigError(f"{key}: {getattr(exc, 'message', exc)}") from None
+        set_dotted(out, key, value)
+    out["study"] = study
+    return out
 
 
 def effective_config(config_files: Sequence[str | Path], overrides: Mapping[str, Any] | None = None,
