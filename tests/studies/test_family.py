@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import pytest
 
 from contactlab.studies.family import (
@@ -11,7 +9,6 @@ from contactlab.studies.family import (
     expand_grid,
     format_value,
     key_labels,
-    name_clash,
     split_family,
     variant_config,
 )
@@ -97,16 +94,6 @@ def test_a_family_run_takes_no_study_and_known_quantities_only() -> None:
         split_family({"family": "lam", "grid": {"a.b": [1]}, "study": "x"})
     with pytest.raises(FamilyError, match="compare"):
         split_family({"family": "lam", "grid": {"a.b": [1]}, "compare": ["line.q"]})
-
-
-def test_family_and_study_names_may_not_clash(tmp_path: Path) -> None:
-    (tmp_path / "config" / "studies").mkdir(parents=True)
-    (tmp_path / "config" / "families").mkdir()
-    (tmp_path / "config" / "studies" / "s.yaml").write_text("study: lam\n")
-    (tmp_path / "config" / "families" / "f.yaml").write_text("family: other\ngrid: {}\n")
-    assert "config/studies/s.yaml" in name_clash("lam", tmp_path, family=True)
-    assert name_clash("other", tmp_path, family=True) is None
-    assert "config/families/f.yaml" in name_clash("other", tmp_path, family=False)
 
 
 def test_study_names_of_variants() -> None:

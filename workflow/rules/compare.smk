@@ -7,19 +7,12 @@
 # Read by the run's own Snakefile only (not once per variant of a family).
 
 from contactlab.rulehelpers import command_args
-from contactlab.studies.compare import (
-    compare_files,
-    compare_page_inputs,
-    page_inputs,
-    read_compare_file,
-)
+from contactlab.studies.compare import compare_page_inputs, page_inputs, read_compare_files
 from contactlab.studies.headline import QUANTITIES
 
 if workflow.modifier.is_main_snakefile():
-    try:
-        COMPARES = {name: read_compare_file(path) for name, path in compare_files().items()}
-    except ConfigError as exc:
-        raise WorkflowError(str(exc)) from None
+    # a compare file that cannot be read stops only the runs that ask for its page
+    COMPARES, _COMPARE_PROBLEMS = read_compare_files()
     #: the studies this run builds itself (their results need not exist yet)
     _RUN_STUDIES = ([v.study for v in VARIANTS] if "VARIANTS" in globals()
                     else [config.get("study") or "default"])
@@ -29,13 +22,13 @@ if workflow.modifier.is_main_snakefile():
         by side (parameters, headline results, overlaid figures)."""
         input:
             spec="config/compare/{name}.yaml",
-            results=compare_page_inputs(COMPARES, _RUN_STUDIES),
+            results=compare_page_inputs(COMPARES, _RUN_STUDIES, _COMPARE_PROBLEMS),
         output:
             page="results/compare/{name}/index.html",
             figures=directory("results/compare/{name}/figures"),
             tables=directory("results/compare/{name}/tables"),
         wildcard_constraints:
-            name="|".join(COMPARES) or "(?!)",
+            name="|".join([*COMPARES, *_COMPARE_PROBLEMS]) or "(?!)",
         log:
             "logs/compare/{name}.log",
         shell:
@@ -44,7 +37,7 @@ if workflow.modifier.is_main_snakefile():
     rule compare:
         """Every comparison page of config/compare/ (their studies built first)."""
         input:
-            expand("results/compare/{name}/index.html", name=COMPARES),
+            expand("results/compare/{name}/index.html", name=[*COMPARES, *_COMPARE_PROBLEMS]),
 
     localrules:
         compare_page,

@@ -63,6 +63,19 @@ def compare_files(root: str | os.PathLike[str] = ".") -> dict[str, Path]:
     return {p.stem: p for p in sorted((Path(root) / COMPARE_DIR).glob("*.yaml"))}
 
 
+def read_compare_files(root: str | os.PathLike[str] = "."
+                       ) -> tuple[dict[str, dict[str, Any]], dict[str, str]]:
+    """Every compare file read (:func:`read_compare_file`) by name, and why each file that
+    cannot be read cannot: only a run that asks for its page fails on it."""
+    specs, problems = {}, {}
+    for name, path in compare_files(root).items():
+        try:
+            specs[name] = read_compare_file(path, root)
+        except ConfigError as exc:
+            problems[name] = str(exc)
+    return specs, problems
+
+
 def index_links(report_dir: str | os.PathLike[str] = "results/report",
                 root: str | os.PathLike[str] = ".") -> list[tuple[str, str]]:
     """The comparison pages of the compare files as (title, link relative to the report
@@ -98,14 +111,36 @@ class StudiesNotBuilt(FileNotFoundError):
     """A comparison page asked for studies whose results are not there yet."""
 
 
-def compare_page_inputs(compares: Mapping[str, Mapping[str, Any]], run_studies: Sequence[str]):
+def unknown_studies(studies: Sequence[str], run_studies: Sequence[str] = (),
+                    root: str | os.PathLike[str] = ".") -> list[str]:
+    """The names of ``studies`` that are no study of the repository (:func:`contactlab.
+    studies.catalog.discover`) nor of this run."""
+    from contactlab.studies.catalog import discover
+
+    known = {*discover(root), *run_studies}
+    return [name for name in studies if name not in known]
+
+
+def compare_page_inputs(compares: Mapping[str, Mapping[str, Any]], run_studies: Sequence[str],
+                        problems: Mapping[str, str] | None = None):
     """Input function of the ``compare_page`` rule: the result files the page of the
     ``{name}`` wildcard reads -- all of them for the studies this run builds
     (``run_studies``), those that exist for the others (the page notes what a study lacks).
-    StudiesNotBuilt, naming them and how to build them, for studies that have none."""
+    ConfigError for a compare file that cannot be read (``problems``) or names a study that
+    does not exist; StudiesNotBuilt, naming them and how to build them, for studies that
+    have no result."""
+    problems = problems or {}
 
     def inputs(wildcards: Any) -> list[str]:
+        if wildcards.name in problems:
+            raise ConfigError(problems[wildcards.name])
         spec = compares[wildcards.name]
+        unknown = unknown_studies(spec["studies"], run_studies)
+        if unknown:
+            raise ConfigError(f"config/compare/{wildcards.name}.yaml: studies: no study "
+                              f"{', '.join(map(repr, unknown))}: name the default study, a "
+                              "study file's study or a family's <family>/<variant> "
+                              "(contactlab studies list)")
         files, absent = [], []
         for study in spec["studies"]:
             wanted = page_inputs([study], spec["quantities"])

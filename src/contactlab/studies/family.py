@@ -31,11 +31,9 @@ from __future__ import annotations
 
 import copy
 import itertools
-import os
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 from contactlab.studies.effective import merge
@@ -201,6 +199,7 @@ def split_family(config: Mapping[str, Any], source: str = "the family file"
         raise FamilyError(f"{source}: a family run makes its own studies; drop the key "
                           f"study ({config['study']!r}) or run the study on its own")
     base = {k: copy.deepcopy(v) for k, v in config.items() if k not in FAMILY_KEYS}
+    check_size(config, source)
     variants = expand_grid(config.get("family"), config.get("grid"), source)
     compare = config.get("compare", [])
     from contactlab.studies.headline import BY_ID
@@ -209,6 +208,25 @@ def split_family(config: Mapping[str, Any], source: str = "the family file"
         raise FamilyError(f"{source}: compare: {compare!r}: give a list of headline "
                           f"quantities ({', '.join(BY_ID)})")
     return config["family"], variants, base
+
+
+def check_size(config: Mapping[str, Any], source: str = "the family file") -> None:
+    """FamilyError with the count if the family's grid has more variants than
+    ``studies.max_variants`` (the config's, else the schema's default), before the grid is
+    expanded."""
+    from contactlab.schema import schema_default
+    from contactlab.studies.names import variant_count
+
+    count = variant_count(config.get("grid"))
+    settings = config.get("studies")
+    limit = settings.get("max_variants") if isinstance(settings, Mapping) else None
+    limit = schema_default("studies.max_variants") if limit is None else limit
+    if count is not None and isinstance(limit, int) and count > limit:
+        sizes = " x ".join(str(len(v) if isinstance(v, list | Mapping) else 1)
+                           for v in config["grid"].values())
+        raise FamilyError(f"{source}: grid: {sizes} = {count} variants, more than "
+                          f"studies.max_variants ({limit}); split the family, or set "
+                          f"studies: {{max_variants: {count}}} in the family file")
 
 
 def variant_config(base: Mapping[str, Any], variant: Variant) -> dict[str, Any]:
@@ -297,22 +315,3 @@ def rename_localrules(workflow: Any, variants: Sequence[Variant]) -> list[str]:
     renamed = [name for name in renamed if name in names]
     workflow.localrules(*renamed)
     return renamed
-
-
-def name_clash(name: str, root: str | os.PathLike[str] = ".", family: bool = True) -> str | None:
-    """Why a family (``family``) or a study named ``name`` cannot have that name in the
-    repository at ``root`` -- a study or family of the other kind has it, and both would
-    write to ``results/studies/<name>/`` -- or None."""
-    import yaml
-
-    kind, other, folder = (("family", "study", "studies") if family
-                           else ("study", "family", "families"))
-    for path in sorted((Path(root) / "config" / folder).glob("*.yaml")):
-        try:
-            data = yaml.safe_load(path.read_text(encoding="utf-8"))
-        except (OSError, yaml.YAMLError):
-            continue
-        if isinstance(data, dict) and data.get(other) == name:
-            return (f"{kind} name {name!r} is taken by the {other} of {path.relative_to(root)}; "
-                    f"both would write to results/studies/{name}/: rename one")
-    return None
