@@ -3,10 +3,9 @@
 # With a family file (`--configfile config/families/<family>.yaml`) one run builds every
 # variant of the family: workflow/rules/family.smk instantiates this file once per variant.
 
-from snakemake.exceptions import WorkflowError
 from snakemake.utils import min_version
 
-from contactlab.config_check import ConfigError, load_yaml_file
+from contactlab.config_check import ConfigError, load_yaml_file, refuse
 from contactlab.studies.shared import keep_other_runs_locks
 
 min_version("9.14.8")  # 9.5.1-9.14.7 skipped validation in remote jobs (#3614)
@@ -17,7 +16,7 @@ keep_other_runs_locks()  # runs side by side (studies) keep each other's locks
 try:
     load_yaml_file("config/config.yaml")
 except ConfigError as exc:
-    raise WorkflowError(str(exc)) from None
+    refuse(str(exc))
 
 
 configfile: "config/config.yaml"
@@ -48,7 +47,7 @@ else:
     try:
         check_files(config, _SOURCES, made=ALL_TARGETS)
     except ConfigError as exc:
-        raise WorkflowError(str(exc)) from None
+        refuse(str(exc))
 
     localrules:
         all,

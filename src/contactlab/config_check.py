@@ -12,9 +12,10 @@ from __future__ import annotations
 
 import difflib
 import json
+import sys
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 #: (name, dict) of each place a value can come from, in the order they are merged.
 Source = tuple[str, Mapping[str, Any]]
@@ -59,6 +60,21 @@ def load_yaml_file(path: str | Path) -> dict[str, Any]:
         raise ConfigError(f"{path}: a config file maps keys to values at its top level, "
                           f"not a {type(data).__name__}")
     return data
+
+
+def refuse(message: str) -> NoReturn:
+    """Stop the workflow's start-up with ``message`` alone on stderr (``Error: ...``), exit
+    status 1: Snakemake would head a WorkflowError with its frame (file and line of the rule
+    file), which reads like a crash of the workflow rather than a refusal of the input."""
+    print(f"Error: {message}", file=sys.stderr, flush=True)
+    raise SystemExit(1)
+
+
+def did_you_mean(value: str, names: Iterable[str]) -> str:
+    """`` (did you mean 'x'?)`` for the name of ``names`` closest to ``value`` if one is close
+    (difflib's similarity of at least 0.75), else an empty string."""
+    close = difflib.get_close_matches(str(value), [str(n) for n in names], n=1, cutoff=0.75)
+    return f" (did you mean {close[0]!r}?)" if close else ""
 
 
 def nearest_first(value: str, names: Iterable[str], limit: int = 8) -> str:
@@ -126,8 +142,8 @@ def schema_problems(config: Mapping[str, Any], schema: Mapping[str, Any],
             known = error.schema.get("properties", {})
             extra = [k for k in error.instance if k not in known]
             keys.append(extra[0])
-            allowed = (f"unknown key; allowed here: {', '.join(known)}" if known
-                       else "unknown key")
+            allowed = (f"unknown key{did_you_mean(extra[0], known)}; allowed here: "
+                       f"{', '.join(known)}" if known else "unknown key")
             description = ""
         elif len(allowed) > 200:
             allowed = f"{_short(error.instance)} is not valid here"

@@ -7,7 +7,6 @@
 
 from pathlib import Path
 
-from snakemake.exceptions import WorkflowError
 from snakemake.utils import update_config, validate
 
 from contactlab.config_check import (
@@ -16,6 +15,7 @@ from contactlab.config_check import (
     check_files,
     load_yaml_file,
     parse_yaml,
+    refuse,
 )
 from contactlab.published import (
     GROUP_TABLES,
@@ -61,7 +61,7 @@ _SOURCES.append(("--config", coerce(dict(workflow.config_settings.config), CONFI
 try:
     check_config(config, CONFIG_SCHEMA, _SOURCES)
 except ConfigError as exc:
-    raise WorkflowError(str(exc)) from None
+    refuse(str(exc))
 validate(config, "../schemas/config.schema.yaml")  # fills in the schema's defaults
 
 STUDY = config.get("study")  # absent: the default study
@@ -69,7 +69,7 @@ STUDY = config.get("study")  # absent: the default study
 _STUDY_FILE = next((f for f, data in reversed(_SOURCES) if "study" in (data or {})), None)
 _CLASH = names.clash(STUDY, _STUDY_FILE) if STUDY and "/" not in STUDY else None
 if _CLASH:
-    raise WorkflowError(f"invalid configuration: {_CLASH}")
+    refuse(f"invalid configuration: {_CLASH}")
 RESULTS = results_dir(STUDY)
 LOGS = logs_dir(STUDY)
 
@@ -99,7 +99,7 @@ STUDY_CHANGES = changes(config, _DEFAULT_STUDY) if STUDY else {}
 _SHARED = sorted(k for k in STUDY_CHANGES
                  if k in ("stiffness.raw.demo_seed", "surfaces.demo_seed") or k.startswith("dic.demo."))
 if _SHARED:
-    raise WorkflowError(
+    refuse(
         f"invalid configuration in {_config_files()}: study {STUDY!r} changes {', '.join(_SHARED)}; "
         "the demo data are shared by all studies, so their seeds and settings are set in "
         "config/config.yaml only"
@@ -114,7 +114,7 @@ _PUBLISHED_TABLES = sorted({*SURFACE_TABLES, "A.26", "2.6", *TANGENTIAL_TABLES,
 try:
     check_files(config, _SOURCES, tables=_PUBLISHED_TABLES)
 except ConfigError as exc:
-    raise WorkflowError(str(exc)) from None
+    refuse(str(exc))
 
 # the names the sheets share, before any job: a test's specimen and pad (with their sides)
 # are surfaces of the surface sheet, a thesis test's are its own in Tables A.1/A.27, and a
@@ -135,7 +135,7 @@ try:
     check_image_folders(TESTS, config["tests"], colour=config["dic"]["colour"],
                         generated=demo_data_files())
 except (TestSheetError, ValueError, FileNotFoundError) as exc:
-    raise WorkflowError(str(exc)) from None
+    refuse(str(exc))
 
 # from here on every value a rule reads from the config is noted for the rule, the job or
 # the study (contactlab.studies.reads): a study's record says which results a change reaches

@@ -8,7 +8,7 @@
 import os
 
 
-from contactlab.config_check import ConfigError, check_config, load_yaml_file, parse_yaml
+from contactlab.config_check import ConfigError, check_config, load_yaml_file, parse_yaml, refuse
 from contactlab.studies.family import (
     SHARED_RULES,
     FamilyError,
@@ -27,10 +27,10 @@ _FAMILY_FILE = next((str(f) for f in workflow.config_settings.configfiles
 try:
     FAMILY, VARIANTS, _FAMILY_BASE = split_family(config, _FAMILY_FILE)
 except FamilyError as exc:
-    raise WorkflowError(f"invalid family: {exc}") from None
+    refuse(f"invalid family: {exc}")
 _CLASH = names.clash(FAMILY, _FAMILY_FILE)
 if _CLASH:
-    raise WorkflowError(f"invalid family: {_CLASH}")
+    refuse(f"invalid family: {_CLASH}")
 
 FAMILY_GRID = config["grid"]
 
@@ -44,7 +44,7 @@ for _variant in VARIANTS:
         check_config(_config, _SCHEMA, [
             *_SOURCES, (f"{_FAMILY_FILE} (variant {_variant.name})", _variant.overrides())])
     except ConfigError as exc:
-        raise WorkflowError(str(exc)) from None
+        refuse(str(exc))
 
 # the variants' jobs find their own study's provenance in this table (contactlab.study)
 for _var in (STUDIES_ENV, *PROVENANCE_ENV.values()):

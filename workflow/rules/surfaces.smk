@@ -13,7 +13,7 @@ try:
     DEMO_SCANS = [p for p in SCANS if Path(p).parent == DEMO_SCAN_DIR]
     check_scan_files(SURFACE_SPECS, SURFACE_SHEET, generated=[Path(p) for p in DEMO_SCANS])
 except (ValueError, FileNotFoundError) as exc:
-    raise WorkflowError(str(exc)) from None
+    refuse(str(exc))
 SURFACE_IDS = [spec.surface for spec in SURFACE_SPECS]
 SURFACE_ROWS = {spec.surface: spec for spec in SURFACE_SPECS}
 
