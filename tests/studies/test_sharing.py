@@ -105,3 +105,29 @@ def test_a_study_built_with_sharing_equals_the_study_built_alone(
     record = json.loads((work / "results/studies/lam/logs/study.json").read_text())
     assert record["files"]["results/studies/lam/receding/gap.nc"]["made_by"] == "default"
     assert os.path.exists(work / "results/store")
+
+
+@pytest.mark.slow
+def test_a_study_exports_as_a_workflow_run_crate(e2e_run: Path, tmp_path: Path) -> None:
+    from rocrate.rocrate import ROCrate
+
+    from contactlab.studies.export import PROFILES, export_study
+    from contactlab.studies.manifest import read_manifest
+
+    work = _copy(e2e_run, tmp_path)
+    out = export_study("default", tmp_path / "crate.zip", work, as_zip=True)
+    crate = ROCrate(out)
+    assert crate.mainEntity.id == "Snakefile"
+    assert {p["@id"] for p in crate.root_dataset["conformsTo"]} == set(PROFILES)
+    ids = {e.id for e in crate.data_entities}
+    assert {"environment.lock", "config/config.yaml", "config/e2e.yaml",
+            "results/receding/line.nc", "results/report/"} <= ids
+    record = read_manifest(work / "logs")
+    key = record["files"]["results/receding/line.nc"]["key"]
+    [job] = [a for a in crate.get_by_type("CreateAction") if a.get("identifier") == key]
+    assert [r.id for r in job["result"]] == ["results/receding/line.nc"]
+    assert job["description"].startswith("contactlab receding line-gather")
+    [run] = [a for a in crate.get_by_type("CreateAction") if a.id == "#run-default"]
+    assert run["instrument"].id == "Snakefile" and len(run["result"]) > 50
+    with pytest.raises(FileExistsError):
+        export_study("default", out, work, as_zip=True)

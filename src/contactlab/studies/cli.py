@@ -22,6 +22,7 @@ EXAMPLES = """\
   contactlab studies diff default fine_friction
   contactlab studies diff default fine_friction line_lambda --csv
   contactlab studies show results/studies/line_lambda/receding/gap.nc
+  contactlab studies export line_lambda --out line_lambda-crate.zip
   contactlab studies compare --spec config/compare/friction.yaml \\
       --out results/compare/friction/index.html
 Run them in the repository's top folder (or give --root). A study is a config file of
@@ -54,6 +55,13 @@ def _show(args: argparse.Namespace) -> None:
     from contactlab.studies.origin import studies_show
 
     sys.stdout.write(studies_show(args.result, args.root, as_json=args.json))
+
+
+def _export(args: argparse.Namespace) -> None:
+    from contactlab.studies.export import export_study
+
+    out = export_study(args.study, args.out, args.root, as_zip=args.out.suffix == ".zip")
+    sys.stdout.write(f"{out}: the RO-Crate of study {args.study}\n")
 
 
 def _compare(args: argparse.Namespace) -> None:
@@ -107,6 +115,15 @@ GROUP = Group(
                          Option("--json", "print JSON", kind="flag", default=False),
                          _root()),
                 run=_show),
+        Command(NAME, "export", "a study as a Workflow Run RO-Crate (WorkflowHub, Zenodo)",
+                description="The study's results, report, config files, workflow and "
+                            "environment lock as an RO-Crate (a folder, or a zip file if "
+                            "--out ends in .zip) with the provenance of every result: the "
+                            "run and each job's command line, key and inputs.",
+                options=(Option("study", "the study's name (default: the default study)",
+                                metavar="STUDY"),
+                         Option("--out", "a new folder, or a .zip file", Path), _root()),
+                run=_export),
         Command(NAME, "compare", "the comparison page of a compare file",
                 description="results/compare/<name>/index.html from config/compare/<name>."
                             "yaml: the studies' parameter differences and one figure per "
