@@ -54,11 +54,13 @@ def test_list_diff_and_compare_studies_made_here(e2e_copy: Path, snakemake_many,
     with xr.open_dataset(work / "results/studies/t_a/receding/line.nc") as line:
         assert line.attrs["config_sha256"] == a.config_sha256 == record["config_sha256"]
 
-    # an edited study is stale: its result was made with another config
+    # an edited study is stale: the value that reached its result changed
     (work / files["t_b"]).write_text("study: t_b\nreceding:\n  line: {lambda: 4.5}\n")
     b = {s.name: s for s in list_studies(work)}["t_b"]
-    assert b.stale is True and b.stale_reasons[0].startswith(
-        "config: 1 of 1 results were made with another config")
+    assert b.stale is True and b.stale_reasons[0] == (
+        "config: receding.line.lambda changed (4.0 -> 4.5): 1 of 1 results "
+        "(results/studies/t_b/receding/line.nc)")
+    assert b.stale_results == {"results/studies/t_b/receding/line.nc": ["receding.line.lambda"]}
     table = studies_list(work)
     assert re.search(r"^t_b +partial +1/\d+ +config ", table, re.M), table
     assert json.loads(studies_list(work, as_json=True))[0]["name"] == "default"
@@ -159,10 +161,13 @@ def test_a_small_family_built_end_to_end(e2e_copy: Path, snakemake) -> None:
     assert len(list((page / "figures").glob("*.png"))) == 3
     assert "lam/lambda4.0_n40" in (page / "index.html").read_text()
 
-    # a variant computes what the same values give as a study of its own
+    # a variant computes what the same values give as a study of its own, built alone
     single = _study(work, "own", "receding:\n  line: {lambda: 4.0, n: 30}\n")
-    alone = snakemake(work, single, "-j1", "--", "results/studies/own/receding/line.nc")
+    alone = snakemake(work, single, "-j1", "--", "results/studies/own/receding/line.nc",
+                      env={"CONTACTLAB_NO_REUSE": "1"})
     assert alone.returncode == 0, alone.stderr[-3000:]
+    assert (work / "results/studies/own/receding/line.nc").stat().st_ino != (
+        work / "results/studies/lam/lambda4.0_n30/receding/line.nc").stat().st_ino
     with xr.open_dataset(work / "results/studies/own/receding/line.nc") as a, \
             xr.open_dataset(work / "results/studies/lam/lambda4.0_n30/receding/line.nc") as b:
         timing = [v for v in a.data_vars if "seconds" in v]
