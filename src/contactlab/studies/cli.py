@@ -32,6 +32,16 @@ the default study is config/config.yaml and results/. Each run leaves a record
 """
 
 
+def repository(path: Path) -> Path:
+    """``--root`` checked: a folder with the workflow's config (``config/config.yaml``)."""
+    if not path.is_dir():
+        raise ValueError(f"--root {path}: no such folder")
+    if not (path / "config" / "config.yaml").is_file():
+        raise ValueError(f"--root {path}: no config/config.yaml there: run this in the top "
+                         "folder of the contactlab repository, or give it with --root")
+    return path
+
+
 def _root() -> Option:
     return Option("--root", "the repository's top folder", Path, default=Path("."))
 
@@ -39,7 +49,7 @@ def _root() -> Option:
 def _list(args: argparse.Namespace) -> None:
     from contactlab.studies.catalog import studies_list
 
-    sys.stdout.write(studies_list(args.root, as_json=args.json))
+    sys.stdout.write(studies_list(repository(args.root), as_json=args.json))
 
 
 def _diff(args: argparse.Namespace) -> None:
@@ -48,19 +58,20 @@ def _diff(args: argparse.Namespace) -> None:
     if args.json and args.csv:
         raise ValueError("give --json or --csv, not both")
     output = "json" if args.json else "csv" if args.csv else "text"
-    sys.stdout.write(studies_diff(args.studies, args.root, output, args.quantity))
+    sys.stdout.write(studies_diff(args.studies, repository(args.root), output, args.quantity))
 
 
 def _show(args: argparse.Namespace) -> None:
     from contactlab.studies.origin import studies_show
 
-    sys.stdout.write(studies_show(args.result, args.root, as_json=args.json))
+    sys.stdout.write(studies_show(args.result, repository(args.root), as_json=args.json))
 
 
 def _export(args: argparse.Namespace) -> None:
     from contactlab.studies.export import export_study
 
-    out = export_study(args.study, args.out, args.root, as_zip=args.out.suffix == ".zip")
+    out = export_study(args.study, args.out, repository(args.root),
+                       as_zip=args.out.suffix == ".zip")
     sys.stdout.write(f"{out}: the RO-Crate of study {args.study}\n")
 
 
