@@ -100,3 +100,25 @@ def test_failed_job_prints_its_reason(workflow_copy: Path) -> None:
     assert "userdata/load_log.csv" in reason
     assert "Logfile logs/stiffness/process_T99.log:" in console
     assert reason in console
+    # the failed job listed once more at the end of the run, with its log's last lines
+    summary = console[console.rindex("job(s) failed:"):]
+    assert "stiffness_process: results/stiffness/T99.nc" in summary
+    assert "log: logs/stiffness/process_T99.log" in summary and reason in summary
+
+
+def test_the_progress_says_the_time_left() -> None:
+    from snakemake_logger_plugin_contactlab import duration, progress_line
+
+    assert duration(45.2) == "45 s" and duration(200) == "3 min 20 s"
+    assert duration(3720) == "1 h 02 min"
+    assert progress_line(12, 109, 120.0) == (
+        "12 of 109 steps (11%) done, 2 min 00 s so far, about 16 min 10 s left")
+    assert progress_line(0, 5, 1.0) == "0 of 5 steps (0%) done, 1 s so far"
+    assert progress_line(5, 5, 61.0) == "5 of 5 steps (100%) done, 1 min 01 s so far"
+
+
+def test_profiles_use_the_contactlab_console() -> None:
+    for name in ("default", "slurm"):
+        settings = yaml.safe_load((REPO / "workflow" / "profiles" / name / "config.yaml")
+                                  .read_text(encoding="utf-8"))
+        assert settings["logger"] == "contactlab", name
