@@ -137,7 +137,7 @@ def _startup_error(work: Path) -> str:
          "RU2,ground,rough_specimen,B,RU2_pad,B,-8,20",
          ["config/tests.csv: line 3 (test RU2), column 'max_normal_load_kN': -8"]),
         ("id,group", "id,grup", ["config/tests.csv: line 1 (header): unknown column(s) "
-                                 "['grup']"]),
+                                 "['grup'] (did you mean 'group'?)"]),
         ("S2,structured", "S2,polished",
          ["config/tests.csv: line 9 (test S2), column 'group': 'polished'"]),
     ],

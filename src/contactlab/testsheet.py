@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from contactlab.config_check import nearest_first
+from contactlab.config_check import did_you_mean, nearest_first
 from contactlab.csvlines import numeric_cells, read_csv_lines
 
 #: Columns holding paths to a test's raw data (empty when a test has none).
@@ -85,8 +85,9 @@ def check_rows(sheet: pd.DataFrame, sheet_path: str | Path, schema: dict) -> Non
             columns = ", ".join(schema.get("properties", {}))
             if error.validator == "additionalProperties":
                 extra = sorted(set(record) - set(schema.get("properties", {})))
+                hint = did_you_mean(extra[0], schema.get("properties", {}))
                 raise TestSheetError(f"{sheet_path}: line 1 (header): unknown column(s) "
-                                     f"{extra}; the columns are {columns}")
+                                     f"{extra}{hint}; the columns are {columns}")
             if error.validator == "required":
                 raise TestSheetError(f"{sheet_path}: line 1 (header): {error.message}; the "
                                      f"columns are {columns}")
@@ -170,7 +171,8 @@ def _name_problem(sheet_path: str | Path, line: object, test: str, role: str, na
                 f"in {where}; {role} {name!r} has {has}")
     side_text = f" with side {side!r}" if side else ""
     return (f"{head}, column '{role}': {name!r}{side_text} (surface {own!r}) is not in "
-            f"{where}; the names there, nearest first: {nearest_first(name, sides)}")
+            f"{where}{did_you_mean(name, sides)}; the names there, nearest first: "
+            f"{nearest_first(name, sides)}")
 
 
 def check_surface_names(sheet: pd.DataFrame, sheet_path: str | Path,
