@@ -17,7 +17,7 @@ from collections.abc import Sequence
 
 from contactlab import __version__
 from contactlab.blas import one_thread_by_default
-from contactlab.cliutil import Parser
+from contactlab.cliutil import Parser, path_problems
 from contactlab.command import Command, Group
 from contactlab.progress import configure_logging
 
@@ -82,6 +82,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = build_parser().parse_args(typed)
     declaration = args.command_declaration
     problems = declaration.complete(args, typed)
+    problems += path_problems(declaration, args)
     if problems:
         print(f"contactlab {declaration.path}: error: {'; '.join(problems)}", file=sys.stderr)
         return 2

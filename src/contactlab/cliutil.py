@@ -99,6 +99,103 @@ def input_path(text: str) -> Path:
     return _existing(text, want_file=None)
 
 
+#: The ``type=`` of options naming a path the command reads (they are inputs without saying
+#: so in their declaration: :attr:`contactlab.command.Option.role`).
+INPUT_TYPES = (input_file, input_dir, input_path)
+
+
+def _as_paths(value: Any) -> list[Path]:
+    values = value if isinstance(value, list | tuple) else [value]
+    return [Path(v) for v in values if isinstance(v, str | os.PathLike)]
+
+
+def _named(option: Option, path: Path) -> str:
+    """How a message names a path and the option that gave it."""
+    return f"{path}" if option.positional else f"{option.flag} {path}"
+
+
+def _same(a: Path, b: Path) -> bool:
+    """``a`` and ``b`` are one file or folder (links and relative paths resolved)."""
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return os.path.realpath(a) == os.path.realpath(b)
+
+
+def _inside(path: Path, folder: Path) -> bool:
+    return Path(os.path.realpath(path)).is_relative_to(os.path.realpath(folder))
+
+
+def _place_problem(option: Option, path: Path, folder: bool) -> str | None:
+    """Why ``path`` cannot be written, seen before any work: a folder where a file is
+    meant (or the reverse), a file in the way of its folders, no permission to write."""
+    what = _named(option, path)
+    if path.is_dir() and not folder:
+        return f"{what} is a folder; name a file to write"
+    if path.exists() and not path.is_dir() and folder:
+        return f"{what} is a file; name a folder to write into"
+    parent = path if folder else path.parent
+    while not parent.exists():
+        if parent.is_symlink():  # a link to nowhere
+            return f"{what}: {parent} is a broken link"
+        parent = parent.parent
+    if not parent.is_dir():
+        return f"{what}: {parent} is a file, not a folder"
+    if not os.access(parent, os.W_OK | os.X_OK):
+        return f"{what}: the folder {parent} is not writable"
+    return None
+
+
+def path_problems(declaration: Command, args: argparse.Namespace) -> list[str]:
+    """What stops ``declaration`` writing its outputs, found before it does any work:
+
+    - an output that is one of its inputs, or an existing file inside an input folder (no
+      command writes over what it reads: the reference frame as ``--out``, a frame of the
+      ``--images`` folder);
+    - two outputs naming the same file;
+    - an output whose place cannot be written: a folder where a file is meant or the
+      reverse, a file in the way of its folders, a folder without write permission.
+
+    Inputs are the options of :data:`INPUT_TYPES` or role ``input``; outputs, those of
+    role ``output`` (a file) and ``output folder``. Returns one message per problem."""
+    inputs: list[tuple[Option, Path]] = []
+    outputs: list[tuple[Option, Path]] = []
+    for option in declaration.options:
+        value = getattr(args, option.dest, None)
+        if value is None:
+            continue
+        if option.type in INPUT_TYPES or option.role == "input":
+            inputs += [(option, path) for path in _as_paths(value)]
+        elif option.role in ("output", "output folder"):
+            outputs += [(option, path) for path in _as_paths(value)]
+    problems: list[str] = []
+    for k, (option, path) in enumerate(outputs):
+        folder = option.role == "output folder"
+        problem = _place_problem(option, path, folder)
+        if problem is None and not folder:
+            problem = _overwritten_input(option, path, inputs)
+        if problem is None and not folder:
+            problem = next((f"{_named(option, path)} is also {_named(other, path)}"
+                            for other, earlier in outputs[:k]
+                            if other.role == "output" and _same(path, earlier)), None)
+        if problem is not None:
+            problems.append(problem)
+    return problems
+
+
+def _overwritten_input(option: Option, path: Path, inputs: list[tuple[Option, Path]]
+                       ) -> str | None:
+    """The input the output file ``path`` would overwrite, in words (None: none)."""
+    for source, read in inputs:
+        if _same(path, read):
+            return (f"{_named(option, path)} would overwrite the input "
+                    f"{_named(source, read)}; name another output")
+        if read.is_dir() and path.exists() and _inside(path, read):
+            return (f"{_named(option, path)} would overwrite a file of the input folder "
+                    f"{_named(source, read)}; name an output outside it")
+    return None
+
+
 def memory_limit() -> float:
     """Physical memory of this machine in bytes (the size guard's ceiling)."""
     return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
@@ -118,14 +215,14 @@ def check_memory(option: str, value: object, nbytes: float) -> None:
 
 def out_option(help: str = "netCDF output") -> Option:
     """The ``--out`` of a command that writes one result file."""
-    return Option("--out", help, Path)
+    return Option("--out", help, Path, role="output")
 
 
 def section_outputs() -> tuple[Option, ...]:
     """``--report-dir`` and ``--out`` of a command that writes a report section."""
     return (Option("--report-dir", "report directory receiving tables/ and figures/", Path,
-                   default=Path("results/report")),
-            Option("--out", "section HTML fragment", Path))
+                   default=Path("results/report"), role="output folder"),
+            out_option("section HTML fragment"))
 
 
 def chunks_option(what: str) -> Option:

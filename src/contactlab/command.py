@@ -41,6 +41,9 @@ class _Required:
 
 REQUIRED: Any = _Required()
 
+#: What an option's value names on disk (:attr:`Option.role`).
+ROLES = ("", "input", "output", "output folder")
+
 
 @cache
 def _schema() -> dict:
@@ -63,6 +66,14 @@ def schema_node(key: str, schema: Mapping[str, Any] | None = None) -> Mapping[st
             raise KeyError(f"config key {key!r} is not in the schema {SCHEMA_PATH.name}")
         node = props[part]
     return node
+
+
+def schema_problems(value: Any, key: str) -> list[str]:
+    """Why ``value`` does not fit the schema of the dotted config ``key`` (its type, range,
+    finite numbers, the layout of a mapping): the same rules as a config file's."""
+    from contactlab.config_check import value_problems
+
+    return value_problems(value, schema_node(key))
 
 
 def schema_default(key: str) -> Any:
@@ -116,6 +127,13 @@ class Option:
     only
         Values of the command's ``select`` option for which the option applies; given for
         another, it is refused.
+    role
+        What the value names on disk, for the checks made before a command runs
+        (:func:`contactlab.cliutil.path_problems`): ``output`` (a file the command writes),
+        ``output folder`` (a folder it writes into), ``input`` (a path it reads that need
+        not exist); empty otherwise. An option whose ``type`` is one of the input types of
+        :mod:`contactlab.cliutil` (``input_file``, ``input_dir``, ``input_path``) is an
+        input without saying so.
     """
 
     flag: str
@@ -129,6 +147,17 @@ class Option:
     key: str | Mapping[str, str] | None = None
     kind: str = "value"
     only: Sequence[str] | None = None
+    role: str = ""
+
+    def __post_init__(self) -> None:
+        if self.role not in ROLES:
+            raise ValueError(f"option {self.flag}: role {self.role!r} is not one of {ROLES}")
+
+    @property
+    def greedy(self) -> bool:
+        """Takes a variable number of words: argparse gives it every word up to the next
+        option, so a positional argument after it on a command line would be eaten."""
+        return self.nargs in ("+", "*", "?") and self.kind == "value"
 
     @property
     def dest(self) -> str:
@@ -229,8 +258,9 @@ class Command:
         """Fill the schema defaults into ``args`` and set ``args.history``.
 
         ``typed`` is the argument list as given (after ``contactlab``). Returns the
-        problems: options that are missing or do not apply to the selected value, all at
-        once; the caller reports them.
+        problems: options that are missing or do not apply to the selected value, and
+        config-fed values the schema refuses (out of range, not finite: the rules of a
+        config file, :func:`schema_problems`), all at once; the caller reports them.
         """
         selected = getattr(args, self.select) if self.select else None
         problems: list[str] = []
@@ -242,6 +272,9 @@ class Command:
                 if given:
                     problems.append(f"{opt.flag} does not apply to --{self.select} {selected}")
                 continue
+            if given and not opt.positional and (key := opt.key_for(selected)) is not None:
+                problems += [f"{opt.flag} {shlex.join(opt.render(value)[1:])}: {problem} "
+                             f"(config {key})" for problem in schema_problems(value, key)]
             if given or opt.positional:
                 continue
             key = opt.key_for(selected)
@@ -262,20 +295,30 @@ class Command:
         config-fed option not among them, its value in the effective ``config``.
 
         Options left out (files, which the rule names in its shell line) give no words.
+        Positional values given come first, then the options taking a variable number of
+        values, then the others, so that the words end with an option of fixed length where
+        there is one: the positional files a rule's shell line puts after the words stay
+        positional (``fe study ... --ddt-n-check 50 100 200 run.nc`` would read ``run.nc``
+        as a fourth value).
         """
         unknown = set(values) - {opt.dest for opt in self.options}
         if unknown:
             raise KeyError(f"contactlab {self.path} has no option(s) {sorted(unknown)}")
         selected = values.get(self.select) if self.select else None
-        words: list[str] = []
+        positional: list[str] = []
+        greedy: list[str] = []
+        fixed: list[str] = []
         for opt in self.options:
             if opt.only is not None and selected not in opt.only:
                 continue
             if opt.dest in values:
-                words += opt.render(values[opt.dest])
+                rendered = opt.render(values[opt.dest])
             elif config is not None and (key := opt.key_for(selected)) is not None:
-                words += opt.render(config_value(config, key))
-        return words
+                rendered = opt.render(config_value(config, key))
+            else:
+                continue
+            (positional if opt.positional else greedy if opt.greedy else fixed).extend(rendered)
+        return positional + greedy + fixed
 
 
 @dataclass(frozen=True)

@@ -189,7 +189,8 @@ COMMANDS = (
                  Option("--frames", "render only these frames of the load log (default: "
                         "all)", int, nargs="+", default=None),
                  Option("--out-dir", "folder receiving the frames, contactlab.json, "
-                        "load_log.csv and truth.csv (replaced when complete)", Path)),
+                        "load_log.csv and truth.csv (replaced when complete)", Path,
+                        role="output folder")),
         run=_demo),
     Command(
         NAME, "report", "report section: correlation quality, fits from images",

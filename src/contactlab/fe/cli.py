@@ -378,7 +378,8 @@ COMMANDS = (
                  Option("--run", "output of `fe receding`", input_file), _ddt_n(),
                  *_reference(),
                  Option("--ddt-file", "receding results file read when the solve fails "
-                        "(config fe.problems.<problem>.ddt_file)", Path, default=None),
+                        "(config fe.problems.<problem>.ddt_file)", Path, default=None,
+                        role="input"),
                  out_option()),
         run=_compare, select="problem"),
     Command(
