@@ -272,9 +272,10 @@ class Command:
                 if given:
                     problems.append(f"{opt.flag} does not apply to --{self.select} {selected}")
                 continue
-            if given and not opt.positional and (key := opt.key_for(selected)) is not None:
-                problems += [f"{opt.flag} {shlex.join(opt.render(value)[1:])}: {problem} "
-                             f"(config {key})" for problem in schema_problems(value, key)]
+            if given and not opt.positional and (key := opt.key_for(selected)) is not None \
+                    and (wrong := schema_problems(value, key)):
+                problems.append(f"{opt.flag} {shlex.join(opt.render(value)[1:])}: "
+                                f"{'; '.join(wrong)} (config {key})")
             if given or opt.positional:
                 continue
             key = opt.key_for(selected)

@@ -81,7 +81,24 @@ def _settings(args: argparse.Namespace) -> dict[str, object]:
             "colour": args.colour}
 
 
+def _check_frames(args: argparse.Namespace) -> None:
+    """Before any work: every image's header against the reference's (one rule with ``dic
+    fields``: :func:`contactlab.dic.images.check_like_reference`) and the reference against
+    the subset."""
+    from contactlab.dic.images import check_like_reference, image_info
+
+    reference = image_info(args.reference)
+    check_like_reference(reference, reference, colour=args.colour)
+    for path in args.images:
+        check_like_reference(reference, image_info(path), colour=args.colour)
+    rows, cols = reference.shape
+    if args.roi is None and min(rows, cols) < args.subset:
+        raise ValueError(f"--reference {args.reference}: {cols} x {rows} pixels, smaller "
+                         f"than the subset (--subset {args.subset} px)")
+
+
 def _correlate(args: argparse.Namespace) -> None:
+    _check_frames(args)
     from contactlab.dic.fields import correlate_images
     from contactlab.io import write_netcdf
 
