@@ -14,6 +14,7 @@ import difflib
 import json
 import math
 from collections.abc import Iterable, Mapping, Sequence
+from functools import cache
 from pathlib import Path
 from typing import Any
 
@@ -117,12 +118,17 @@ def _finite_number(checker: Any, instance: Any) -> bool:
         and math.isfinite(instance)
 
 
-def validator(schema: Mapping[str, Any]) -> Any:
-    """A JSON schema (draft 2020-12) validator of ``schema`` whose numbers are finite."""
+@cache
+def _finite_validator() -> Any:
     from jsonschema import Draft202012Validator, validators
 
     finite = Draft202012Validator.TYPE_CHECKER.redefine("number", _finite_number)
-    return validators.extend(Draft202012Validator, type_checker=finite)(schema)
+    return validators.extend(Draft202012Validator, type_checker=finite)
+
+
+def validator(schema: Mapping[str, Any]) -> Any:
+    """A JSON schema (draft 2020-12) validator of ``schema`` whose numbers are finite."""
+    return _finite_validator()(schema)
 
 
 def _allowed(error: Any) -> str:

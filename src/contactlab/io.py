@@ -33,8 +33,9 @@ CONVENTIONS = "CF-1.10"
 
 
 #: The temporary files and folders of a write beside its target: ``.<name>.part-<host>-
-#: <pid>-<random>[<suffix>]``. Hidden, so that a reader of the folder passes over them; a
-#: write of the same target removes those its host's dead processes left (a kill).
+#: <pid>-<random>``. Hidden and without the target's suffix, so that a reader of the
+#: folder (a listing of ``*.nc``, a folder of frames) passes over them; a write of the
+#: same target removes those its host's dead processes left (a kill).
 PART = ".part-"
 
 
@@ -132,8 +133,7 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
     tmp_path = None
     try:
         remove_stale_parts(target)
-        fd, tmp = tempfile.mkstemp(prefix=_part_prefix(target), suffix=target.suffix,
-                                   dir=target.parent)
+        fd, tmp = tempfile.mkstemp(prefix=_part_prefix(target), dir=target.parent)
         os.close(fd)
         tmp_path = Path(tmp)
         umask = os.umask(0)

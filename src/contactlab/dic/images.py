@@ -201,7 +201,7 @@ class ImageFolder:
     Parameters
     ----------
     folder : directory holding one image file per frame (suffixes :data:`IMAGE_SUFFIXES`;
-        other files are ignored).
+        other files, and hidden ones such as a killed write's temporary file, are ignored).
     reference : file name (in ``folder``) of the reference frame.
     colour : ``"refuse"`` or ``"luminance"`` (see :func:`read_image`).
 
@@ -226,8 +226,8 @@ class ImageFolder:
             read_image(self.reference, colour=colour)  # raises the colour message
         self.shape, self.dtype = info.shape, info.dtype
         frames: dict[int, Path] = {}
-        files = sorted(p for p in self.folder.iterdir()
-                       if p.is_file() and p.suffix.lower() in IMAGE_SUFFIXES)
+        files = sorted(p for p in self.folder.iterdir() if p.is_file()
+                       and p.suffix.lower() in IMAGE_SUFFIXES and not p.name.startswith("."))
         for path in files:
             if path == self.reference and not re.search(r"\d", path.stem):
                 continue  # a reference named without a number is no frame of the sequence

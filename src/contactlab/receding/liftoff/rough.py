@@ -292,7 +292,7 @@ def _sweep_point(problem: str, f: float, w: float, law: Interface,
 
     sol = None
     try:
-        sol = solve(n, seed if not law.smooth else None)
+        sol = solve(n, seed if not resolved(law).smooth else None)
         if not sol.converged and seed is not None:
             cold = solve(n, None)
             if cold.converged or not sol.converged:
