@@ -128,3 +128,20 @@ def test_words_put_the_options_of_variable_length_before_the_others() -> None:
     words = command.words({"a": {"n": [50, 100]}}, problem="gap")
     assert words == ["--n-check", "50", "100", "--problem", "gap"]
     assert command.words(None, runs=["x.nc"]) == ["x.nc"]
+
+
+def test_values_typed_by_hand_meet_the_schema_a_workflow_job_s_were_checked_at_start_up(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    """A config-fed value typed by hand is checked against its schema node (range, finite);
+    in a workflow's job (the run's config hash in the environment) the rule passed the
+    run's config, checked when the run started, and it is not read again."""
+    n = Option("--lam", "map scale", float, key="receding.line.lambda")
+    command = Command("receding", "c", "a command", (n,), run=lambda args: None)
+    parser = argparse.ArgumentParser()
+    n.add_to(parser)
+    typed = ["receding", "c", "--lam", "inf"]
+    monkeypatch.delenv("CONTACTLAB_CONFIG_SHA256", raising=False)
+    assert command.complete(parser.parse_args(typed[2:]), typed) == [
+        "--lam inf: inf is not a finite number (config receding.line.lambda)"]
+    monkeypatch.setenv("CONTACTLAB_CONFIG_SHA256", "0123abcd")
+    assert command.complete(parser.parse_args(typed[2:]), typed) == []

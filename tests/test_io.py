@@ -254,3 +254,23 @@ def test_a_full_disk_is_one_line_naming_the_result_and_leaves_nothing(tmp_path: 
     assert last.startswith(f"contactlab: error: cannot write {target}: "), last
     assert "free there" in last and ".part-" not in last
     assert list(tmp_path.iterdir()) == []  # not even the folders made for it
+
+
+def test_a_write_that_cannot_start_names_its_target_not_the_temporary_file(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A folder that refuses the temporary file (as a read-only one does) is reported as the
+    result that cannot be written, with the reason; no temporary name reaches the user."""
+    import tempfile
+
+    from contactlab.io import write_text
+
+    def refuse(prefix: str = "", dir: str = "", **kwargs: object) -> tuple[int, str]:
+        raise PermissionError(13, "Permission denied", f"{dir}/{prefix}xyz")
+
+    monkeypatch.setattr(tempfile, "mkstemp", refuse)
+    target = tmp_path / "new" / "table.csv"
+    with pytest.raises(OSError) as info:
+        write_text("a,b\n", target)
+    assert str(info.value).startswith(f"cannot write {target}: Permission denied")
+    assert ".part-" not in str(info.value)
+    assert list(tmp_path.iterdir()) == []

@@ -76,6 +76,19 @@ def schema_problems(value: Any, key: str) -> list[str]:
     return value_problems(value, schema_node(key))
 
 
+def from_checked_config() -> bool:
+    """The command runs as a job of a workflow run, whose rule passed the values of the
+    run's effective config, checked against the schema when the run started (the run
+    hands its config hash to its jobs: :data:`contactlab.study.PROVENANCE_ENV`). Its
+    values are not checked again (reading the schema and jsonschema cost ~80 ms of CPU per
+    job, measured)."""
+    import os
+
+    from contactlab.study import PROVENANCE_ENV
+
+    return bool(os.environ.get(PROVENANCE_ENV["config_sha256"]))
+
+
 def schema_default(key: str) -> Any:
     """The schema's default of the dotted config ``key``."""
     node = schema_node(key)
@@ -260,11 +273,14 @@ class Command:
         ``typed`` is the argument list as given (after ``contactlab``). Returns the
         problems: options that are missing or do not apply to the selected value, and
         config-fed values the schema refuses (out of range, not finite: the rules of a
-        config file, :func:`schema_problems`), all at once; the caller reports them.
+        config file, :func:`schema_problems`; not in a workflow's job, whose values were
+        checked at start-up: :func:`from_checked_config`), all at once; the caller reports
+        them.
         """
         selected = getattr(args, self.select) if self.select else None
         problems: list[str] = []
         filled: list[str] = []
+        check = not from_checked_config()
         for opt in self.options:
             value = getattr(args, opt.dest)
             given = value is not None and not (opt.kind == "flag" and value is False)
@@ -272,7 +288,8 @@ class Command:
                 if given:
                     problems.append(f"{opt.flag} does not apply to --{self.select} {selected}")
                 continue
-            if given and not opt.positional and (key := opt.key_for(selected)) is not None \
+            if check and given and not opt.positional \
+                    and (key := opt.key_for(selected)) is not None \
                     and (wrong := schema_problems(value, key)):
                 problems.append(f"{opt.flag} {shlex.join(opt.render(value)[1:])}: "
                                 f"{'; '.join(wrong)} (config {key})")

@@ -119,6 +119,16 @@ def write_failure(target: Path, exc: BaseException) -> WriteError:
     return WriteError(f"cannot write {target}: {reason}{_space(target.parent)}")
 
 
+def _own_file(target: Path, filename: object) -> bool:
+    """``filename`` (of an OSError) is the write of ``target``: the target, its folder or
+    a temporary file of it (or unnamed, as the netCDF library's errors are)."""
+    if filename is None:
+        return True
+    path = Path(str(filename))
+    return path in (target, target.parent) or (
+        path.parent == target.parent and path.name.startswith(f".{target.name}{PART}"))
+
+
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
     """Yield a temporary path next to ``path``; move it into place on success.
@@ -142,8 +152,7 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
         yield tmp_path
         tmp_path.replace(target)
     except OSError as exc:
-        if isinstance(exc, WriteError) or exc.filename not in (
-                None, str(tmp_path), str(target), str(target.parent)):
+        if isinstance(exc, WriteError) or not _own_file(target, exc.filename):
             raise  # reported already, or not the write's own file (an input read meanwhile)
         raise write_failure(target, exc) from None
     finally:
