@@ -189,6 +189,7 @@ def test_a_write_killed_at_any_moment_leaves_no_output_and_the_next_write_cleans
         assert ds["a"].values.tolist() == [0.0, 1.0, 2.0]
 
 
+@pytest.mark.slow
 def test_a_killed_command_writing_a_folder_leaves_nothing_the_next_run_keeps(
         tmp_path: Path) -> None:
     """``dic demo`` (a folder of frames, replaced whole) killed while it writes: no

@@ -149,7 +149,12 @@ def value_problems(value: Any, node: Mapping[str, Any]) -> list[str]:
     for error in validator(node).iter_errors(value):
         error = best_match([error]) if error.context else error
         where = _dotted(error.absolute_path) + ": " if error.absolute_path else ""
-        lines.append(f"{where}{_allowed(error)}")
+        allowed = _allowed(error)
+        if error.validator == "not":  # jsonschema's words say nothing: the key's do
+            what = " ".join(str(node.get("description", "")).split())[:100]
+            allowed = f"{_short(error.instance)} is not allowed" + (f" ({what})" if what
+                                                                   else "")
+        lines.append(f"{where}{allowed}")
     return sorted(set(lines))
 
 
