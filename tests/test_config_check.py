@@ -62,8 +62,17 @@ def test_the_shipped_configs_pass(repo: Path) -> None:
          "level: ultra, convergence: [coarse, medium]",
          ["config/e2e.yaml: fe.problems.gap.level: \"ultra\" is not a mesh level; fe.levels "
           "defines coarse, medium"]),
+        ("C: [0.0, 1.0e-4, 1.0]", "C: [0.0, .inf, 1.0]",
+         ["config/e2e.yaml: receding.rough.C.[1]: inf is not a finite number"]),
+        ("C: [0.0, 1.0e-4, 1.0]", "C: [.nan]",
+         ["config/e2e.yaml: receding.rough.C.[0]: nan is not a finite number"]),
+        ("    chunks: 2\n    line: {n: 40", "    ct_ratios: [.inf]\n    chunks: 2\n"
+         "    line: {n: 40",
+         ["config/e2e.yaml: receding.rough.ct_ratios.[0]: inf is not a finite number"]),
+        ("lambda: 3.5", "lambda: -.inf", ["receding.line.lambda: -inf is not a finite number"]),
     ],
-    ids=["unknown-key", "wrong-type", "empty-range", "unknown-mesh-level"],
+    ids=["unknown-key", "wrong-type", "empty-range", "unknown-mesh-level", "inf-in-a-list",
+         "nan-in-a-list", "inf-ratio", "minus-inf"],
 )
 def test_a_bad_value_is_named_with_its_file_and_key(repo: Path, old: str, new: str,
                                                    expected: list[str]) -> None:
@@ -117,3 +126,26 @@ def test_every_walked_parameter_returns_from_the_command_line_with_its_type(
         back = coerce(parse_config([override]), schema)[branch]
         assert back == changed[branch], (keys, value)
         check_config(changed, schema, [("config/e2e.yaml", config), ("--config", back)])
+
+
+def test_a_tested_pair_naming_no_test_of_the_sheet_is_found_at_start_up(repo: Path) -> None:
+    """``from_test`` is checked against the test sheet's tests with raw data when the
+    workflow starts (common.smk), not after the whole stiffness chain: one line with the
+    file, the key, the value and the tests there are, nearest first."""
+    from contactlab.config_check import check_files
+    from contactlab.rulehelpers import raw_tests
+    from contactlab.testsheet import read_test_sheet
+
+    config = {"receding": {"rough": {"pairs": {"tests": {
+        "SU3": {"from_test": "SU3"}, "X": {"from_test": "SU33"},
+        "fit": {"beta_n_per_um": 0.2}}}}}}
+    tests = raw_tests(read_test_sheet(repo / "config" / "tests.csv"))
+    check_files({"receding": {"rough": {"pairs": {"tests": {"SU3": {"from_test": "SU3"}}}}}},
+                [("study.yaml", {})], tests=tests, sheet="config/tests.csv")
+    with pytest.raises(ConfigError) as info:
+        check_files(config, [("config/config.yaml", {}), ("study.yaml", config)],
+                    tests=tests, sheet="config/tests.csv")
+    assert str(info.value).splitlines()[1].strip() == (
+        "study.yaml: receding.rough.pairs.tests.X.from_test: \"SU33\" is no test with raw "
+        "data in config/tests.csv (the stiffness summary's tests: SU3, S3, RU3, SU1, SU2, "
+        "S1, S2, RU1, ... (10 in all))")

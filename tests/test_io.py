@@ -117,3 +117,161 @@ def test_history_of_a_declared_command_records_the_defaults_it_was_completed_wit
         "contactlab stiffness summarize-published --tests config/tests.csv --out x.nc "
         "--kt0-threshold 0.5 --piston-area-cm2 6.5")
     assert ds.attrs["history"] == args.history
+
+
+# ---- a kill, a full disk: nothing half-written, nothing left for the next run -----------
+
+#: A write of a 128 MiB netCDF file (long enough to be killed in the middle), in a process
+#: of its own: ``python -c KILLED_WRITE <target>``.
+KILLED_WRITE = """
+import sys
+import numpy as np, xarray as xr
+from contactlab.io import write_netcdf
+ds = xr.Dataset({"a": ("x", np.ones(2**24), {"long_name": "a", "units": "1"})})
+write_netcdf(ds, sys.argv[1])
+"""
+
+
+def _kill_while_writing(argv: list[str], folder: Path, written: int, cwd: Path | None = None
+                        ) -> list[Path]:
+    """Start ``argv``, SIGKILL it once a temporary file or folder of a write in ``folder``
+    holds ``written`` bytes; return the temporaries it left."""
+    import signal
+    import subprocess
+    import time
+
+    from contactlab.io import PART
+
+    def parts() -> list[Path]:
+        return [p for p in folder.glob(f".*{PART}*")] if folder.exists() else []
+
+    def size(path: Path) -> int:
+        files = [path] if path.is_file() else [p for p in path.rglob("*") if p.is_file()]
+        total = 0
+        for file in files:
+            try:
+                total += file.stat().st_size
+            except FileNotFoundError:
+                pass
+        return total
+
+    process = subprocess.Popen(argv, cwd=cwd, stdout=subprocess.DEVNULL,
+                               stderr=subprocess.DEVNULL)
+    try:
+        while process.poll() is None and not any(size(p) >= written for p in parts()):
+            time.sleep(0.002)
+        assert process.poll() is None, "the write ended before it could be killed"
+        process.send_signal(signal.SIGKILL)
+    finally:
+        process.kill()
+        process.wait()
+    return parts()
+
+
+@pytest.mark.parametrize("written", [0, 2**20, 2**26], ids=["created", "1 MiB", "64 MiB"])
+def test_a_write_killed_at_any_moment_leaves_no_output_and_the_next_write_cleans_up(
+        written: int, tmp_path: Path) -> None:
+    """SIGKILL during a real write (a process of its own): the target is never there half
+    written, the temporary file left is hidden and has no ``.nc`` suffix (a listing of the
+    results passes over it), and the next write of the target removes it."""
+    import sys
+
+    target = tmp_path / "results" / "big.nc"
+    left = _kill_while_writing([sys.executable, "-c", KILLED_WRITE, str(target)],
+                               target.parent, written)
+    assert not target.exists()
+    assert len(left) == 1 and left[0].name.startswith(".big.nc.part-")
+    assert list(target.parent.glob("*.nc")) == [] and list(tmp_path.rglob("*.nc")) == []
+    small = xr.Dataset({"a": ("x", np.arange(3.0), {"long_name": "a", "units": "1"})})
+    write_netcdf(small, target)
+    assert sorted(p.name for p in target.parent.iterdir()) == ["big.nc"]
+    with xr.open_dataset(target) as ds:
+        assert ds["a"].values.tolist() == [0.0, 1.0, 2.0]
+
+
+@pytest.mark.slow
+def test_a_killed_command_writing_a_folder_leaves_nothing_the_next_run_keeps(
+        tmp_path: Path) -> None:
+    """``dic demo`` (a folder of frames, replaced whole) killed while it writes: no
+    ``--out-dir``, a hidden temporary folder that the next run of the command removes."""
+    import shutil
+    import sys
+
+    contactlab = str(Path(sys.executable).parent / "contactlab")
+    if shutil.which(contactlab) is None:
+        pytest.skip("the contactlab console script is not installed")
+    out = tmp_path / "frames"
+    left = _kill_while_writing([contactlab, "dic", "demo", "--test", "RU1", "--out-dir",
+                                str(out)], tmp_path, 2**16)
+    assert not out.exists() and len(left) == 1 and left[0].is_dir()
+    from contactlab.cli import main
+
+    assert main(["dic", "demo", "--test", "RU1", "--frames", "1", "--shape", "128", "256",
+                 "--out-dir", str(out)]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["frames"]
+
+
+def test_stale_temporaries_of_running_processes_and_other_hosts_are_left(
+        tmp_path: Path) -> None:
+    """Only a dead process's temporaries on this host are removed: another host's (a shared
+    file system) or a running process's may still be written."""
+    import os
+    import socket
+
+    from contactlab.io import PART, remove_stale_parts
+
+    target = tmp_path / "x.nc"
+    host = socket.gethostname()
+    running = tmp_path / f".x.nc{PART}{host}-{os.getpid()}-abc123"
+    other = tmp_path / f".x.nc{PART}elsewhere-1-abc123"
+    dead = tmp_path / f".x.nc{PART}{host}-{2**22 + 17}-abc123"  # above any pid_max default
+    for path in (running, other, dead):
+        path.write_text("part")
+    assert remove_stale_parts(target) == [dead]
+    assert running.exists() and other.exists() and not dead.exists()
+
+
+#: ``python -c FULL_DISK <target>``: a command whose netCDF result meets a file-size limit
+#: of 20 kB (RLIMIT_FSIZE, SIGXFSZ ignored: each write past it fails as on a full disk).
+FULL_DISK = """
+import resource, signal, sys
+signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+resource.setrlimit(resource.RLIMIT_FSIZE, (20_000, 20_000))
+from contactlab.cli import main
+sys.exit(main(["receding", "gap-sweep", "--w-hat", "1", "--f", "0.5", "--n", "30",
+               "--out", sys.argv[1]]))
+"""
+
+
+def test_a_full_disk_is_one_line_naming_the_result_and_leaves_nothing(tmp_path: Path) -> None:
+    import subprocess
+    import sys
+
+    target = tmp_path / "new" / "folder" / "gap.nc"
+    done = subprocess.run([sys.executable, "-c", FULL_DISK, str(target)], capture_output=True,
+                          text=True, check=False)
+    last = done.stderr.strip().splitlines()[-1]
+    assert done.returncode == 2 and "Traceback" not in done.stderr
+    assert last.startswith(f"contactlab: error: cannot write {target}: "), last
+    assert "free there" in last and ".part-" not in last
+    assert list(tmp_path.iterdir()) == []  # not even the folders made for it
+
+
+def test_a_write_that_cannot_start_names_its_target_not_the_temporary_file(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A folder that refuses the temporary file (as a read-only one does) is reported as the
+    result that cannot be written, with the reason; no temporary name reaches the user."""
+    import tempfile
+
+    from contactlab.io import write_text
+
+    def refuse(prefix: str = "", dir: str = "", **kwargs: object) -> tuple[int, str]:
+        raise PermissionError(13, "Permission denied", f"{dir}/{prefix}xyz")
+
+    monkeypatch.setattr(tempfile, "mkstemp", refuse)
+    target = tmp_path / "new" / "table.csv"
+    with pytest.raises(OSError) as info:
+        write_text("a,b\n", target)
+    assert str(info.value).startswith(f"cannot write {target}: Permission denied")
+    assert ".part-" not in str(info.value)
+    assert list(tmp_path.iterdir()) == []

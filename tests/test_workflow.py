@@ -216,15 +216,20 @@ def test_single_target_builds_only_its_ancestors(workflow_copy: Path, snakemake)
          ["config/tests.csv", "line 3 (test RU2)", "max_normal_load_kN", "-8"]),
         (("config/config.yaml", "tests: config/tests.csv", "tests: [config/tests.csv"),
          ["config/config.yaml", "line 10", "YAML"]),
+        (("config/e2e.yaml", "SU2: {from_test: SU2, law: measured}",
+          "SU2: {from_test: SU9, law: measured}"),
+         ["config/e2e.yaml: receding.rough.pairs.tests.SU2.from_test: \"SU9\" is no test "
+          "with raw data in config/tests.csv"]),
     ],
-    ids=["unknown-key", "negative-load", "yaml-syntax"],
+    ids=["unknown-key", "negative-load", "yaml-syntax", "unknown-from-test"],
 )
 def test_malformed_config_fails_fast_and_writes_nothing(
     workflow_copy: Path, snakemake, edit: tuple[str, str, str], expected: list[str]
 ) -> None:
-    """Each of the three start-up checks (a config file, a config value, the test sheet)
-    stops the workflow with its one-line message; tests/test_config_check.py and
-    tests/test_testsheet.py call them on every other kind of bad input."""
+    """Each of the start-up checks (a config file, a config value, the test sheet, the
+    tests the config names) stops the workflow with its one-line message;
+    tests/test_config_check.py and tests/test_testsheet.py call them on every other kind of
+    bad input."""
     path, old, new = edit
     target = workflow_copy / path
     text = target.read_text()

@@ -17,7 +17,7 @@ from collections.abc import Sequence
 
 from contactlab import __version__
 from contactlab.blas import one_thread_by_default
-from contactlab.cliutil import Parser
+from contactlab.cliutil import Parser, path_problems, user_message
 from contactlab.command import Command, Group
 from contactlab.progress import configure_logging
 
@@ -46,8 +46,10 @@ stderr, one line each: UTC time, level, module, message (a progress line at most
 5 s; environment variable CONTACTLAB_PROGRESS_SECONDS sets the interval).
 """
 
-#: Errors that mean bad input, reported as one line without a traceback.
-USER_ERRORS = (ValueError, KeyError, FileNotFoundError, OSError)
+#: Errors that mean bad input, reported as one line without a traceback: besides the
+#: refusals of the commands, a size or number too large for this machine or for double
+#: precision that no check caught before (MemoryError, OverflowError).
+USER_ERRORS = (ValueError, KeyError, FileNotFoundError, OSError, MemoryError, OverflowError)
 
 
 def groups() -> list[Group]:
@@ -82,6 +84,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = build_parser().parse_args(typed)
     declaration = args.command_declaration
     problems = declaration.complete(args, typed)
+    problems += path_problems(declaration, args)
     if problems:
         print(f"contactlab {declaration.path}: error: {'; '.join(problems)}", file=sys.stderr)
         return 2
@@ -89,10 +92,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         args.func(args)
     except USER_ERRORS as exc:
-        message = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
-        print(f"contactlab: error: {message}", file=sys.stderr)
-        return 2
-    return 0
+        message = user_message(exc, declaration, args)
+    else:
+        return 0
+    # printed once the error's frames are gone, so that what they log on closing (a
+    # progress report's last line) comes before it: the error is the last line
+    print(f"contactlab: error: {message}", file=sys.stderr)
+    return 2
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -99,6 +99,173 @@ def input_path(text: str) -> Path:
     return _existing(text, want_file=None)
 
 
+#: The ``type=`` of options naming a path the command reads (they are inputs without saying
+#: so in their declaration: :attr:`contactlab.command.Option.role`).
+INPUT_TYPES = (input_file, input_dir, input_path)
+
+
+def _as_paths(value: Any) -> list[Path]:
+    values = value if isinstance(value, list | tuple) else [value]
+    return [Path(v) for v in values if isinstance(v, str | os.PathLike)]
+
+
+def _named(option: Option, path: Path) -> str:
+    """How a message names a path and the option that gave it."""
+    return f"{path}" if option.positional else f"{option.flag} {path}"
+
+
+def _same(a: Path, b: Path) -> bool:
+    """``a`` and ``b`` are one file or folder (links and relative paths resolved)."""
+    try:
+        return os.path.samefile(a, b)
+    except OSError:
+        return os.path.realpath(a) == os.path.realpath(b)
+
+
+def _inside(path: Path, folder: Path) -> bool:
+    return Path(os.path.realpath(path)).is_relative_to(os.path.realpath(folder))
+
+
+def _place_problem(option: Option, path: Path, folder: bool) -> str | None:
+    """Why ``path`` cannot be written, seen before any work: a folder where a file is
+    meant (or the reverse), a file in the way of its folders, no permission to write."""
+    what = _named(option, path)
+    if path.is_dir() and not folder:
+        return f"{what} is a folder; name a file to write"
+    if path.exists() and not path.is_dir() and folder:
+        return f"{what} is a file; name a folder to write into"
+    parent = path if folder else path.parent
+    while not parent.exists():
+        if parent.is_symlink():  # a link to nowhere
+            return f"{what}: {parent} is a broken link"
+        parent = parent.parent
+    if not parent.is_dir():
+        return f"{what}: {parent} is a file, not a folder"
+    if not os.access(parent, os.W_OK | os.X_OK):
+        return f"{what}: the folder {parent} is not writable"
+    return None
+
+
+def path_problems(declaration: Command, args: argparse.Namespace) -> list[str]:
+    """What stops ``declaration`` writing its outputs, found before it does any work:
+
+    - an output that is one of its inputs, or an existing file inside an input folder (no
+      command writes over what it reads: the reference frame as ``--out``, a frame of the
+      ``--images`` folder);
+    - two outputs naming the same file;
+    - an output whose place cannot be written: a folder where a file is meant or the
+      reverse, a file in the way of its folders, a folder without write permission;
+    - an input file that is empty, or named ``.nc`` but no netCDF file (its first bytes).
+
+    Inputs are the options of :data:`INPUT_TYPES` or role ``input``; outputs, those of
+    role ``output`` (a file) and ``output folder``. Returns one message per problem."""
+    inputs: list[tuple[Option, Path]] = []
+    outputs: list[tuple[Option, Path]] = []
+    for option in declaration.options:
+        value = getattr(args, option.dest, None)
+        if value is None:
+            continue
+        if option.type in INPUT_TYPES or option.role == "input":
+            inputs += [(option, path) for path in _as_paths(value)]
+        elif option.role in ("output", "output folder"):
+            outputs += [(option, path) for path in _as_paths(value)]
+    problems = [problem for option, path in inputs
+                if (problem := _content_problem(option, path)) is not None]
+    for k, (option, path) in enumerate(outputs):
+        folder = option.role == "output folder"
+        problem = _place_problem(option, path, folder)
+        if problem is None and not folder:
+            problem = _overwritten_input(option, path, inputs)
+        if problem is None and not folder:
+            problem = next((f"{_named(option, path)} is also {_named(other, path)}"
+                            for other, earlier in outputs[:k]
+                            if other.role == "output" and _same(path, earlier)), None)
+        if problem is not None:
+            problems.append(problem)
+    return list(dict.fromkeys(problems))
+
+
+#: The first bytes of a netCDF file: classic (CDF 1, 2, 5) or netCDF-4 (HDF5, whose
+#: signature may follow a user block of 512, 1024, 2048 ... bytes).
+NETCDF_MAGIC = (b"CDF\x01", b"CDF\x02", b"CDF\x05")
+HDF5_MAGIC = b"\x89HDF\r\n\x1a\n"
+
+
+def is_netcdf(path: Path) -> bool:
+    """``path`` starts like a netCDF file (:data:`NETCDF_MAGIC`, :data:`HDF5_MAGIC`)."""
+    size = path.stat().st_size
+    with path.open("rb") as stream:
+        if stream.read(4).startswith(NETCDF_MAGIC):
+            return True
+        for offset in [0] + [512 << k for k in range(12) if 512 << k < size]:
+            stream.seek(offset)
+            if stream.read(8) == HDF5_MAGIC:
+                return True
+    return False
+
+
+def _content_problem(option: Option, path: Path) -> str | None:
+    """An input file that is empty, or a ``.nc`` file that is no netCDF file."""
+    if not path.is_file():
+        return None
+    what = _named(option, path)
+    try:
+        if path.stat().st_size == 0:
+            return f"{what} is empty"
+        if path.suffix.lower() == ".nc" and not is_netcdf(path):
+            with path.open("rb") as stream:
+                head = stream.read(4)
+            return f"{what} is not a netCDF file (it starts with {head!r})"
+    except OSError as exc:
+        return f"{what} cannot be read ({exc.strerror})"
+    return None
+
+
+def _overwritten_input(option: Option, path: Path, inputs: list[tuple[Option, Path]]
+                       ) -> str | None:
+    """The input the output file ``path`` would overwrite, in words (None: none)."""
+    for source, read in inputs:
+        if _same(path, read):
+            return (f"{_named(option, path)} would overwrite the input "
+                    f"{_named(source, read)}; name another output")
+        if read.is_dir() and path.exists() and _inside(path, read):
+            return (f"{_named(option, path)} would overwrite a file of the input folder "
+                    f"{_named(source, read)}; name an output outside it")
+    return None
+
+
+#: The start of xarray's message for a file no installed backend reads.
+NO_BACKEND = "did not find a match in any of xarray's currently installed IO backends"
+
+
+def user_message(exc: Exception, declaration: Command, args: argparse.Namespace) -> str:
+    """The one line a command's user error is reported with: its message, with the input
+    at fault named where the library's message names none (xarray's for a file that is no
+    netCDF file) or says it cryptically (the netCDF library's for a damaged file), and
+    what a MemoryError or OverflowError means for the values given."""
+    if isinstance(exc, KeyError) and exc.args:
+        return str(exc.args[0])
+    text = str(exc)
+    if isinstance(exc, MemoryError):
+        return (f"not enough memory ({text or 'MemoryError'}): a size or range given is too "
+                "large for this machine")
+    if isinstance(exc, OverflowError):
+        return (f"a number given is too large to compute with in double precision ({text})")
+    if isinstance(exc, ValueError) and text.startswith(NO_BACKEND):
+        inputs = [(option, path) for option in declaration.options
+                  if option.type in INPUT_TYPES or option.role == "input"
+                  for path in _as_paths(getattr(args, option.dest, None))]
+        for option, path in inputs:
+            if path.is_file() and not is_netcdf(path):
+                return f"{_named(option, path)} is not a netCDF file"
+        return f"an input is not a netCDF file ({text.splitlines()[0]})"
+    errno = getattr(exc, "errno", None)
+    if isinstance(exc, OSError) and isinstance(errno, int) and errno < 0 and exc.filename:
+        return (f"{exc.filename}: the netCDF library cannot read it ({exc.strerror}): a "
+                "damaged or truncated file?")
+    return text
+
+
 def memory_limit() -> float:
     """Physical memory of this machine in bytes (the size guard's ceiling)."""
     return float(os.sysconf("SC_PAGE_SIZE") * os.sysconf("SC_PHYS_PAGES"))
@@ -118,14 +285,14 @@ def check_memory(option: str, value: object, nbytes: float) -> None:
 
 def out_option(help: str = "netCDF output") -> Option:
     """The ``--out`` of a command that writes one result file."""
-    return Option("--out", help, Path)
+    return Option("--out", help, Path, role="output")
 
 
 def section_outputs() -> tuple[Option, ...]:
     """``--report-dir`` and ``--out`` of a command that writes a report section."""
     return (Option("--report-dir", "report directory receiving tables/ and figures/", Path,
-                   default=Path("results/report")),
-            Option("--out", "section HTML fragment", Path))
+                   default=Path("results/report"), role="output folder"),
+            out_option("section HTML fragment"))
 
 
 def chunks_option(what: str) -> Option:
@@ -150,14 +317,38 @@ def published_dir_option(help: str = "directory of the transcribed thesis tables
 
 
 def positive_float(text: str) -> float:
-    """``type=`` of an option that must be a positive number."""
+    """``type=`` of an option that must be a positive (finite) number."""
     try:
         value = float(text)
     except ValueError:
         value = float("nan")
-    if not value > 0:
+    if not 0 < value < float("inf"):
         raise argparse.ArgumentTypeError(f"{text} is not a positive number")
     return value
+
+
+def number_in(low: float, high: float = float("inf"), *, integer: bool = False,
+              open_low: bool = False, open_high: bool = False) -> Callable[[str], Any]:
+    """``type=`` of a finite number (a whole one if ``integer``) between ``low`` and
+    ``high``, the ends included unless ``open_low``/``open_high``."""
+    left, right = "(" if open_low else "[", ")" if open_high else "]"
+    span = (f"{'>' if open_low else '>='} {low:g}" if high == float("inf")
+            else f"in {left}{low:g}, {high:g}{right}")
+    what = f"{'a whole number' if integer else 'a finite number'} {span}"
+
+    def convert(text: str) -> float | int:
+        try:
+            value: float | int = int(text) if integer else float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text} is not {what}") from None
+        inside = (low < value if open_low else low <= value) and \
+            (value < high if open_high else value <= high)
+        if not (inside and value < float("inf")):
+            raise argparse.ArgumentTypeError(f"{text} is not {what}")
+        return value
+
+    convert.__name__ = "number_in"
+    return convert
 
 
 def json_value(text: str) -> Any:

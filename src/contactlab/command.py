@@ -26,7 +26,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from contactlab.schema import config_value, schema_default
+from contactlab.schema import config_value, key_problems, schema_default
 
 
 class _Required:
@@ -38,6 +38,9 @@ class _Required:
 
 REQUIRED: Any = _Required()
 
+#: What an option's value names on disk (:attr:`Option.role`).
+ROLES = ("", "input", "output", "output folder")
+
 
 def _plain(value: Any) -> Any:
     """A config value as plain JSON data (a mapping view of the config read entry by
@@ -47,6 +50,19 @@ def _plain(value: Any) -> Any:
     if isinstance(value, list | tuple):
         return [_plain(item) for item in value]
     return value
+
+
+def from_checked_config() -> bool:
+    """The command runs as a job of a workflow run, whose rule passed the values of the
+    run's effective config, checked against the schema when the run started (the run
+    hands its config hash to its jobs: :data:`contactlab.study.PROVENANCE_ENV`). Its
+    values are not checked again (reading the schema and jsonschema cost ~80 ms of CPU per
+    job, measured)."""
+    import os
+
+    from contactlab.study import PROVENANCE_ENV
+
+    return bool(os.environ.get(PROVENANCE_ENV["config_sha256"]))
 
 
 def _word(value: Any) -> str:
@@ -82,6 +98,13 @@ class Option:
     only
         Values of the command's ``select`` option for which the option applies; given for
         another, it is refused.
+    role
+        What the value names on disk, for the checks made before a command runs
+        (:func:`contactlab.cliutil.path_problems`): ``output`` (a file the command writes),
+        ``output folder`` (a folder it writes into), ``input`` (a path it reads that need
+        not exist); empty otherwise. An option whose ``type`` is one of the input types of
+        :mod:`contactlab.cliutil` (``input_file``, ``input_dir``, ``input_path``) is an
+        input without saying so.
     """
 
     flag: str
@@ -95,6 +118,17 @@ class Option:
     key: str | Mapping[str, str] | None = None
     kind: str = "value"
     only: Sequence[str] | None = None
+    role: str = ""
+
+    def __post_init__(self) -> None:
+        if self.role not in ROLES:
+            raise ValueError(f"option {self.flag}: role {self.role!r} is not one of {ROLES}")
+
+    @property
+    def greedy(self) -> bool:
+        """Takes a variable number of words: argparse gives it every word up to the next
+        option, so a positional argument after it on a command line would be eaten."""
+        return self.nargs in ("+", "*", "?") and self.kind == "value"
 
     @property
     def dest(self) -> str:
@@ -195,12 +229,16 @@ class Command:
         """Fill the schema defaults into ``args`` and set ``args.history``.
 
         ``typed`` is the argument list as given (after ``contactlab``). Returns the
-        problems: options that are missing or do not apply to the selected value, all at
-        once; the caller reports them.
+        problems: options that are missing or do not apply to the selected value, and
+        config-fed values the schema refuses (out of range, not finite: the rules of a
+        config file, :func:`contactlab.schema.key_problems`; not in a workflow's job, whose
+        values were checked at start-up: :func:`from_checked_config`), all at once; the
+        caller reports them.
         """
         selected = getattr(args, self.select) if self.select else None
         problems: list[str] = []
         filled: list[str] = []
+        check = not from_checked_config()
         for opt in self.options:
             value = getattr(args, opt.dest)
             given = value is not None and not (opt.kind == "flag" and value is False)
@@ -208,6 +246,11 @@ class Command:
                 if given:
                     problems.append(f"{opt.flag} does not apply to --{self.select} {selected}")
                 continue
+            if check and given and not opt.positional \
+                    and (key := opt.key_for(selected)) is not None \
+                    and (wrong := key_problems(value, key)):
+                problems.append(f"{opt.flag} {shlex.join(opt.render(value)[1:])}: "
+                                f"{'; '.join(wrong)} (config {key})")
             if given or opt.positional:
                 continue
             key = opt.key_for(selected)
@@ -228,20 +271,30 @@ class Command:
         config-fed option not among them, its value in the effective ``config``.
 
         Options left out (files, which the rule names in its shell line) give no words.
+        Positional values given come first, then the options taking a variable number of
+        values, then the others, so that the words end with an option of fixed length where
+        there is one: the positional files a rule's shell line puts after the words stay
+        positional (``fe study ... --ddt-n-check 50 100 200 run.nc`` would read ``run.nc``
+        as a fourth value).
         """
         unknown = set(values) - {opt.dest for opt in self.options}
         if unknown:
             raise KeyError(f"contactlab {self.path} has no option(s) {sorted(unknown)}")
         selected = values.get(self.select) if self.select else None
-        words: list[str] = []
+        positional: list[str] = []
+        greedy: list[str] = []
+        fixed: list[str] = []
         for opt in self.options:
             if opt.only is not None and selected not in opt.only:
                 continue
             if opt.dest in values:
-                words += opt.render(values[opt.dest])
+                rendered = opt.render(values[opt.dest])
             elif config is not None and (key := opt.key_for(selected)) is not None:
-                words += opt.render(config_value(config, key))
-        return words
+                rendered = opt.render(config_value(config, key))
+            else:
+                continue
+            (positional if opt.positional else greedy if opt.greedy else fixed).extend(rendered)
+        return positional + greedy + fixed
 
 
 @dataclass(frozen=True)

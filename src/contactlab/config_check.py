@@ -12,8 +12,10 @@ from __future__ import annotations
 
 import difflib
 import json
+import math
 import sys
 from collections.abc import Iterable, Mapping, Sequence
+from functools import cache
 from pathlib import Path
 from typing import Any, NoReturn
 
@@ -125,17 +127,63 @@ def _short(value: Any) -> str:
     return text if len(text) <= 60 else text[:57] + "..."
 
 
-def schema_problems(config: Mapping[str, Any], schema: Mapping[str, Any],
-                    sources: Sequence[Source]) -> list[str]:
-    """One line per schema violation: source, key path, bad value, what is allowed."""
-    from jsonschema import Draft202012Validator
+def _finite_number(checker: Any, instance: Any) -> bool:
+    """JSON schema type ``number``: a finite number (JSON has no infinity or NaN; YAML's
+    ``.inf`` and ``.nan`` and the command line's ``inf`` and ``nan`` are refused)."""
+    return isinstance(instance, int | float) and not isinstance(instance, bool) \
+        and math.isfinite(instance)
+
+
+@cache
+def _finite_validator() -> Any:
+    from jsonschema import Draft202012Validator, validators
+
+    finite = Draft202012Validator.TYPE_CHECKER.redefine("number", _finite_number)
+    return validators.extend(Draft202012Validator, type_checker=finite)
+
+
+def validator(schema: Mapping[str, Any]) -> Any:
+    """A JSON schema (draft 2020-12) validator of ``schema`` whose numbers are finite."""
+    return _finite_validator()(schema)
+
+
+def _allowed(error: Any) -> str:
+    """What a schema error says is wrong, in the words of these messages."""
+    value = error.instance
+    if error.validator == "type" and isinstance(value, float) and not math.isfinite(value):
+        return f"{value} is not a finite number"
+    return error.message
+
+
+def value_problems(value: Any, node: Mapping[str, Any]) -> list[str]:
+    """Why ``value`` does not fit the schema ``node`` of one config key (e.g. a value typed
+    on the command line for a config-fed option), one line each: the place inside the
+    value (for a mapping or list), then what is wrong."""
     from jsonschema.exceptions import best_match
 
     lines = []
-    for error in Draft202012Validator(schema).iter_errors(config):
+    for error in validator(node).iter_errors(value):
+        error = best_match([error]) if error.context else error
+        where = _dotted(error.absolute_path) + ": " if error.absolute_path else ""
+        allowed = _allowed(error)
+        if error.validator == "not":  # jsonschema's words say nothing: the key's do
+            what = " ".join(str(node.get("description", "")).split())[:100]
+            allowed = f"{_short(error.instance)} is not allowed" + (f" ({what})" if what
+                                                                   else "")
+        lines.append(f"{where}{allowed}")
+    return sorted(set(lines))
+
+
+def schema_problems(config: Mapping[str, Any], schema: Mapping[str, Any],
+                    sources: Sequence[Source]) -> list[str]:
+    """One line per schema violation: source, key path, bad value, what is allowed."""
+    from jsonschema.exceptions import best_match
+
+    lines = []
+    for error in validator(schema).iter_errors(config):
         error = best_match([error]) if error.context else error
         keys = list(error.absolute_path)
-        allowed = error.message
+        allowed = _allowed(error)
         description = error.schema.get("description", "") if isinstance(error.schema,
                                                                           Mapping) else ""
         if error.validator == "additionalProperties":
@@ -232,12 +280,36 @@ def missing_table_problems(config: Mapping[str, Any], sources: Sequence[Source],
     return []
 
 
+def unknown_test_problems(config: Mapping[str, Any], sources: Sequence[Source],
+                          tests: Sequence[str], sheet: str) -> list[str]:
+    """The tested pairs (``receding.rough.pairs.tests``) whose ``from_test`` names no test of
+    the stiffness summary (``tests``: the tests of the test sheet ``sheet`` with raw data),
+    one line each with the tests there are, nearest first: found at start-up, not after
+    the whole stiffness chain."""
+    pairs = config.get("receding", {}).get("rough", {}).get("pairs", {}).get("tests", {})
+    lines = []
+    for name, spec in (pairs or {}).items():
+        test = spec.get("from_test") if isinstance(spec, Mapping) else None
+        if test is None or str(test) in tests:
+            continue
+        keys = ["receding", "rough", "pairs", "tests", name, "from_test"]
+        lines.append(f"{source_of(keys, sources)}: {_dotted(keys)}: {_short(test)} is no test "
+                     f"with raw data in {sheet} (the stiffness summary's tests: "
+                     f"{nearest_first(str(test), tests)})")
+    return lines
+
+
 def check_files(config: Mapping[str, Any], sources: Sequence[Source], *,
                 tables: Iterable[str] = (), made: Iterable[str] | None = None,
-                root: str | Path = ".") -> None:
-    """Raise ConfigError listing :func:`missing_table_problems` for ``tables`` and, given
-    the workflow's files ``made``, :func:`missing_file_problems`, one line each."""
+                root: str | Path = ".", tests: Sequence[str] | None = None,
+                sheet: str = "the test sheet") -> None:
+    """Raise ConfigError listing :func:`missing_table_problems` for ``tables``, given
+    the workflow's files ``made`` :func:`missing_file_problems`, and given the ``tests``
+    with raw data of the test sheet ``sheet`` :func:`unknown_test_problems`, one line
+    each."""
     problems = missing_table_problems(config, sources, tables, root) if tables else []
+    if tests is not None:
+        problems += unknown_test_problems(config, sources, tests, sheet)
     if made is not None:
         problems += missing_file_problems(config, sources, made, root)
     if problems:

@@ -41,6 +41,14 @@ def schema_node(key: str, schema: Mapping[str, Any] | None = None) -> Mapping[st
     return node
 
 
+def key_problems(value: Any, key: str) -> list[str]:
+    """Why ``value`` does not fit the schema of the dotted config ``key`` (its type, range,
+    finite numbers, the layout of a mapping): the same rules as a config file's."""
+    from contactlab.config_check import value_problems
+
+    return value_problems(value, schema_node(key))
+
+
 def schema_default(key: str) -> Any:
     """The schema's default of the dotted config ``key``."""
     node = schema_node(key)

@@ -7,6 +7,7 @@ the demo."""
 from __future__ import annotations
 
 import json
+import re
 import shutil
 from collections.abc import Callable
 from pathlib import Path
@@ -109,7 +110,8 @@ CASES: dict[str, tuple[Callable[[Path], None], list[str], list[str]]] = {
         [frame("frame_0001.png: region 'roi': all 16 subsets rejected (16 textureless)")]),
     "demo: frames too small": (
         lambda d: None, ["demo", "--test", "RU1", "--shape", "96", "200", "--out-dir", "new"],
-        ["demo frames of 200 x 96 px are too small: at least 256 x 128 px"]),
+        ["--shape 96 200: [0]: 96 is less than the minimum of 128; [1]: 200 is less than "
+         "the minimum of 256 (config dic.demo.shape)"]),
 }
 
 
@@ -130,7 +132,8 @@ def test_bad_input_is_refused_in_one_line_and_nothing_is_written(
     code = main(argv)
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2
-    assert err[-1].startswith("contactlab: error: ") and err[-1].count("error:") == 1, err
+    assert re.match(r"contactlab( dic \w+)?: error: ", err[-1]), err
+    assert err[-1].count("error:") == 1, err
     assert all(word in err[-1] for word in words), (words, err[-1])
     assert not any("Traceback" in line for line in err)
     assert sorted(tmp_path.rglob("*")) == before  # nothing written, not even in part

@@ -135,3 +135,14 @@ def test_a_frame_the_caller_needs_but_the_folder_lacks(tmp_path: Path) -> None:
         images.require([1, 7, 8])
     with pytest.raises(FileNotFoundError, match=r"frame_0099\.png: reference image not found"):
         ImageFolder(tmp_path, reference="frame_0099.png", colour="refuse")
+
+
+def test_hidden_files_are_no_frames(tmp_path: Path) -> None:
+    """A hidden file (a killed write's temporary file, an AppleDouble ``._frame.png``) is
+    passed over, even when it is no image at all."""
+    folder = folder_with(tmp_path)
+    (folder / "._frame_0001.png").write_bytes(b"resource fork")
+    (folder / ".frame_0009.png.part-host-1-abc").write_bytes(b"half")
+    (folder / ".frame_0007.png").write_bytes(b"not an image")
+    assert list(ImageFolder(folder, reference="frame_0000.png", colour="refuse").frames) \
+        == [0, 1, 2]

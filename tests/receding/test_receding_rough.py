@@ -383,3 +383,33 @@ def test_default_sweep_meets_the_smooth_limit_at_its_stiffest_point() -> None:
                          for k in ("a", "b", "K_T")])
         assert np.all(diff[:, 1] < 1e-4), (problem, diff)
         assert np.all(np.diff(diff[:, 1:], axis=1) > 0), (problem, diff)
+
+
+def test_a_compliance_below_the_resolution_is_the_smooth_interface_and_says_so() -> None:
+    """C (and C_T) below RESOLVED_COMPLIANCE is solved as the smooth interface: certified by
+    the smooth problem's contact checks (admissible, where the compliant checks would divide
+    rounding by C: a closure mismatch of 1e282 at C = 1e-300), flagged ``below_resolution``,
+    with the smooth answer exactly; just above it the compliant solve is admissible and
+    within 1e-9 of it (a, b move by about 8 C and 4 C)."""
+    from contactlab.receding.core.interface import RESOLVED_COMPLIANCE, resolved
+
+    assert RESOLVED_COMPLIANCE == 1e-12
+    assert resolved(linear_interface(1e-16, RATIO * 1e-16)) is SMOOTH
+    assert resolved(linear_interface(1e-13, 1.0)) == linear_interface(0.0, 1.0)
+    tiny = linear_interface(1.0, 1e-20)
+    assert resolved(tiny) == linear_interface(1.0, 0.0)
+    assert resolved(linear_interface(1e-11, 1e-11)) == linear_interface(1e-11, 1e-11)
+    Cs = [0.0, 1e-300, 1e-16, 1e-11]
+    ds = sweep_rough("line", [0.5], Cs, ct_ratios=[RATIO], w_values=None, n=100, lam=3.5,
+                     e_extra=5.0, refine_max_n=100)
+    point = ds.isel(f=0, ct_ratio=0)
+    assert point["admissible"].values.tolist() == [1, 1, 1, 1]
+    assert point["below_resolution"].values.tolist() == [0, 1, 1, 0]
+    for key in ("a", "b", "K_T"):
+        values = point[key].values
+        assert values[1] == values[0] and values[2] == values[0], key
+        assert 0 < abs(values[3] - values[0]) < 1e-9, (key, values)
+    assert float(point["max_closure_mismatch"].sel(C=1e-300)) == 0.0
+    profile = rough_profile("line", 0.5, 0.0, linear_interface(1e-300, 1e-300), n=100,
+                            lam=3.5, e_extra=5.0, x_max=3.0, points=31)
+    assert profile.attrs["below_resolution"] == 1 and profile.attrs["admissible"] == 1

@@ -82,7 +82,7 @@ def test_command_line_reports_bad_input_in_one_line(tmp_path: Path, capsys) -> N
     log.write_text("frame,step,kind,direction,Pn,Qt\n1,1,normal,loading,-1,0\n"
                    "1,1,normal,loading,-2,0\n")
     fields = tmp_path / "fields.nc"
-    fields.touch()  # never read: the load log fails first
+    fields.write_bytes(b"CDF\x01")  # a netCDF file's start, never read: the log fails first
     status = main(["stiffness", "process", "--test", "T", "--load-log", str(log),
                    "--fields", str(fields), "--max-normal-load-kN", "4",
                    "--nominal-area-mm2", "20", "--grid-points", "41", *ERROR_OPTIONS,

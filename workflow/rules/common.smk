@@ -24,7 +24,13 @@ from contactlab.published import (
     surfaces_of_tests,
 )
 from contactlab.dic.sheet import check_image_folders
-from contactlab.rulehelpers import demo_data_files, section_files, section_page, table_files
+from contactlab.rulehelpers import (
+    demo_data_files,
+    raw_tests,
+    section_files,
+    section_page,
+    table_files,
+)
 from contactlab.studies import names, reads
 from contactlab.study import changes, coerce, export_provenance, logs_dir, results_dir
 from contactlab.surfaces.sheet import check_demo_scan_surfaces, read_surface_sheet
@@ -144,6 +150,11 @@ READS = reads.Recorder()
 config = reads.traced(config, READS)
 
 TEST_IDS = list(TESTS["id"])
+# the tested pairs of a rough interface name tests of the stiffness summary
+try:
+    check_files(config, _SOURCES, tests=raw_tests(TESTS), sheet=config["tests"])
+except ConfigError as exc:
+    raise WorkflowError(str(exc)) from None
 PUBLISHED = Path(config["published_dir"])
 
 ALL_TARGETS = []

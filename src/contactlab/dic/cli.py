@@ -81,7 +81,24 @@ def _settings(args: argparse.Namespace) -> dict[str, object]:
             "colour": args.colour}
 
 
+def _check_frames(args: argparse.Namespace) -> None:
+    """Before any work: every image's header against the reference's (one rule with ``dic
+    fields``: :func:`contactlab.dic.images.check_like_reference`) and the reference against
+    the subset."""
+    from contactlab.dic.images import check_like_reference, image_info
+
+    reference = image_info(args.reference)
+    check_like_reference(reference, reference, colour=args.colour)
+    for path in args.images:
+        check_like_reference(reference, image_info(path), colour=args.colour)
+    rows, cols = reference.shape
+    if args.roi is None and min(rows, cols) < args.subset:
+        raise ValueError(f"--reference {args.reference}: {cols} x {rows} pixels, smaller "
+                         f"than the subset (--subset {args.subset} px)")
+
+
 def _correlate(args: argparse.Namespace) -> None:
+    _check_frames(args)
     from contactlab.dic.fields import correlate_images
     from contactlab.io import write_netcdf
 
@@ -189,7 +206,8 @@ COMMANDS = (
                  Option("--frames", "render only these frames of the load log (default: "
                         "all)", int, nargs="+", default=None),
                  Option("--out-dir", "folder receiving the frames, contactlab.json, "
-                        "load_log.csv and truth.csv (replaced when complete)", Path)),
+                        "load_log.csv and truth.csv (replaced when complete)", Path,
+                        role="output folder")),
         run=_demo),
     Command(
         NAME, "report", "report section: correlation quality, fits from images",

@@ -143,8 +143,8 @@ class Settings:
             raise ValueError(f"tolerance must be > 0 pixels, got {self.tolerance}")
         if not -1 <= self.zncc_min <= 1:
             raise ValueError(f"zncc_min must lie in [-1, 1], got {self.zncc_min}")
-        if not self.prefilter_sigma >= 0:
-            raise ValueError(f"prefilter_sigma must be >= 0 pixels, got "
+        if not 0 <= self.prefilter_sigma < np.inf:
+            raise ValueError(f"prefilter_sigma must be finite and >= 0 pixels, got "
                              f"{self.prefilter_sigma}")
         if not self.outlier_threshold >= 0:
             raise ValueError(f"outlier_threshold must be >= 0 (0: no test), got "

@@ -7,6 +7,10 @@ that no id repeats; each file is decoded when read. Every refusal is one line na
 file and what is wrong (unreadable or corrupt, a stack of several images, colour, another
 size or bit depth, not 8/16-bit, a frame the caller needs but the folder lacks).
 
+A frame larger than :data:`MAX_PIXELS` is refused from its header, before it is decoded
+(a header may claim any size: 14000 x 14000 px would take 1.5 GB of grey levels as floats
+before the correlation's arrays).
+
 Colour images are refused unless the caller asks to convert them (``colour="luminance"``:
 ``0.299 R + 0.587 G + 0.114 B``, ITU-R BT.601, rounded to the file's bit depth; an alpha
 channel is dropped).
@@ -23,11 +27,15 @@ from pathlib import Path
 
 import numpy as np
 
-__all__ = ["COLOUR_MODES", "IMAGE_SUFFIXES", "ImageFolder", "ImageInfo", "frame_id",
-           "image_info", "read_image"]
+__all__ = ["COLOUR_MODES", "IMAGE_SUFFIXES", "MAX_PIXELS", "ImageFolder", "ImageInfo",
+           "check_like_reference", "frame_id", "image_info", "read_image"]
 
 IMAGE_SUFFIXES = (".tif", ".tiff", ".png")
 COLOUR_MODES = ("refuse", "luminance")
+#: The largest frame read, in pixels (8192 x 8192): beyond the sensors of DIC cameras (up
+#: to about 50 megapixels), and below Pillow's decompression-bomb limit, so that a frame
+#: is refused here, by size, before any decoder sees it.
+MAX_PIXELS = 2**26
 _LUMINANCE = np.array([0.299, 0.587, 0.114])
 _PNG_MODES = {"L": (np.dtype(np.uint8), 1), "I;16": (np.dtype(np.uint16), 1),
               "I;16B": (np.dtype(np.uint16), 1), "I;16L": (np.dtype(np.uint16), 1),
@@ -64,27 +72,44 @@ def _suffix(path: Path) -> str:
 
 
 def image_info(path: str | Path) -> ImageInfo:
-    """Size, sample type and channels of an image file, from its header only."""
+    """Size, sample type and channels of an image file, from its header only; a frame of
+    more than :data:`MAX_PIXELS` is refused."""
     path = Path(path)
     if not path.is_file():
         raise FileNotFoundError(f"{path}: image file not found")
-    if _suffix(path) == ".png":
-        from PIL import Image, UnidentifiedImageError
+    info = _png_info(path) if _suffix(path) == ".png" else _tiff_info(path)
+    rows, cols = info.shape
+    if rows * cols > MAX_PIXELS:
+        raise ValueError(f"{path}: its header says {cols} x {rows} pixels, more than the "
+                         f"{MAX_PIXELS / 1e6:.0f} megapixels a frame may have")
+    if rows < 1 or cols < 1:
+        raise ValueError(f"{path}: its header says {cols} x {rows} pixels: no image")
+    return info
 
-        try:
-            with Image.open(path) as image:
-                mode, (cols, rows) = image.mode, image.size
-                frames = getattr(image, "n_frames", 1)
-        except (OSError, UnidentifiedImageError, SyntaxError, ValueError) as exc:
-            raise ValueError(f"{path}: unreadable or corrupt PNG file ({exc})") from None
-        if frames != 1:
-            raise ValueError(f"{path}: holds {frames} images (animated PNG); one frame per "
-                             "file expected")
-        if mode not in _PNG_MODES:
-            raise ValueError(f"{path}: PNG of mode {mode!r}; expected 8- or 16-bit grey "
-                             "(or colour to convert)")
-        dtype, channels = _PNG_MODES[mode]
-        return ImageInfo(path, (rows, cols), dtype, channels)
+
+def _png_info(path: Path) -> ImageInfo:
+    from PIL import Image, UnidentifiedImageError
+
+    bomb_limit, Image.MAX_IMAGE_PIXELS = Image.MAX_IMAGE_PIXELS, None  # checked by size
+    try:
+        with Image.open(path) as image:
+            mode, (cols, rows) = image.mode, image.size
+            frames = getattr(image, "n_frames", 1)
+    except (OSError, UnidentifiedImageError, SyntaxError, ValueError) as exc:
+        raise ValueError(f"{path}: unreadable or corrupt PNG file ({exc})") from None
+    finally:
+        Image.MAX_IMAGE_PIXELS = bomb_limit
+    if frames != 1:
+        raise ValueError(f"{path}: holds {frames} images (animated PNG); one frame per file "
+                         "expected")
+    if mode not in _PNG_MODES:
+        raise ValueError(f"{path}: PNG of mode {mode!r}; expected 8- or 16-bit grey (or "
+                         "colour to convert)")
+    dtype, channels = _PNG_MODES[mode]
+    return ImageInfo(path, (rows, cols), dtype, channels)
+
+
+def _tiff_info(path: Path) -> ImageInfo:
     import tifffile
 
     try:
@@ -153,13 +178,30 @@ def read_image(path: str | Path, *, colour: str) -> np.ndarray:
     return data
 
 
+def check_like_reference(reference: ImageInfo, other: ImageInfo, *, colour: str) -> None:
+    """The one rule for a frame correlated with a reference (``dic correlate`` and ``dic
+    fields``): the reference's size and bit depth, and grey unless ``colour`` is
+    ``luminance``. Raises ValueError naming the frame and the reference."""
+    if other.shape != reference.shape:
+        raise ValueError(f"{other.path}: {other.shape[1]} x {other.shape[0]} pixels, the "
+                         f"reference {reference.path.name} has {reference.shape[1]} x "
+                         f"{reference.shape[0]}")
+    if other.dtype != reference.dtype:
+        raise ValueError(f"{other.path}: {other.dtype.itemsize * 8}-bit samples "
+                         f"({other.dtype}), the reference {reference.path.name} has "
+                         f"{reference.dtype.itemsize * 8}-bit ({reference.dtype})")
+    _check_depth(other)
+    if other.channels != 1 and colour == "refuse":
+        read_image(other.path, colour=colour)  # raises the colour message
+
+
 class ImageFolder:
     """The frames of a folder, by id, checked against a reference frame.
 
     Parameters
     ----------
     folder : directory holding one image file per frame (suffixes :data:`IMAGE_SUFFIXES`;
-        other files are ignored).
+        other files, and hidden ones such as a killed write's temporary file, are ignored).
     reference : file name (in ``folder``) of the reference frame.
     colour : ``"refuse"`` or ``"luminance"`` (see :func:`read_image`).
 
@@ -184,8 +226,8 @@ class ImageFolder:
             read_image(self.reference, colour=colour)  # raises the colour message
         self.shape, self.dtype = info.shape, info.dtype
         frames: dict[int, Path] = {}
-        files = sorted(p for p in self.folder.iterdir()
-                       if p.is_file() and p.suffix.lower() in IMAGE_SUFFIXES)
+        files = sorted(p for p in self.folder.iterdir() if p.is_file()
+                       and p.suffix.lower() in IMAGE_SUFFIXES and not p.name.startswith("."))
         for path in files:
             if path == self.reference and not re.search(r"\d", path.stem):
                 continue  # a reference named without a number is no frame of the sequence
@@ -195,17 +237,7 @@ class ImageFolder:
                                  f"{frames[number].name}")
             frames[number] = path
         for path in frames.values():
-            other = image_info(path)
-            if other.shape != self.shape:
-                raise ValueError(f"{path}: {other.shape[1]} x {other.shape[0]} pixels, the "
-                                 f"reference {self.reference.name} has {self.shape[1]} x "
-                                 f"{self.shape[0]}")
-            if other.dtype != self.dtype:
-                raise ValueError(f"{path}: {other.dtype.itemsize * 8}-bit samples "
-                                 f"({other.dtype}), the reference {self.reference.name} has "
-                                 f"{self.dtype.itemsize * 8}-bit ({self.dtype})")
-            if other.channels != 1 and colour == "refuse":
-                read_image(path, colour=colour)
+            check_like_reference(info, image_info(path), colour=colour)
         self.frames = dict(sorted(frames.items()))
 
     def require(self, frames: Iterable[int]) -> None:

@@ -113,7 +113,9 @@ def subset_grid(shape: tuple[int, int], regions: list[Region] | tuple[Region, ..
         raise ValueError(f"region of interest {roi} (x0, x1, y0, y1 in pixels) must lie "
                          f"inside the image of {cols} x {rows} pixels with x0 < x1, y0 < y1")
     if y1 - y0 < subset or x1 - x0 < subset:
-        raise ValueError(f"region of interest {roi} is smaller than the subset ({subset} px)")
+        where = (f"the image ({cols} x {rows} pixels)" if roi is None else
+                 f"the region of interest {roi} ({x1 - x0:g} x {y1 - y0:g} pixels)")
+        raise ValueError(f"{where} is smaller than the subset ({subset} px)")
     if not regions:
         raise ValueError("no region to place subsets in")
     ordered = sorted(regions, key=lambda r: r.x_min)

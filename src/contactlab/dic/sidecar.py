@@ -147,7 +147,11 @@ def read_sidecar(path: str | Path) -> ImageSetup:
     if not (path.parent / reference).is_file():
         raise ValueError(f"{path}: key 'reference': image {reference!r} not found in "
                          f"{path.parent}")
-    shape = image_info(path.parent / reference).shape
+    try:
+        shape = image_info(path.parent / reference).shape
+    except ValueError as exc:
+        raise ValueError(f"{path}: key 'reference': {reference!r} is no frame to correlate "
+                         f"with ({exc})") from None
     width = shape[1] * size
     values = {key: _number(path, data, key) for key in RANGES}
     for key, value in values.items():

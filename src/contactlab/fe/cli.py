@@ -11,10 +11,19 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from contactlab.cliutil import input_file, out_option, section_outputs
+from contactlab.cliutil import (
+    input_file,
+    number_in,
+    out_option,
+    positive_float,
+    section_outputs,
+)
 from contactlab.command import Command, Group, Option
 from contactlab.receding.options import line_options, patch_options
 from contactlab.schema import schema_default
+
+#: ``type=`` of a Poisson's ratio (-1 < nu < 0.5)
+POISSON = number_in(-1, 0.5, open_low=True, open_high=True)
 
 EXAMPLES = """\
   contactlab fe receding --problem gap --h 0.1 --out gap.nc
@@ -84,11 +93,6 @@ def _receding(args: argparse.Namespace) -> None:
 
 
 def _rough(args: argparse.Namespace) -> None:
-    for flag, value in (("--compliance", args.compliance),
-                        ("--compliance-t", args.compliance_t)):
-        if not (value >= 0 and value < float("inf")):
-            raise ValueError(f"{flag} {value:g}: a compliance number must be finite and >= 0 "
-                             "(a positive interface stiffness)")
     from contactlab.fe.rough import run_rough
     from contactlab.io import stamp, write_netcdf
 
@@ -288,7 +292,7 @@ def _reference() -> tuple[Option, ...]:
 
 
 def _ccx() -> tuple[Option, ...]:
-    return (Option("--threads", "ccx threads", int, default=1),
+    return (Option("--threads", "ccx threads", number_in(1, integer=True), default=1),
             Option("--keep", "keep the ccx work directory here", default=None))
 
 
@@ -299,7 +303,7 @@ def _model_options() -> tuple[Option, ...]:
         Option("--w-hat", "gap or patch half-width w/c", float,
                key=_by_problem("w_hat", PATCH_PROBLEMS), only=PATCH_PROBLEMS),
         Option("--h", "interface element size h/c (default: that of --level in "
-               "fe.levels)", float, default=None),
+               "fe.levels)", positive_float, default=None),
         Option("--length", "strip length of the half model over c (the full strip is "
                "twice as long)", float, key=_by_problem("length")),
         Option("--depth", "block depth over c", float, key=_by_problem("depth")),
@@ -310,11 +314,11 @@ def _model_options() -> tuple[Option, ...]:
                choices=("roller", "encastre", "farfield"), key=_by_problem("edges")),
         Option("--young", "Young's modulus E (results are normalised)", float,
                unit="N/mm^2", key=_by_problem("young")),
-        Option("--poisson", "Poisson's ratio", float, default=0.3),
+        Option("--poisson", "Poisson's ratio", POISSON, default=0.3),
         Option("--layer-rows", "element rows through the strip (default: about 0.4 c/h, "
-               ">= 8)", int, default=None),
-        Option("--growth", "element growth ratio away from the fine mesh", float,
-               default=1.15),
+               ">= 8)", number_in(8, integer=True), default=None),
+        Option("--growth", "element growth ratio away from the fine mesh",
+               number_in(1, 2), default=1.15),
         Option("--increments", "load increments", int, key="fe.increments"),
         Option("--level", "mesh level: a name of fe.levels, whose h/c the run takes "
                "unless --h is given; recorded with the result", key=_by_problem("level")),
@@ -345,9 +349,10 @@ COMMANDS = (
         options=(
             Option("--problem", "line load (Fig. 8.7) or uniform patch (Fig. 8.13)",
                    choices=FARFIELD_PROBLEMS),
-            Option("--compliance", "normal compliance number C (0: the hard penalty)", float),
+            Option("--compliance", "normal compliance number C (0: the hard penalty)",
+                   number_in(0)),
             Option("--compliance-t", "tangential compliance number C_T (0: the smooth "
-                   "models' stick slope)", float),
+                   "models' stick slope)", number_in(0)),
             *_model_options(), *_ccx(), out_option()),
         run=_rough, select="problem"),
     Command(
@@ -379,7 +384,8 @@ COMMANDS = (
                  Option("--run", "output of `fe receding`", input_file), _ddt_n(),
                  *_reference(),
                  Option("--ddt-file", "receding results file read when the solve fails "
-                        "(config fe.problems.<problem>.ddt_file)", Path, default=None),
+                        "(config fe.problems.<problem>.ddt_file)", Path, default=None,
+                        role="input"),
                  out_option()),
         run=_compare, select="problem"),
     Command(
@@ -410,10 +416,10 @@ COMMANDS = (
         description="3D half model of a sphere on a block (C3D10), elastic-perfectly "
                     "plastic, pressed and then sheared while stuck (Fig. 3.8).",
         options=(
-            Option("--yield-stress", "von Mises yield stress; 0 for the elastic model", float,
-                   unit="N/mm^2"),
+            Option("--yield-stress", "von Mises yield stress; 0 for the elastic model",
+                   number_in(0), unit="N/mm^2"),
             Option("--young", "Young's modulus", float, unit="N/mm^2", key="fe.asperity.young"),
-            Option("--poisson", "Poisson's ratio", float, default=0.3),
+            Option("--poisson", "Poisson's ratio", POISSON, default=0.3),
             Option("--radius", "sphere radius", float, unit="mm", key="fe.asperity.radius"),
             Option("--approach", "normal displacement", float, unit="mm",
                    key="fe.asperity.approach"),
@@ -427,8 +433,8 @@ COMMANDS = (
                    key="fe.asperity.h_contact"),
             Option("--h-far", "element size far away", float, unit="mm",
                    key="fe.asperity.h_far"),
-            Option("--friction", "friction coefficient standing for a stuck interface", float,
-                   default=5.0),
+            Option("--friction", "friction coefficient standing for a stuck interface",
+                   positive_float, default=5.0),
             Option("--normal-increments", "increments of the normal load step", int,
                    key="fe.asperity.normal_increments"),
             Option("--tangential-increments", "increments of the tangential load step", int,

@@ -166,7 +166,7 @@ COMMANDS = (
                  Option("--seed", "random seed", int, key=f"{RAW}.demo_seed"),
                  published_dir_option(),
                  Option("--out-dir", "directory receiving <test>/load_log.csv, fields.nc "
-                        "and design.csv", Path)),
+                        "and design.csv", Path, role="output folder")),
         run=_demo),
     Command(
         NAME, "process", "fit every step of one test from raw data",
@@ -202,7 +202,7 @@ COMMANDS = (
                  published_dir_option("directory of the transcribed thesis tables, for the "
                                       "texture wavelengths of Table 2.7"),
                  Option("--tables-dir", "directory for the table CSV files", Path,
-                        default=Path("results/report/tables")),
+                        default=Path("results/report/tables"), role="output folder"),
                  out_option("netCDF output (results/stiffness/summary.nc)")),
         run=_summarize),
     Command(
@@ -211,7 +211,7 @@ COMMANDS = (
                     "stiffness, mean-row Kt0) of per-test results, published values overlaid.",
         options=(results_option(), published_dir_option(),
                  Option("--out-dir", "directory for the PNG/PDF figures", Path,
-                        default=Path("results/report/figures"))),
+                        default=Path("results/report/figures"), role="output folder")),
         run=_figures),
     Command(
         NAME, "report-raw", "report section: from raw vs published",
@@ -234,7 +234,7 @@ COMMANDS = (
                         default=None),
                  published_dir_option(),
                  Option("--tables-dir", "write table_2.x_from_published_steps.csv here "
-                        "(default: none)", Path, default=None),
+                        "(default: none)", Path, default=None, role="output folder"),
                  kt0_threshold_option(PUBLISHED_STEPS),
                  *error_model_options(PUBLISHED_STEPS),
                  out_option("netCDF output (results/stiffness/"

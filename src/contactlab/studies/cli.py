@@ -142,7 +142,7 @@ GROUP = Group(
                 options=(Option("--spec", "compare file (config/compare/<name>.yaml)",
                                 input_file),
                          Option("--out", "the page (its figures/ and tables/ beside it)",
-                                Path), _root()),
+                                Path, role="output"), _root()),
                 run=_compare),
         Command(NAME, "family-page", "the comparison page of a family's variants",
                 description="The comparison page of a family of studies: every variant "
@@ -154,6 +154,6 @@ GROUP = Group(
                                 "reference", nargs="+"),
                          Option("--quantities", "headline quantity ids", nargs="+"),
                          Option("--out", "the page (its figures/ and tables/ beside it)",
-                                Path), _root()),
+                                Path, role="output"), _root()),
                 run=_family_page),
     ))

@@ -196,7 +196,7 @@ COMMANDS = (
         options=(Option("--sheet", "surface sheet (CSV) naming each surface's scan files",
                         input_file),
                  Option("--out-dir", "write the sheet's scans that lie in this directory",
-                        Path),
+                        Path, role="output folder"),
                  Option("--seed", "random seed", int, key="surfaces.demo_seed"),
                  published_dir_option()),
         run=_demo_scans),
@@ -210,7 +210,7 @@ COMMANDS = (
                     "is recorded as refused, parameters NaN and the reason in the file, and "
                     "named on stderr; texture-check turns refusals into an error.",
         options=(Option("--sheet", "surface sheet (CSV)", input_file),
-                 Option("--out-dir", "directory for <surface>.nc", Path),
+                 Option("--out-dir", "directory for <surface>.nc", Path, role="output folder"),
                  Option("--surface", "only these surfaces (default: every surface)",
                         nargs="+", default=None),
                  Option("--bins", "bins of the stored height histogram", int,
@@ -219,7 +219,8 @@ COMMANDS = (
                         "a scan that is filled (harmonic interpolation), in [0, 1); more is "
                         "refused", float, key="surfaces.max_undefined_fraction"),
                  Option("--summary", "also gather every surface's parameters into this "
-                        "netCDF table (texture.nc; default: none)", Path, default=None),
+                        "netCDF table (texture.nc; default: none)", Path, default=None,
+                        role="output"),
                  Option("--workers", "surfaces analysed side by side in worker processes; "
                         "the workflow passes the job's threads", int, default=1)),
         run=_texture),

@@ -135,14 +135,21 @@ def summary(sol: Any, seconds: float) -> dict:
     })
 
 
-def rough_summary(sol: Any) -> dict:
-    """The rough interface's numbers and certificates beside :func:`summary` (NaN -> null)."""
+def rough_summary(sol: Any, law: Any) -> dict:
+    """The rough interface ``law`` asked for, whether a compliance number of it is below
+    what the solver resolves (solved as zero: ``sol.interface``), and the solution's
+    certificates, beside :func:`summary` (NaN -> null)."""
     from contactlab.receding.core.solution import json_ready
 
-    law = sol.interface
     return json_ready({"interface": law.kind, "C": law.C, "C_T": law.C_T,
+                       "below_resolution": sol.interface is not law,
                        "approach": sol.compliant.approach if sol.compliant is not None
                        else 0.0, **sol.certify()})
+
+
+def _number(value: Any, spec: str) -> str:
+    """A number of a printed answer, ``n/a`` where there is none (NaN or null)."""
+    return "n/a" if value is None or value != value else format(value, spec)
 
 
 def run_solve(args: argparse.Namespace) -> None:
@@ -150,28 +157,44 @@ def run_solve(args: argparse.Namespace) -> None:
     if args.f < 0:
         raise ValueError(f"--f {args.f:g}: the friction coefficient must be >= 0")
     interface = interface_of(args)
+    law = None
+    if interface is not None:
+        from contactlab.receding.core.interface import resolved
+
+        law = resolved(interface)  # a compliance below the solver's resolution: zero
     start = time.perf_counter()
-    sol = _solve_args(args, args.problem, interface=interface)
+    sol = _solve_args(args, args.problem, interface=None if law is None or law.smooth
+                      else law)
     out = summary(sol, time.perf_counter() - start)
     if interface is not None:
-        out.update(rough_summary(sol))
+        out.update(rough_summary(sol, interface))
     if args.json:
         print(json.dumps(out))
         return
     where = "line load" if args.problem == "line" else \
         f"{args.problem} pressure patch, half-width w/c = {sol.load.w:g}"
+    a, b, k_t = (sol.a, sol.b, sol.K_T) if sol.converged else (None, None, None)
     print(f"{where}, f = {sol.f:g}, N = {sol.n}: {sol.regime}\n"
-          f"  stick-slip point      a/c = {sol.a:.6g}\n"
-          f"  separation point      b/c = {sol.b:.6g}\n"
-          f"  remote slope          K_T = {sol.K_T:.6g}  (k_l 2 mu/((kappa + 1) T), "
-          f"T = load per thickness)\n"
-          f"  largest residual {sol.residual:.1e} (units of T), remote slip error "
-          f"{sol.remote_slip_record()['remote_slip_error']:.1e}, converged {sol.converged}, "
-          f"admissible "
-          f"{sol.admissible}, {out['seconds']} s")
+          f"  stick-slip point      a/c = {_number(a, '.6g')}\n"
+          f"  separation point      b/c = {_number(b, '.6g')}\n"
+          f"  remote slope          K_T = {_number(k_t, '.6g')}  (k_l 2 mu/((kappa + 1) "
+          f"T), T = load per thickness)\n"
+          f"  largest residual {_number(sol.residual, '.1e')} (units of T), remote slip error "
+          f"{_number(out['remote_slip_error'], '.1e')}, converged {sol.converged}, "
+          f"admissible {sol.admissible}, {out['seconds']} s")
     if interface is not None:
         print(f"  rough interface      C = {out['C']:.6g}, C_T = {out['C_T']:.6g} (linear law); "
-              f"equilibrium error {out['equilibrium_error']:.1e}")
+              f"equilibrium error {_number(out['equilibrium_error'], '.1e')}")
+    if out.get("below_resolution"):
+        from contactlab.receding.core.interface import RESOLVED_COMPLIANCE
+
+        print(f"  below resolution     a compliance number below {RESOLVED_COMPLIANCE:g} is "
+              f"not resolved: solved as zero (C = {sol.interface.C:g}, C_T = "
+              f"{sol.interface.C_T:g}), certified by the contact checks above")
+    if interface is not None and not sol.converged:
+        print("  not solved           no root of the transition-point equations; a "
+              "compliant interface is reached from the smooth one through C = 0.01 ... 1e4, "
+              "and the contact must stay within the truncation e (b < e - 0.25)")
 
 
 def _log_time(ds: Any, start: float) -> None:

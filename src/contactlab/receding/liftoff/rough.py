@@ -34,10 +34,12 @@ import xarray as xr
 from contactlab.io import concat_chunks
 from contactlab.progress import Progress
 from contactlab.receding.core.interface import (
+    RESOLVED_COMPLIANCE,
     SMOOTH,
     Interface,
     linear_interface,
     measured_interface,
+    resolved,
 )
 from contactlab.receding.core.measured_law import StiffnessLaw
 from contactlab.receding.core.solution import (
@@ -99,6 +101,9 @@ EXTRA = {
     "n_used": ("Gauss-Chebyshev points N of the reported solution (the sweep's N unless "
                "refined; N_k = N on the stick and contact zones)", np.int32),
     "max_check_at_n": ("largest contact check value at the sweep's N, /T", float),
+    "below_resolution": (f"C or C_T is below RESOLVED_COMPLIANCE = {RESOLVED_COMPLIANCE:g}, "
+                         "which the solver does not resolve: solved as zero there, i.e. the "
+                         "smooth interface in that direction (1) or not", np.int8),
 }
 
 
@@ -110,7 +115,11 @@ def solve_rough(problem: str, f: float, w_hat: float, interface: Interface, *, n
 
     ``lam``: the map scale of the line load (both densities, sec. 6.4) or lambda_b of a
     patch, whose lambda_a is the thesis's (``patch.default_lambdas``, sec. 7.4);
-    ``e_extra``: e - w (e for the line load); ``guess``: (a, b) of a neighbour."""
+    ``e_extra``: e - w (e for the line load); ``guess``: (a, b) of a neighbour.
+
+    A compliance number below what the solver resolves is solved as zero (the smooth
+    interface in that direction, ``core.interface.resolved``): ``below_resolution``."""
+    interface = resolved(interface)
     if problem not in PROBLEMS:
         raise ValueError(f"problem must be one of {', '.join(PROBLEMS)}, got {problem!r}")
     if problem == "line":
@@ -122,10 +131,18 @@ def solve_rough(problem: str, f: float, w_hat: float, interface: Interface, *, n
                        guess=guess, interface=interface)
 
 
-def solution_record(sol: LiftoffSolution, start: float = np.nan) -> dict[str, float]:
+def below_resolution(interface: Interface) -> bool:
+    """A compliance number of ``interface`` is below what the solver resolves (it is solved
+    as zero: ``core.interface.resolved``)."""
+    return resolved(interface) is not interface
+
+
+def solution_record(sol: LiftoffSolution, start: float = np.nan,
+                    law: Interface = SMOOTH) -> dict[str, float]:
     """The numbers of one solution: SCALARS, CHECKS, CERTIFICATES and EXTRA (NaN where
     they do not apply; a, b, K_T NaN unless converged); ``start`` is the largest check at
-    the sweep's N of a refined point."""
+    the sweep's N of a refined point, ``law`` the interface asked for (its compliance
+    numbers below what the solver resolves set ``below_resolution``)."""
     rec: dict[str, float] = {k: np.nan for k in [*SCALARS, *CHECKS, *CERTIFICATES]}
     certificates = sol.certificates or sol.certify()
     rec.update({k: float(v) for k, v in certificates.items()})
@@ -148,6 +165,7 @@ def solution_record(sol: LiftoffSolution, start: float = np.nan) -> dict[str, fl
     rec["flags"] = flag_bits(sol.flags)
     rec["n_used"] = sol.n
     rec["max_check_at_n"] = start if np.isfinite(start) else largest_check(sol.checks)
+    rec["below_resolution"] = int(below_resolution(law))
     return rec
 
 
@@ -172,7 +190,7 @@ def rough_point(problem: str, f: float, w_hat: float, C: float, C_T: float, *, n
     rec: dict[str, float | str] = {"problem": problem, "f": float(f),
                                    "w_hat": float(w_hat) if problem != "line" else 0.0,
                                    "C": float(C), "C_T": float(C_T), "N": int(n)}
-    rec.update(solution_record(sol, start))
+    rec.update(solution_record(sol, start, interface))
     return rec
 
 
@@ -249,6 +267,7 @@ def sweep_rough(problem: str, f_values: Sequence[float], C_values: Sequence[floa
                  {"long_name": "tangential compliance number (2 mu/(kappa + 1))/(c k_t)",
                   "units": ONE})
     ds.attrs.update({"problem": problem, "N": int(n), "N_k": int(n), "lambda": lam,
+                     "resolved_compliance": RESOLVED_COMPLIANCE,
                      "e_minus_w": e_extra, "refine_max_n": int(refine_max_n),
                      "interface": interface, "pi0": -1.0 if pi0 is None else float(pi0),
                      "check_tol": CHECK_TOL,
@@ -273,7 +292,7 @@ def _sweep_point(problem: str, f: float, w: float, law: Interface,
 
     sol = None
     try:
-        sol = solve(n, seed if not law.smooth else None)
+        sol = solve(n, seed if not resolved(law).smooth else None)
         if not sol.converged and seed is not None:
             cold = solve(n, None)
             if cold.converged or not sol.converged:
@@ -283,16 +302,16 @@ def _sweep_point(problem: str, f: float, w: float, law: Interface,
                                  sol, refine_max_n)
     except (ValueError, np.linalg.LinAlgError, FloatingPointError):
         if sol is None:
-            return _failed_record(n), seed
+            return _failed_record(n, law), seed
         start = np.nan
     good = sol.converged and sol.regime == "slip_separation"
-    return solution_record(sol, start), ((sol.a, sol.b) if good else seed)
+    return solution_record(sol, start, law), ((sol.a, sol.b) if good else seed)
 
 
-def _failed_record(n: int) -> dict[str, float]:
+def _failed_record(n: int, law: Interface) -> dict[str, float]:
     rec = {k: np.nan for k in [*SCALARS, *CHECKS, *CERTIFICATES]}
     rec.update(converged=0, admissible=0, regime=-1, nfev=0, flags=0, n_used=n,
-               max_check_at_n=np.inf)
+               max_check_at_n=np.inf, below_resolution=int(below_resolution(law)))
     return rec
 
 
@@ -383,7 +402,8 @@ def rough_profile(problem: str, f: float, w_hat: float, interface: Interface, *,
                                            "units": ONE})})
     ds.attrs.update({"problem": problem, "f": float(f), "w_hat": w, "N": int(n),
                      "lambda": lam, "e_minus_w": e_extra, "x_max": x_max,
-                     **interface.attrs()})
+                     **interface.attrs(), "below_resolution": int(below_resolution(interface)),
+                     "resolved_compliance": RESOLVED_COMPLIANCE})
     for suffix, sol in (("", rough), ("_smooth", smooth)):
         ds.attrs.update({f"{k}{suffix}": v for k, v in (
             ("a", sol.a), ("b", sol.b), ("K_T", sol.K_T), ("converged", int(sol.converged)),
