@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from contactlab.io import atomic_dir, atomic_path, write_netcdf
+from contactlab.atomic import atomic_dir, atomic_path
+from contactlab.io import write_netcdf
 
 
 def test_failed_write_leaves_nothing_behind(tmp_path: Path) -> None:
@@ -140,7 +141,7 @@ def _kill_while_writing(argv: list[str], folder: Path, written: int, cwd: Path |
     import subprocess
     import time
 
-    from contactlab.io import PART
+    from contactlab.atomic import PART
 
     def parts() -> list[Path]:
         return [p for p in folder.glob(f".*{PART}*")] if folder.exists() else []
@@ -218,7 +219,7 @@ def test_stale_temporaries_of_running_processes_and_other_hosts_are_left(
     import os
     import socket
 
-    from contactlab.io import PART, remove_stale_parts
+    from contactlab.atomic import PART, remove_stale_parts
 
     target = tmp_path / "x.nc"
     host = socket.gethostname()

@@ -33,7 +33,8 @@ import pytest
 
 SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = SRC / "contactlab"
-GROUND = {"contactlab", "contactlab.__init__", "contactlab.io", "contactlab.schema",
+GROUND = {"contactlab", "contactlab.__init__", "contactlab.atomic", "contactlab.io",
+          "contactlab.schema",
           "contactlab.study",
           "contactlab.published", "contactlab.testsheet", "contactlab.csvlines",
           "contactlab.config_check", "contactlab.config_docs", "contactlab.setup_check",

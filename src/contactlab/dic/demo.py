@@ -41,6 +41,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from contactlab.atomic import atomic_dir, atomic_path
 from contactlab.dic.correlate import Settings, correlate_sequence
 from contactlab.dic.fields import fields_dataset
 from contactlab.dic.images import ImageFolder
@@ -48,7 +49,7 @@ from contactlab.dic.regions import subset_grid
 from contactlab.dic.sidecar import SIDECAR, read_sidecar, sidecar_dict
 from contactlab.dic.speckle import AffineField, Camera, TwoBlockField, speckle_pattern
 from contactlab.dic.speckle import blob_image as _blob_image
-from contactlab.io import atomic_dir, atomic_path, write_text
+from contactlab.io import write_text
 from contactlab.progress import track
 from contactlab.stiffness.readers import Geometry, geometry_of
 

@@ -28,7 +28,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from contactlab.io import atomic_path, write_table, write_text
+from contactlab.atomic import atomic_path
+from contactlab.io import write_table, write_text
 from contactlab.report.declaration import Declaration, caption_file, load
 from contactlab.report.style import STYLE, rebase_links
 

@@ -84,7 +84,8 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from contactlab.io import atomic_path, stamp, write_netcdf
+from contactlab.atomic import atomic_path
+from contactlab.io import stamp, write_netcdf
 from contactlab.published import (
     NOMINAL_AREA_MM2,
     NORMAL_LOAD_KN,

@@ -38,10 +38,11 @@ import datetime as dt
 import hashlib
 import json
 import os
-import tempfile
 from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
+
+from contactlab.atomic import atomic_path
 
 #: File name of the record inside a study's log folder.
 MANIFEST = "study.json"
@@ -156,19 +157,11 @@ def value_id(value: Any) -> str:
 
 
 def write_json(data: Mapping[str, Any], path: str | os.PathLike[str]) -> Path:
-    """Write ``data`` as JSON to ``path`` atomically (a temporary file renamed)."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as out:
-            json.dump(data, out, indent=1, sort_keys=True)
-            out.write("\n")
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
-    return path
+    """Write ``data`` as JSON to ``path``, whole or not at all
+    (:func:`contactlab.atomic.atomic_path`)."""
+    with atomic_path(path) as tmp:
+        tmp.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n", encoding="utf-8")
+    return Path(path)
 
 
 def record_run(logs: str, *, study: str, config_sha256: str, git_commit: str,

@@ -104,10 +104,14 @@ def keep_other_runs_locks() -> None:
 
 def write_config(config: Mapping[str, Any], path: Path) -> None:
     """``config`` as a YAML config file that Snakemake reads back with the same types
-    (YAML, not JSON: Snakemake's YAML reader takes JSON's ``1e-06`` for a string)."""
+    (YAML, not JSON: Snakemake's YAML reader takes JSON's ``1e-06`` for a string), written
+    whole or not at all."""
     import yaml
 
-    path.write_text(yaml.safe_dump(dict(config), sort_keys=False), encoding="utf-8")
+    from contactlab.atomic import atomic_path
+
+    with atomic_path(path) as tmp:
+        tmp.write_text(yaml.safe_dump(dict(config), sort_keys=False), encoding="utf-8")
 
 
 def build_missing(files: Sequence[str], config: Mapping[str, Any], cores: int = 1,

@@ -436,7 +436,7 @@ def write_demo_scan(heights_um: np.ndarray, dx: float, dy: float, path: Path) ->
     """Write heights (um, axis 0 = x) as an X3P file labelled SYNTHETIC."""
     from SurfaceTopography import Topography
 
-    from contactlab.io import atomic_path
+    from contactlab.atomic import atomic_path
 
     nx, ny = heights_um.shape
     topography = Topography(heights_um, physical_sizes=(nx * dx, ny * dy), unit="um",
