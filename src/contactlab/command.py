@@ -232,9 +232,14 @@ class Command:
         problems: options that are missing or do not apply to the selected value, all at
         once; the caller reports them.
         """
-        selected = getattr(args, self.select) if self.select else None
         problems: list[str] = []
         filled: list[str] = []
+        if self.select and getattr(args, self.select) is None:
+            chooser = self.option(self.select)  # a config-fed select option: its default
+            if isinstance(chooser.key, str):
+                setattr(args, self.select, schema_default(chooser.key))
+                filled += chooser.render(getattr(args, self.select))
+        selected = getattr(args, self.select) if self.select else None
         for opt in self.options:
             value = getattr(args, opt.dest)
             given = value is not None and not (opt.kind == "flag" and value is False)
@@ -267,6 +272,10 @@ class Command:
         if unknown:
             raise KeyError(f"contactlab {self.path} has no option(s) {sorted(unknown)}")
         selected = values.get(self.select) if self.select else None
+        if self.select and selected is None and config is not None:
+            chooser = self.option(self.select)  # a config-fed select option: its value
+            if isinstance(chooser.key, str):
+                selected = config_value(config, chooser.key)
         words: list[str] = []
         for opt in self.options:
             if opt.only is not None and selected not in opt.only:
