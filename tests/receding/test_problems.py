@@ -5,7 +5,6 @@ and no receding module imports one that imports it back."""
 
 from __future__ import annotations
 
-import dataclasses
 import sys
 from pathlib import Path
 
@@ -22,7 +21,6 @@ from contactlab.receding.core.problem import (
     Materials,
     RecedingProblem,
 )
-from contactlab.receding.core.sweep import Sweep, record_variables
 from contactlab.receding.problems import (
     named_liftoff,
     names,
@@ -111,25 +109,49 @@ def test_the_problem_modules_import_no_science() -> None:
     assert out == "[]"
 
 
-def test_a_new_problem_needs_no_change_of_the_engine() -> None:
-    """A problem the engine has never seen (the line load under another name, as a new
-    module would declare it) is swept, refined and recorded like the line load."""
-    line = registry()["line"]
-    copy = dataclasses.replace(line, name="line_copy", order=99)
-    f = np.array([0.3, 0.6])
-    settings = {"lam": 3.5, "e": 5.0, "stick_zone_limit": 1e-4}
+#: A new problem's module, as docs/CONVENTIONS.md shows it: a parabolic pressure patch.
+PARABOLIC = '''"""A parabolic pressure p = p0 (1 - (x/w)^2) on |x| <= w (a new problem)."""
 
-    def run(spec: RecedingProblem) -> dict:
-        records = Sweep(spec, {"f": f}, lambda i: spec.point(float(f[i[0]])), 64,
-                        settings=settings, refine_max_n=64, continuation=True,
-                        what="test").run()
-        return record_variables(spec, records, ("f",))
+from contactlab.receding.problems.patch import PatchProblem, declare_patch
 
-    new, old = run(copy), run(line)
-    assert set(new) == set(old)
-    for key in new:
-        np.testing.assert_array_equal(new[key][1], old[key][1])
-    assert new["converged"][1].tolist() == [1, 1]
+
+class ParabolicPatch(PatchProblem):
+    def table(self, point):
+        import numpy as np
+
+        x = np.linspace(0.0, 1.0, 41)
+        return {"x": x * point.w_hat, "p": 1.0 - x * x}
+
+
+PROBLEMS = (declare_patch("parabolic", 25, "parabolic", "parabolic: p0 (1 - (x/w)^2) on "
+                          "|x| <= w", law="table", cls=ParabolicPatch),)
+'''
+
+
+def test_a_new_problem_is_a_module_and_nothing_else(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """A module dropped into the problems' package is on the list (and in the schema's
+    enums, which the schema test then asks for), and the patch sweep solves it without
+    any other change: the same numbers as the same pressure given as a table."""
+    from contactlab.receding import problems
+    from contactlab.receding.liftoff.sweep import sweep_patch
+
+    (tmp_path / "parabolic.py").write_text(PARABOLIC)
+    monkeypatch.setattr(problems, "__path__", [*problems.__path__, str(tmp_path)])
+    monkeypatch.delitem(sys.modules, "contactlab.receding.problems.parabolic", raising=False)
+    registry.cache_clear()
+    try:
+        assert names(family="patch") == ("uniform", "hertz", "punch", "parabolic", "table")
+        assert "parabolic" in schema_enums()["receding.patches.laws[]"]
+        new = sweep_patch("parabolic", [0.5, 0.3], [1.0, 2.0], 64, 2.0, 5.0)
+        x = np.linspace(0.0, 1.0, 41)
+        table = sweep_patch("table", [0.5, 0.3], [1.0, 2.0], 64, 2.0, 5.0,
+                            {"x": x, "p": 1.0 - x * x})
+    finally:
+        registry.cache_clear()
+    assert new.attrs["problem"] == "parabolic" and int(new["converged"].sum()) == 4
+    for key in ("a", "b", "K_T", "regime", "flags"):
+        np.testing.assert_array_equal(new[key].values, table[key].values)
 
 
 @pytest.mark.parametrize(("call", "message"), [

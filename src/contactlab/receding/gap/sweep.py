@@ -1,8 +1,9 @@
 """Sweeps of the gap problem over (f, w_hat) at one N, regime boundaries and profiles, as xarray.
 
-Pure functions: numbers in, CF-style datasets out (``contactlab.io`` writes them). A sweep
-at one w_hat continues along f from the largest value down, each solution seeding the
-next; a failed point is kept with ``converged = 0`` and its reason, never dropped.
+Pure functions: numbers in, CF-style datasets out (``contactlab.io`` writes them). The
+sweep engine (``core.sweep``) with the gap problem's continuation (``problems.gap``): at one
+w_hat along f from the largest value down, each solution seeding the next; a failed point
+is kept with ``converged = 0`` and its reason, never dropped.
 """
 
 from __future__ import annotations

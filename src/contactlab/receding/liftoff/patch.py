@@ -150,6 +150,10 @@ def solve_uniform(f: float = 0.3, w_hat: float = 2.5, n: int = 100) -> LiftoffSo
     return solve_patch("uniform", f, w_hat, n)
 
 
+#: the laws with the thesis's amplitudes A1, A2, A3 (eqs 7.34-7.39), i.e. with K_N and K_B
+NORMALISED_LAWS = ("uniform", "hertz", "punch")
+
+
 def slope_normalisations(law: str, w: float, k_t: float) -> dict[str, float]:
     """K_T in the thesis's other normalisations (eqs 7.13, 7.16, 7.18, 7.37-7.39).
 

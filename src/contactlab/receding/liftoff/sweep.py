@@ -1,8 +1,10 @@
 """Sweeps of the lifting-off problems (line load, patches) as CF datasets, and profiles.
 
 Pure functions: numbers in, xarray out; and the fits of sec. 7.6 to a sweep of wide
-patches (:func:`wide_fits`). Sweeps continue along f (largest first) and, for
-patches, along w_hat (smallest first), each converged solution seeding its neighbours;
+patches (:func:`wide_fits`). The sweep engine (``core.sweep``) solves them with each
+problem's continuation (``problems.line``, ``problems.patch``): along f (largest first)
+and, for patches, along w_hat (smallest first), each converged solution seeding its
+neighbours;
 a patch is seeded by its neighbour in f at the same w and by its neighbour in w shifted
 by the change of w (a - w and b - w vary slowly, Fig. 7.10), a cold solve coming last.
 With ``continuation`` the points left unconverged or inadmissible are retried from every
@@ -20,8 +22,12 @@ import xarray as xr
 
 from contactlab.receding.core.sweep import Sweep, check_refine, record_variables
 from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT
-from contactlab.receding.liftoff.loading import make_load
-from contactlab.receding.liftoff.patch import default_lambdas, slope_normalisations
+from contactlab.receding.liftoff.loading import ALIASES, make_load
+from contactlab.receding.liftoff.patch import (
+    NORMALISED_LAWS,
+    default_lambdas,
+    slope_normalisations,
+)
 from contactlab.receding.liftoff.solver import LiftoffSolution
 from contactlab.receding.problems import names
 from contactlab.receding.problems import problem as registry_problem
@@ -82,12 +88,12 @@ def sweep_patch(law: str, f_values, w_values, n: int, lam_b: float, e_extra: flo
     w_hat of the sweep, so a user's own pressure law is swept like the named ones. See
     the module docstring for the seeds, ``continuation`` and ``refine_max_n``.
     """
-    if (law == "table") != (shape is not None):
-        raise ValueError("a pressure shape is needed for law 'table', and only for it")
-    problem = registry_problem(law)
+    problem = registry_problem(ALIASES.get(law, law))
     if problem.family != "patch":
         raise ValueError(f"{law!r} is not a pressure patch; the patches are "
                          f"{', '.join(names(family='patch'))}")
+    if problem.shape != (shape is not None):
+        raise ValueError("a pressure shape is needed for law 'table', and only for it")
     xy = None
     if shape is not None:  # refuse a bad shape up front, not point by point
         make_load("table", table={"x": np.asarray(shape["x"], dtype=float), "p": shape["p"]})
@@ -104,14 +110,14 @@ def sweep_patch(law: str, f_values, w_values, n: int, lam_b: float, e_extra: flo
                     n, settings={"lam_b": lam_b, "e_minus_w": e_extra,
                                  "stick_zone_limit": stick_zone_limit},
                     refine_max_n=refine_max_n, continuation=continuation,
-                    what=f"{law} patch sweep N = {n}").run()
+                    what=f"{problem.name} patch sweep N = {n}").run()
     k_n = np.full(records.shape, np.nan)
     k_b = np.full(records.shape, np.nan)
-    if law != "table":  # K_N, K_B need a named amplitude
+    if problem.name in NORMALISED_LAWS:  # K_N, K_B need the thesis's amplitude
         for index in np.ndindex(records.shape):
             rec = records[index]
             if rec["converged"] and np.isfinite(rec["K_T"]) and rec["regime"] == 0:
-                norms = slope_normalisations(law, float(w_values[index[1]]), rec["K_T"])
+                norms = slope_normalisations(problem.name, float(w_values[index[1]]), rec["K_T"])
                 k_n[index], k_b[index] = norms["K_N"], norms["K_B"]
     dims = ("f", "w_hat")
     data = record_variables(problem, records, dims)
@@ -126,7 +132,7 @@ def sweep_patch(law: str, f_values, w_values, n: int, lam_b: float, e_extra: flo
               "w_hat": ("w_hat", w_values, {"long_name": "patch half-width w/c",
                                             "units": ONE})}
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update({"problem": law, "N": int(n), "lambda_b": lam_b,
+    ds.attrs.update({"problem": problem.name, "N": int(n), "lambda_b": lam_b,
                      "e_minus_w": e_extra, "stick_zone_limit": stick_zone_limit,
                      "refine_max_n": refine_max_n, "continuation": int(continuation),
                      "units_note": "lengths in c, tractions in T = int p dx / c"})

@@ -74,21 +74,29 @@ class PatchProblem(LiftoffProblem):
                              interface=self.interface_of(point))
 
 
-def _patch(name: str, order: int, title: str, help: str, shape: bool = False) -> PatchProblem:
-    return PatchProblem(
+def declare_patch(name: str, order: int, title: str, help: str, *, shape: bool = False,
+                  law: str | None = None, cls: type[PatchProblem] = PatchProblem
+                  ) -> PatchProblem:
+    """A pressure patch problem ``name`` (``cls``, e.g. a subclass whose :meth:`table`
+    gives its pressure) with the patches' settings, record and continuation; ``law`` its
+    load in ``liftoff.loading`` (default: ``name``; ``table`` for a pressure given as a
+    table)."""
+    return cls(
         name=name, order=order, title=title, chapter="ch. 7", family="patch",
         section="receding.patches", help=help, widths=True, shape=shape, zero_friction=True,
         interfaces=("smooth", "linear", "measured"),
         unknowns={"slip_separation": "a, b (K_T with the densities)"},
         report="51_receding_line_patch", chunk_axis="f",
         settings=SETTINGS, quantities=QUANTITIES, variables=VARIABLES, continuation=ACROSS,
-        law=name)
+        law=name if law is None else law)
 
 
 PROBLEMS = (
-    _patch("uniform", 20, "constant (A1)", "uniform: constant pressure on |x| <= w (A1)"),
-    _patch("hertz", 21, "Hertzian (A2)", "hertz: Hertzian pressure on |x| <= w (A2)"),
-    _patch("punch", 22, "flat punch (A3)", "punch: flat punch's pressure on |x| <= w (A3)"),
-    _patch("table", 30, "your shape", "table: your pressure shape on |x| <= w "
-           "(--table-x, --table-p)", shape=True),
+    declare_patch("uniform", 20, "constant (A1)", "uniform: constant pressure on |x| <= w "
+                  "(A1)"),
+    declare_patch("hertz", 21, "Hertzian (A2)", "hertz: Hertzian pressure on |x| <= w (A2)"),
+    declare_patch("punch", 22, "flat punch (A3)", "punch: flat punch's pressure on |x| <= w "
+                  "(A3)"),
+    declare_patch("table", 30, "your shape", "table: your pressure shape on |x| <= w "
+                  "(--table-x, --table-p)", shape=True),
 )
