@@ -58,9 +58,8 @@ def _solve(args: argparse.Namespace) -> None:
     from contactlab.receding.rough.cli import interface_lines, interface_of
 
     problem = registry()[args.problem]
-    if not (args.f >= 0 if problem.zero_friction else args.f > 0):
-        raise ValueError(f"--f {args.f:g}: the friction coefficient must be "
-                         f"{'>= 0' if problem.zero_friction else '> 0'}")
+    if not args.f >= 0:  # f = 0 where it has no meaning: the solver says why
+        raise ValueError(f"--f {args.f:g}: the friction coefficient must be >= 0")
     interface, info = interface_of(args) if "linear" in problem.interfaces else (None, {})
     check_memory("--n", args.n, problem.memory(args.n, interface))
     shape = (tuple(args.table_x), tuple(args.table_p)) if problem.shape else None
