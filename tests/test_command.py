@@ -86,9 +86,11 @@ def _round_trip_problems(parser: argparse.ArgumentParser, declaration: Command,
             if not option.greedy:
                 want = want[0]  # type: ignore[index]
             got = [str(g) for g in got] if isinstance(got, list) else str(got)
+        elif option.dest == declaration.select:
+            want = selected  # given by the rule, not read from the config
         elif (key := option.key_for(selected)) is not None and (
                 option.only is None or selected in option.only):
-            from contactlab.command import config_value
+            from contactlab.schema import config_value
 
             want = config_value(config, key)
         else:

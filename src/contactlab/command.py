@@ -235,10 +235,15 @@ class Command:
         values were checked at start-up: :func:`from_checked_config`), all at once; the
         caller reports them.
         """
-        selected = getattr(args, self.select) if self.select else None
         problems: list[str] = []
         filled: list[str] = []
         check = not from_checked_config()
+        if self.select and getattr(args, self.select) is None:
+            chooser = self.option(self.select)  # a config-fed select option: its default
+            if isinstance(chooser.key, str):
+                setattr(args, self.select, schema_default(chooser.key))
+                filled += chooser.render(getattr(args, self.select))
+        selected = getattr(args, self.select) if self.select else None
         for opt in self.options:
             value = getattr(args, opt.dest)
             given = value is not None and not (opt.kind == "flag" and value is False)
@@ -281,6 +286,10 @@ class Command:
         if unknown:
             raise KeyError(f"contactlab {self.path} has no option(s) {sorted(unknown)}")
         selected = values.get(self.select) if self.select else None
+        if self.select and selected is None and config is not None:
+            chooser = self.option(self.select)  # a config-fed select option: its value
+            if isinstance(chooser.key, str):
+                selected = config_value(config, chooser.key)
         positional: list[str] = []
         greedy: list[str] = []
         fixed: list[str] = []

@@ -326,14 +326,30 @@ def rough_ct_ratio(rough: Mapping[str, Any]) -> float:
     return float(ratios[0]) if ratios else 1.0 / mindlin_ratio(float(rough["nu"]))
 
 
+def rough_problems_pattern() -> str:
+    """The wildcard pattern of a rough-interface sweep's problem (``receding.problems``:
+    the line load and the named pressure laws)."""
+    from contactlab.receding.problems import named_liftoff
+
+    return "|".join(named_liftoff())
+
+
+def _widths(problem: str) -> bool:
+    """Whether a receding problem has a half-width w/c (``receding.problems``)."""
+    from contactlab.receding.problems import problem as receding_problem
+
+    return receding_problem(problem).widths
+
+
 def rough_profile_name(point: Mapping[str, Any]) -> str:
     """File stem of a rough-interface profile: ``line_f0.5_C1`` or ``uniform_w1_f0.3_C1``.
 
-    A patch needs ``w``: ValueError naming the entry if it has none."""
-    if point["problem"] != "line" and "w" not in point:
+    A problem with a half-width needs ``w``: ValueError naming the entry if it has none."""
+    widths = _widths(point["problem"])
+    if widths and "w" not in point:
         raise ValueError(f"receding.rough.profiles entry {dict(point)}: a "
                          f"{point['problem']} patch needs w")
-    where = f"_w{number_name(point['w'])}" if point["problem"] != "line" else ""
+    where = f"_w{number_name(point['w'])}" if widths else ""
     return f"{point['problem']}{where}_f{number_name(point['f'])}_C{number_name(point['C'])}"
 
 

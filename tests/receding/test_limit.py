@@ -12,11 +12,12 @@ from scipy.integrate import quad
 from contactlab.receding.core.kernels import h_xxy_regular, h_xyy
 from contactlab.receding.core.limit import LogDensity, StepDensity
 from contactlab.receding.core.solution import CHECK_TOL, largest_check, refine_in_n
+from contactlab.receding.core.sweep import Sweep
 from contactlab.receding.gap.solver import GapSolution, centre_normal, solve_gap, solve_slip
-from contactlab.receding.gap.sweep import continue_from_neighbours
 from contactlab.receding.liftoff.limit import solve_no_stick
 from contactlab.receding.liftoff.line import solve_line
 from contactlab.receding.liftoff.loading import make_load
+from contactlab.receding.problems.gap import GAP
 
 
 def _integrate(fun, lo: float, hi: float, x: float) -> float:
@@ -101,10 +102,16 @@ def test_refinement_in_n_until_the_checks_hold() -> None:
 
 
 def test_continuation_from_a_solved_neighbour() -> None:
-    failed = GapSolution(w=2.5, f=0.55, n=100, regime="failed", converged=False)
-    grid = [[failed], [solve_gap(2.5, 0.5, 100)]]
-    continue_from_neighbours(grid, 100, 1e-30)
-    won = grid[0][0]
+    """The sweep engine's retry from a solved neighbour (``core.sweep``, step 2)."""
+    f = np.array([0.55, 0.5])
+    sweep = Sweep(GAP, {"f": f, "w_hat": np.array([2.5])},
+                  lambda index: GAP.point(float(f[index[0]]), 2.5), 100,
+                  settings={"stick_zone_limit": 1e-30}, refine_max_n=100, continuation=True,
+                  what="test")
+    sweep.grid[0, 0] = GapSolution(w=2.5, f=0.55, n=100, regime="failed", converged=False)
+    sweep.grid[1, 0] = solve_gap(2.5, 0.5, 100)
+    sweep.neighbours()
+    won = sweep.grid[0, 0]
     assert won.converged and won.admissible and "continuation" in won.flags
     assert won.regime == "slip_separation"
 

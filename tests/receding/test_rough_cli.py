@@ -122,3 +122,114 @@ def test_bad_input_names_the_key_and_value(case: int, tmp_path: Path,
     assert last.count("error:") == 1 and "Traceback" not in err, err
     assert all(word in last for word in words), err
     assert not out.exists()
+
+
+def _solve_json(capsys: pytest.CaptureFixture[str], *argv: str) -> dict:
+    assert main(["receding", "solve", *argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_solve_with_a_tested_pairs_law_is_the_python_route(
+        capsys: pytest.CaptureFixture[str], published_summary_file: Path) -> None:
+    """``receding solve --problem line --f 0.5 --interface-from-test S3``: S3's law (the
+    published fits) under a 1 mm Ti-6Al-4V layer loaded by P = 0.4 kN/mm is what
+    law_from_summary, StiffnessLaw.measured and solve_line give; it moves the separation
+    point by more than 20 % (linearised at the test's pressure: by 5-12 %), and the same
+    law from its fit's numbers (--interface-fit) gives the same answer."""
+    from contactlab.receding.core.measured_law import law_from_summary
+    from contactlab.receding.liftoff.line import solve_line
+
+    scale = ["--c", "1", "--load", "0.4", "--E", "113.8", "--nu", "0.31"]
+    base = ["--problem", "line", "--f", "0.5", "--n", "100", *scale]
+    tested = ["--interface-from-test", "S3", "--summary", str(published_summary_file)]
+    out = _solve_json(capsys, *base, *tested)
+    with xr.open_dataset(published_summary_file) as ds:
+        summary = ds.load()
+    law = law_from_summary(summary, "S3", normal_direction="loading",
+                           tangential_direction="combined", cc_basis="mean")
+    measured = law.measured(T=0.4, E=113.8, nu=0.31, c=1.0)
+    python = solve_line(0.5, 100, 3.5, 5.0, interface=measured)
+    smooth = solve_line(0.5, 100, 3.5, 5.0)
+    assert out["interface"] == "measured" and out["converged"] and out["admissible"]
+    assert (out["C"], out["C_T"], out["pi0"]) == pytest.approx(
+        (measured.C, measured.C_T, measured.pi0), rel=1e-12)
+    assert (out["a"], out["b"], out["K_T"]) == pytest.approx(
+        (python.a, python.b, python.K_T), rel=1e-12)
+    assert out["T_kN_mm2"] == 0.4 and out["interface_source"].startswith("S3")
+    assert out["b"] / smooth.b - 1 > 0.2
+    linear = _solve_json(capsys, *base, *tested, "--interface-law", "linearised")
+    assert linear["interface"] == "linear" and linear["pressure_kN_mm2"] == pytest.approx(0.4)
+    assert 0.05 < linear["b"] / smooth.b - 1 < 0.12
+    s3 = summary.sel(test="S3")
+    fit = {"beta_n_per_um": float(s3["beta_n"].sel(normal_direction="loading")),
+           "P0_kN": float(s3["P0"].sel(normal_direction="loading")),
+           "area_mm2": float(s3["nominal_area_mm2"]), "cc": float(s3["Cc"].sel(basis="mean")),
+           "f": float(s3["f"].sel(tangential_direction="combined"))}
+    numbers = _solve_json(capsys, *base, "--pressure", "0.4", "--interface-fit",
+                          *(f"{k}={v!r}" for k, v in fit.items()))
+    assert (numbers["a"], numbers["b"], numbers["C"]) == pytest.approx(
+        (out["a"], out["b"], out["C"]), rel=1e-12)
+    assert main(["receding", "solve", *base, *tested]) == 0
+    text = capsys.readouterr().out
+    assert "C = 0.719998" in text and "pi0 = 0.56125" in text and "T = P/c = 0.4" in text
+
+
+@pytest.mark.parametrize(("extra", "words"), [
+    (["--interface-from-test", "S3", "--c", "1"], ["physical scale", "--load"]),
+    (["--interface-from-test", "S3", "--interface-compliance", "1", "--c", "1", "--load",
+      "1"], ["--interface-compliance and --interface-from-test", "one interface law"]),
+    (["--interface-from-test", "T9", "--c", "1", "--load", "1"], ["T9", "no such test"]),
+    (["--interface-fit", "beta=3", "--c", "1", "--load", "1"], ["'beta=3'", "KEY=VALUE"]),
+    (["--interface-fit", "beta_n_per_um=0.07", "--c", "1", "--load", "1"],
+     ["--interface-fit", "missing P0_kN"]),
+    (["--interface-from-test", "RU1", "--c", "1", "--load", "1"],
+     ["p0 = -P0/An = -0.01125", "linearised"]),
+    (["--interface-from-test", "S3", "--c", "-1", "--load", "1"], ["--c -1", "positive"]),
+])
+def test_solve_refuses_a_bad_tested_law_in_one_line(
+        extra: list[str], words: list[str], capsys: pytest.CaptureFixture[str],
+        published_summary_file: Path) -> None:
+    argv = ["receding", "solve", "--problem", "line", "--f", "0.5", "--summary",
+            str(published_summary_file), *extra]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "Traceback" not in err, err
+    assert all(word in err for word in words), err
+
+
+def test_solve_names_a_missing_summary(capsys: pytest.CaptureFixture[str],
+                                       tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.chdir(tmp_path)
+    assert main(["receding", "solve", "--problem", "line", "--f", "0.5",
+                 "--interface-from-test", "S3", "--c", "1", "--load", "1"]) == 2
+    err = capsys.readouterr().err
+    assert "results/stiffness/summary.nc" in err and "summary_from_published_steps" in err
+    assert main(["receding", "solve", "--problem", "gap", "--f", "0.5", "--w-hat", "2",
+                 "--interface-from-test", "S3"]) == 2
+    assert "--interface-from-test does not apply to --problem gap" in capsys.readouterr().err
+
+
+def test_rough_pairs_take_the_line_load(tmp_path: Path, published_summary_file: Path) -> None:
+    """The workflow's pairs on the line load: P = 2 w p, the patch's load, i.e. T = 2 w p/c,
+    the measured and the linearised law as the Python route gives them."""
+    from contactlab.receding.core.measured_law import law_from_summary
+    from contactlab.receding.liftoff.line import solve_line
+
+    out = tmp_path / "pairs.nc"
+    assert main(["receding", "rough-pairs", "--summary", str(published_summary_file),
+                 "--pairs", json.dumps({"S3": {"from_test": "S3"}}), "--problem", "line",
+                 "--c", "1", "--n", "64", "--out", str(out)]) == 0
+    with xr.open_dataset(out) as ds, xr.open_dataset(published_summary_file) as summary:
+        law = law_from_summary(summary.load(), "S3", normal_direction="loading",
+                               tangential_direction="combined", cc_basis="mean")
+        p = float(ds["pressure"].sel(test="S3"))
+        assert ds.attrs["problem"] == "line" and "--lam" in ds.attrs["history"]
+        T = 2.0 * ds.attrs["w_hat"] * p
+        row = ds.sel(test="S3", c=1.0)
+        lam, e = schema_default("receding.line.lambda"), schema_default("receding.line.e")
+        for name, interface in (("measured", law.measured(T=T, E=113.8, nu=0.31, c=1.0)),
+                                ("linear", law.linearised(pressure=p, E=113.8, nu=0.31,
+                                                          c=1.0))):
+            python = solve_line(law.f, 64, lam, e, interface=interface)
+            assert float(row["b"].sel(law=name)) == pytest.approx(python.b, rel=1e-9)
+            assert float(row["C"].sel(law=name)) == pytest.approx(interface.C, rel=1e-12)

@@ -6,17 +6,17 @@ import numpy as np
 import pytest
 
 from contactlab.receding.core import solution
-from contactlab.receding.gap import sweep as gap_sweep
 from contactlab.receding.gap.solver import REGIMES as GAP_REGIMES
 from contactlab.receding.gap.solver import solve_gap
-from contactlab.receding.liftoff import sweep as liftoff_sweep
 from contactlab.receding.liftoff.line import solve_line
 from contactlab.receding.liftoff.solver import REGIMES as LIFTOFF_REGIMES
+from contactlab.receding.problems import gap as gap_problem
+from contactlab.receding.problems import liftoff as liftoff_problem
 
 
 def test_both_problems_describe_the_same_checks() -> None:
-    assert set(gap_sweep.CHECK_NAMES) == set(solution.CHECKS)
-    assert set(liftoff_sweep.CHECKS) == set(solution.CHECKS)
+    assert set(gap_problem.CHECKS) == set(solution.CHECKS)
+    assert set(liftoff_problem.CHECKS) == set(solution.CHECKS)
 
 
 @pytest.mark.parametrize("regimes", [GAP_REGIMES, LIFTOFF_REGIMES])

@@ -18,6 +18,7 @@ from contactlab.rulehelpers import (
     patch_shape,
     rough_fe_runs,
     rough_pairs_summary,
+    rough_problems_pattern,
     rough_profile_name,
     rough_profile_point,
     sweep_chunk,
@@ -329,7 +330,7 @@ rule receding_rough_sweep:
     output:
         temp(result("receding/chunks/rough_{problem}_{chunk}.nc")),
     wildcard_constraints:
-        problem="line|uniform|hertz|punch",
+        problem=rough_problems_pattern(),
         chunk=r"\d+",
     params:
         args=lambda wc: command_args(
@@ -356,7 +357,7 @@ rule receding_rough_gather:
     output:
         result("receding/rough/{problem}.nc"),
     wildcard_constraints:
-        problem="line|uniform|hertz|punch",
+        problem=rough_problems_pattern(),
     log:
         logs("receding/rough_gather_{problem}.log"),
     benchmark:

@@ -1,8 +1,10 @@
 """Frictional receding contacts by distributed dislocations (thesis Part III, chs 4-5).
 
-Three sub-packages, pure cores first, I/O at the edge:
+The problems are objects, one module each in ``problems`` (the gap problem, the line load,
+the pressure patches and a user's shape: the list every command, the schema's enums and
+the report read); the science is in three sub-packages, pure cores first, I/O at the edge:
 
-``core``     the dislocation method both problems share: ``kernels`` (Green's functions
+``core``     the dislocation method every problem shares: ``kernels`` (Green's functions
              of a dislocation beneath the free surface, App. B.1), ``quadrature``
              (Gauss-Chebyshev rules, exact Cauchy transforms, Gauss-Legendre),
              ``bilateral`` (tractions by integrating Flamant's solution, eqs 5.1-5.2),
@@ -11,7 +13,9 @@ Three sub-packages, pure cores first, I/O at the edge:
              finding on the leftover equations), ``solution`` (the solution protocol,
              the contact checks and their tolerance, shared by both problems),
              ``interface`` (rough, compliant interface laws), ``bridge`` (densities
-             carried through a transition point), ``measured_law`` (a tested pair's law)
+             carried through a transition point), ``measured_law`` (a tested pair's law),
+             ``problem`` (what a problem is, the values it takes) and ``sweep`` (the one
+             sweep engine: continuation, refinement in N, records, gathering)
 ``gap``      ch. 5, a pressure on |x| >= w: ``solver``, ``sweep`` (regime maps,
              thresholds, profiles), ``cli`` (``receding gap-...``), ``report``
 ``liftoff``  chs 6-7, the layer lifts off at all remote points: ``loading`` (the loads
@@ -22,7 +26,8 @@ Three sub-packages, pure cores first, I/O at the edge:
              (``receding line-sweep``, ``patch-sweep``, ``liftoff-...``), ``report``;
              ``compliant`` and ``rough``: the same problems on a rough interface
 
-``cli`` holds the ``receding`` command group and ``receding solve`` for any problem.
+``cli`` holds the ``receding`` command group and ``receding solve`` for any problem on any
+interface law it takes; ``rough`` the rough interface's commands and report.
 
 Normalisation used throughout (Part III): lengths in units of the layer thickness c
 (``x_hat = x/c``), tractions in units of the applied pressure p, dislocation densities as

@@ -1,9 +1,11 @@
 """``contactlab receding ...``: frictional receding contacts (Part III) from the command line.
 
-The group, ``receding solve`` for any problem, and the commands of the two problems: the
-gap problem of ch. 5 (:mod:`contactlab.receding.gap.cli`, ``gap-...``) and the lifting-off
-problems of chs 6-7 (:mod:`contactlab.receding.liftoff.cli`, ``line-...``, ``patch-...``),
-also on a rough interface (:mod:`contactlab.receding.rough.cli`, ``rough-...``).
+The group, ``receding solve`` for any problem of the registry
+(:mod:`contactlab.receding.problems`) on any interface law it takes, and the commands of
+the problems' sweeps: the gap problem of ch. 5 (:mod:`contactlab.receding.gap.cli`,
+``gap-...``) and the lifting-off problems of chs 6-7 (:mod:`contactlab.receding.liftoff.cli`,
+``line-...``, ``patch-...``), also on a rough interface (:mod:`contactlab.receding.rough.cli`,
+``rough-...``).
 """
 
 from __future__ import annotations
@@ -13,13 +15,16 @@ import argparse
 from contactlab.command import Command, Group, Option
 from contactlab.receding.gap import cli as gap_cli
 from contactlab.receding.liftoff import cli as liftoff_cli
-from contactlab.receding.options import GAP, LINE, NAME, PATCHES, line_options, patch_options
+from contactlab.receding.options import NAME, PAIRS, line_options, patch_options
+from contactlab.receding.problems import names, registry
 from contactlab.receding.rough import cli as rough_cli
+from contactlab.receding.rough.cli import SUMMARY
 
 EXAMPLES = """\
   contactlab receding solve --problem gap --f 0.5 --w-hat 2.5
   contactlab receding solve --problem line --f 0.5 --json
   contactlab receding solve --problem hertz --f 0.3 --w-hat 1 --n 200
+  contactlab receding solve --problem table --table-x 0 0.5 1 --table-p 1 1 0 --w-hat 1 --f 0.3
   contactlab receding gap-sweep --w-hat 1 2 --f 0.3 0.5 --out chunk.nc
   contactlab receding gap-gather chunk*.nc --out gap.nc
   contactlab receding gap-regimes --sweep gap.nc --out gap_regimes.nc
@@ -28,6 +33,7 @@ EXAMPLES = """\
   contactlab receding patch-sweep --problem uniform --f 0.3 --w-hat 1 --out x.nc
   contactlab receding patch-profile --problem uniform --f 0.3 --w-hat 1 --out p.nc
   contactlab receding solve --problem line --f 0.5 --interface-compliance 1 --json
+  contactlab receding solve --problem line --f 0.5 --interface-from-test S3 --c 1 --load 0.4
   contactlab receding rough-sweep --problem line --f 0.5 --C 0 0.1 1 --out rough.nc
   contactlab receding rough-profile --problem uniform --w-hat 1 --f 0.3 --C 1 --out rp.nc
   contactlab receding rough-pairs --summary results/stiffness/summary.nc --out pairs.nc
@@ -37,53 +43,135 @@ take the config schema's defaults (workflow/schemas/config.schema.yaml), shown i
 command's --help.
 """
 
-#: Each problem's config section.
-SECTIONS = {"gap": GAP, "line": LINE, **{law: PATCHES for law in liftoff_cli.LAWS}}
-
-
-def _by_problem(name: str) -> dict[str, str]:
+def _by_problem(name: str, problems: tuple[str, ...] | None = None) -> dict[str, str]:
     """The config key ``name`` of each problem's section."""
-    return {problem: f"{section}.{name}" for problem, section in SECTIONS.items()}
+    problems = tuple(registry()) if problems is None else problems
+    return {p: f"{registry()[p].section}.{name}" for p in problems}
 
 
 def _solve(args: argparse.Namespace) -> None:
-    if args.problem == "gap":
-        gap_cli.run_solve(args)
-    else:
-        liftoff_cli.run_solve(args)
+    """``receding solve``: one solution of any problem, printed or as JSON."""
+    import json
+    import time
+
+    from contactlab.cliutil import check_memory
+    from contactlab.receding.rough.cli import interface_lines, interface_of
+
+    problem = registry()[args.problem]
+    if not args.f >= 0:  # f = 0 where it has no meaning: the solver says why
+        raise ValueError(f"--f {args.f:g}: the friction coefficient must be >= 0")
+    interface, info = interface_of(args) if "linear" in problem.interfaces else (None, {})
+    check_memory("--n", args.n, problem.memory(args.n, interface))
+    shape = (tuple(args.table_x), tuple(args.table_p)) if problem.shape else None
+    if shape is not None:
+        from contactlab.receding.liftoff.loading import make_load
+
+        make_load("table", table={"x": list(shape[0]), "p": list(shape[1])})
+    point = problem.point(args.f, getattr(args, "w_hat", None), shape=shape,
+                          interface=interface)
+    settings = {k: getattr(args, k) for k in problem.settings}
+    start = time.perf_counter()
+    sol = problem.solve(point, args.n, None, **settings)
+    summary = problem.summary(sol, time.perf_counter() - start)
+    below = interface is not None and problem.interface_of(point) is not interface
+    if interface is not None:
+        summary["below_resolution"] = below
+    if args.json:
+        print(json.dumps({**summary, **info}))
+        return
+    lines = [*problem.report_lines(sol, summary), *interface_lines(info)]
+    if below:
+        from contactlab.receding.core.interface import RESOLVED_COMPLIANCE
+
+        lines.append(f"  below resolution     a compliance number below "
+                     f"{RESOLVED_COMPLIANCE:g} is not resolved: solved as zero (C = "
+                     f"{sol.interface.C:g}, C_T = {sol.interface.C_T:g}), certified by the "
+                     "contact checks above")
+    print("\n".join(lines))
 
 
-SOLVE = Command(
-    NAME, "solve", "one solution (printed, --json for JSON)",
-    description="Solve one problem at one (f, w/c) and print the transition points, the "
-                "regime, the residual and the checks (--json: one JSON object).",
-    options=(
-        Option("--problem", "gap: pressure on |x| >= w (ch. 5); line: line load (ch. 6); "
-               "uniform/hertz/punch: pressure patch on |x| <= w (ch. 7)",
-               choices=tuple(SECTIONS), default="gap"),
-        Option("--f", "friction coefficient f", float),
-        Option("--w-hat", "half-width w/c of the gap or patch", float,
-               only=("gap", *liftoff_cli.LAWS)),
-        Option("--n", "Gauss-Chebyshev integration points N (even)", int, key=_by_problem("n")),
-        *(Option(o.flag, o.help, o.type, key={"line": o.key}, only=("line",))
-          for o in line_options()),
-        *(Option(o.flag, o.help, o.type, key=dict.fromkeys(liftoff_cli.LAWS, o.key),
-                 only=liftoff_cli.LAWS) for o in patch_options()),
-        Option("--stick-zone-limit", "stick zone (units of c) below which an unresolved one "
-               "is solved in its limit of zero width; 0: never", float,
-               key=_by_problem("stick_zone_limit")),
+def _interface_options() -> tuple[Option, ...]:
+    """The interface law of ``receding solve`` (every problem that takes a rough one)."""
+    rough = names(interface="linear")
+    pairs = dict.fromkeys(rough, PAIRS)
+    return (
         Option("--interface-compliance", "normal compliance number C = (2 mu/(kappa + 1)) "
-               "/ (c k_n) of a rough interface of normal stiffness k_n per unit area "
-               "(0 or absent: smooth)", float, default=None, only=liftoff_cli.PROBLEMS),
+               "/ (c k_n) of a linear interface of normal stiffness k_n per unit area "
+               "(0 or absent: smooth)", float, default=None, only=rough),
         Option("--interface-compliance-t", "tangential compliance number C_T (k_t in place "
                "of k_n; absent: C/m, Mindlin's m = 2(1 - nu)/(2 - nu))", float, default=None,
-               only=liftoff_cli.PROBLEMS),
-        Option("--nu", "Poisson's ratio of Mindlin's m (C_T when not given)", float,
-               key=dict.fromkeys(liftoff_cli.PROBLEMS, "receding.rough.nu"),
-               only=liftoff_cli.PROBLEMS),
-        Option("--json", "print one JSON object", kind="flag", default=False),
-    ),
-    run=_solve, select="problem")
+               only=rough),
+        Option("--interface-from-test", "a tested pair whose law (eqs 2.4, 2.7) the interface "
+               "takes, from the stiffness summary (--summary)", default=None, only=rough),
+        Option("--interface-fit", "the law's fit numbers instead: beta_n_per_um=... "
+               "P0_kN=... area_mm2=... cc=... f=... (Tables 2.1, 2.7)", nargs="+",
+               default=None, only=rough),
+        Option("--interface-law", "a tested pair's law as measured (eqs 2.4, 2.7) or "
+               "linearised at --pressure", choices=("measured", "linearised"),
+               default="measured", only=rough),
+        Option("--summary", f"stiffness summary of --interface-from-test (default {SUMMARY}, "
+               "the workflow's; results/stiffness/summary_from_published_steps.nc holds the "
+               "published fits)", default=None, only=rough),
+        Option("--c", "layer thickness c (a tested pair's law)", float, unit="mm",
+               default=None, only=rough),
+        Option("--load", "load per unit depth P of the layer, T = P/c (a tested pair's law)",
+               float, unit="kN/mm", default=None, only=rough),
+        Option("--pressure", "pressure a linearised law takes its stiffness at (default: "
+               "the test's max normal load over its nominal area)", float, unit="kN/mm^2",
+               default=None, only=rough),
+        Option("--E", "Young's modulus of the layer (a tested pair's law)", float,
+               unit="kN/mm^2", key={p: f"{PAIRS}.E" for p in rough}, only=rough),
+        Option("--nu", "Poisson's ratio of the layer: Mindlin's m of C_T when not given, "
+               "and a tested pair's law", float,
+               key=dict.fromkeys(rough, "receding.rough.nu"), only=rough),
+        *(Option(flag, help, choices=choices, key={p: f"{pairs[p]}.{key}" for p in rough},
+                 only=rough)
+          for flag, key, help, choices in (
+              ("--normal-direction", "normal_direction", "normal fit of --interface-from-test",
+               ("loading", "unloading")),
+              ("--tangential-direction", "tangential_direction",
+               "friction coefficient of --interface-from-test's law",
+               ("loading", "unloading", "combined")),
+              ("--cc-basis", "cc_basis", "Kn of Cc = Kt0/Kn of --interface-from-test",
+               ("mean", "loading", "unloading")))),
+    )
+
+
+def _solve_command() -> Command:
+    problems = registry()
+    line, patch = names(family="line"), names(family="patch")
+    return Command(
+        NAME, "solve", "one solution (printed, --json for JSON)",
+        description="Solve one problem at one (f, w/c) on a smooth, linear or measured "
+                    "interface and print the transition points, the regime, the residual, "
+                    "the checks and the interface's compliance numbers (--json: one JSON "
+                    "object).",
+        options=(
+            Option("--problem", "; ".join(p.help for p in problems.values()),
+                   choices=tuple(problems), default="gap"),
+            Option("--f", "friction coefficient f", float),
+            Option("--w-hat", "half-width w/c of the gap or patch", float,
+                   only=names(widths=True)),
+            Option("--table-x", "points x/w of the pressure shape (0..1 or -1..1)", float,
+                   nargs="+", only=names(shape=True)),
+            Option("--table-p", "relative pressure at those points (>= 0)", float, nargs="+",
+                   only=names(shape=True)),
+            Option("--n", "Gauss-Chebyshev integration points N (even)", int,
+                   key=_by_problem("n")),
+            *(Option(o.flag, o.help, o.type, key=dict.fromkeys(line, o.key), only=line)
+              for o in line_options()),
+            *(Option(o.flag, o.help, o.type, key=dict.fromkeys(patch, o.key), only=patch)
+              for o in patch_options()),
+            Option("--stick-zone-limit", "stick zone (units of c) below which an unresolved "
+                   "one is solved in its limit of zero width; 0: never", float,
+                   key=_by_problem("stick_zone_limit")),
+            *_interface_options(),
+            Option("--json", "print one JSON object", kind="flag", default=False),
+        ),
+        run=_solve, select="problem")
+
+
+SOLVE = _solve_command()
 
 GROUP = Group(
     NAME, help="frictional receding contacts (Part III)",

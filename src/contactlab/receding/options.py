@@ -9,6 +9,8 @@ NAME = "receding"
 GAP = "receding.gap"
 LINE = "receding.line"
 PATCHES = "receding.patches"
+ROUGH = "receding.rough"
+PAIRS = f"{ROUGH}.pairs"
 STICK_ZONE = ("stick zone (units of c) below which an unresolved one is solved in its limit "
               "of zero width; 0: never")
 REFINE = "largest N to which a point failing the contact checks is re-solved (--n: none)"

@@ -147,8 +147,8 @@ PAIR_LAWS = ("measured", "linearised")
 
 
 def pair_law(name: str, spec: dict, summary: xr.Dataset | None, *, key: str,
-             normal_direction: str, tangential_direction: str, cc_basis: str
-             ) -> tuple[StiffnessLaw, float, str]:
+             normal_direction: str, tangential_direction: str, cc_basis: str,
+             where: str | None = None) -> tuple[StiffnessLaw, float, str]:
     """The law (eqs 2.4, 2.7), mean pressure [kN/mm^2] and kind (``measured`` or
     ``linearised``) of the tested pair ``name`` of a layer study, checked for the pressures
     a receding contact meets (0 at its edges up to about twice the mean).
@@ -159,9 +159,10 @@ def pair_law(name: str, spec: dict, summary: xr.Dataset | None, *, key: str,
     for ``from_test``: the test's max normal load over its nominal area). Every refusal
     is a ValueError naming ``key.name`` and the value at fault: a non-positive stiffness
     (beta_n <= 0, Cc <= 0, or k_n <= 0 at the pressure), f < 0, a measured law whose
-    stiffness is <= 0 at the low pressures of the contact edge (p0 <= 0), an unknown test.
+    stiffness is <= 0 at the low pressures of the contact edge (p0 <= 0), an unknown test;
+    ``where`` replaces ``key.name`` in the messages (e.g. a command-line option).
     """
-    where = f"{key}.{name}"
+    where = f"{key}.{name}" if where is None else where
     spec = dict(spec)
     kind = spec.pop("law", "measured")
     if kind not in PAIR_LAWS:

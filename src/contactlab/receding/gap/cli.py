@@ -2,16 +2,14 @@
 ``gap-profile``, ``report-gap``.
 
 Declared here, grouped by :mod:`contactlab.receding.cli`, which also owns ``receding
-solve`` (:func:`run_solve` here for ``--problem gap``). Options fed from the config
-(``receding.gap``) take the schema's defaults when not given.
+solve``. Options fed from the config (``receding.gap``) take the schema's defaults when
+not given.
 """
 
 from __future__ import annotations
 
 import argparse
-import json
 import time
-from typing import Any
 
 from contactlab.cliutil import (
     check_memory,
@@ -22,57 +20,14 @@ from contactlab.cliutil import (
 )
 from contactlab.command import Command, Option
 from contactlab.receding.options import GAP, NAME, robustness
+from contactlab.receding.problems import registry
 
 SOURCE = ("distributed dislocations, thesis ch. 5 (eqs 5.1-5.28, App. B.1); "
           "Gauss-Chebyshev quadrature, MINPACK root finding on the leftover equations")
 
 
-def gap_memory(n: int) -> float:
-    """Bytes the gap problem needs at N points (about 200 N^2, measured at N = 100-800)."""
-    return 200.0 * n * n
-
-
-def solution_summary(sol: Any, seconds: float, problem: str = "gap") -> dict:
-    """The JSON object of ``contactlab receding solve`` (NaN -> null)."""
-    from contactlab.receding.core.solution import json_ready
-
-    return json_ready({
-        "problem": problem, "f": sol.f, "w_hat": sol.w, "N": sol.n, "regime": sol.regime,
-        "a1": sol.a1, "a2": sol.a2, "a3": sol.a3, "b": sol.b,
-        "converged": bool(sol.converged), "admissible": bool(sol.admissible),
-        "residual": sol.residual, "iterations": sol.nfev, "lambda": sol.lam,
-        "flags": " ".join(sol.flags), "log10_a1": sol.log10_a1,
-        "seconds": round(seconds, 4), **sol.checks,
-    })
-
-
-#: The transition points of the gap problem as ``receding solve`` names them (Fig. 5.2).
-ZONE_WORDS = {"a1": "end of the central stick zone", "a2": "start of the outer stick zone",
-              "b": "separation point", "a3": "end of the outer slip zone"}
-
-
-def run_solve(args: argparse.Namespace) -> None:
-    """``receding solve --problem gap``: one solution, printed or as JSON."""
-    check_memory("--n", args.n, gap_memory(args.n))
-    from contactlab.receding.gap.solver import solve_gap
-
-    start = time.perf_counter()
-    sol = solve_gap(args.w_hat, args.f, args.n, stick_zone_limit=args.stick_zone_limit)
-    summary = solution_summary(sol, time.perf_counter() - start, args.problem)
-    if args.json:
-        print(json.dumps(summary))
-        return
-    lines = [f"gap problem, gap half-width w/c = {sol.w:g}, f = {sol.f:g}, N = {sol.n}: "
-             f"{sol.regime}"]
-    lines += [f"  {ZONE_WORDS[k]:<38} {k}/c = {summary[k]:.6g}"
-              for k in ZONE_WORDS if summary[k] is not None]
-    lines.append(f"  largest residual {sol.residual:.1e}, converged {sol.converged}, "
-                 f"admissible {sol.admissible}, {summary['seconds']} s")
-    print("\n".join(lines))
-
-
 def _sweep(args: argparse.Namespace) -> None:
-    check_memory("--n", args.n, gap_memory(args.n))
+    check_memory("--n", args.n, registry()["gap"].memory(args.n))
     import numpy as np
 
     from contactlab.io import stamp, write_netcdf
@@ -92,16 +47,11 @@ def _sweep(args: argparse.Namespace) -> None:
 
 
 def _gather(args: argparse.Namespace) -> None:
-    from contactlab.io import concat_chunks, stamp, write_netcdf
-    from contactlab.receding.core.summary import summary_attrs
+    from contactlab.io import stamp, write_netcdf
+    from contactlab.receding.core.sweep import gather
 
-    ds, parts = concat_chunks(args.chunks, "w_hat")
-    if len({int(part.attrs.get("N", -1)) for part in parts}) != 1:
-        raise ValueError(f"sweep chunks {', '.join(map(str, args.chunks))} differ in N")
-    ds.attrs.update(summary_attrs(ds))
-    stamp(ds, title=f"Gap problem (thesis ch. 5): transition points over (f, w/c), "
-                    f"N = {ds.attrs.get('N')}",
-          source=SOURCE, history=args.history)
+    ds, parts = gather(args.chunks, "w_hat")
+    stamp(ds, title=parts[0].attrs.get("title", ""), source=SOURCE, history=args.history)
     write_netcdf(ds, args.out)
 
 
@@ -134,7 +84,7 @@ def _regimes(args: argparse.Namespace) -> None:
 
 
 def _profile(args: argparse.Namespace) -> None:
-    check_memory("--n", args.n, gap_memory(args.n))
+    check_memory("--n", args.n, registry()["gap"].memory(args.n))
     check_memory("--points", args.points, 8.0 * args.points * (args.n + 64))
     from contactlab.io import stamp, write_netcdf
     from contactlab.receding.gap.sweep import profile_dataset

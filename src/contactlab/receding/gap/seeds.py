@@ -4,15 +4,15 @@ Two tables in ``data/`` seed a cold solve: ``separation_seeds.csv`` holds b/c an
 (a3 - b)/c of converged separation solutions at N = 100 on an (f, w/c) grid (empty where
 the layer does not separate), ``separation_hint.csv`` the friction f_sep(w/c) below which
 separation occurs (Fig. 5.4), which decides the regime a solve tries first. Both only seed
-or order the attempts; every solution is still solved and checked. ``python -m
-contactlab.receding.gap.seeds`` recomputes both with the solver and rewrites them.
+or order the attempts; every solution is still solved and checked.
+:mod:`contactlab.receding.gap.seed_tables` recomputes both with the solver (``python -m
+contactlab.receding.gap.seed_tables``); this module only reads them, so the solver can.
 """
 
 from __future__ import annotations
 
 from functools import cache
 from importlib import resources
-from pathlib import Path
 
 import numpy as np
 
@@ -48,31 +48,3 @@ def separation_hint() -> tuple[np.ndarray, np.ndarray]:
     """(w/c, f_sep) of the hint table."""
     table = _read(HINT)
     return table[:, 0], table[:, 1]
-
-
-def compute_tables() -> dict[str, list[str]]:
-    """The rows of both tables, recomputed with the gap solver at N = :data:`SEED_N`."""
-    from contactlab.receding.gap.solver import separation_friction, solve_gap
-
-    seeds = [f"{f:g},{w:g},{sol.b:.3f},{sol.a3 - sol.b:.3f}"
-             if (sol := solve_gap(w, f, SEED_N)).regime == "slip_separation"
-             else f"{f:g},{w:g},,"
-             for f in SEED_F for w in SEED_W]
-    f_sep = [separation_friction(w, SEED_N).f_sep for w in HINT_W]
-    hint = [f"{w:g},{f if np.isfinite(f) else 0.0:.3g}" for w, f in zip(HINT_W, f_sep,
-                                                                       strict=True)]
-    return {SEEDS: seeds, HINT: hint}
-
-
-def write_tables(directory: Path) -> None:
-    """Recompute both tables and write them into ``directory``, each with its header."""
-    for name, rows in compute_tables().items():
-        path = directory / name
-        header = [line for line in path.read_text().splitlines() if line.startswith("#")]
-        columns = next(line for line in path.read_text().splitlines()
-                       if not line.startswith("#"))
-        path.write_text("\n".join([*header, columns, *rows]) + "\n")
-
-
-if __name__ == "__main__":  # pragma: no cover
-    write_tables(Path(__file__).parent / "data")

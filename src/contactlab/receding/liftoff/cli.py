@@ -2,7 +2,7 @@
 
 Declared here, grouped by :mod:`contactlab.receding.cli`: ``line-sweep``, ``line-gather``,
 ``line-profile``, ``patch-sweep``, ``patch-gather``, ``patch-profile``,
-``report-line-patch``, and :func:`run_solve` behind ``receding solve`` of a line or patch.
+``report-line-patch``.
 Options fed from the config (``receding.line``, ``receding.patches``) take the schema's
 defaults when not given.
 """
@@ -10,7 +10,6 @@ defaults when not given.
 from __future__ import annotations
 
 import argparse
-import json
 import time
 from typing import Any
 
@@ -33,182 +32,43 @@ from contactlab.receding.options import (
     patch_options,
     robustness,
 )
+from contactlab.receding.problems import names, registry
 
 SOURCE = ("distributed dislocations with a preformed climb distribution, thesis chs 6-7 "
           "(eqs 6.3-6.32, 7.1-7.39, App. B); Gauss-Chebyshev on semi-infinite maps, "
           "MINPACK root finding on the leftover equations")
-LAWS = ("uniform", "hertz", "punch")
-PROBLEMS = ("line", *LAWS)
+#: the sweep and profile commands' problems: the line load, the pressure patches
+LINES = names(family="line")
+PATCH_PROBLEMS = names(family="patch")
+LAWS = names(family="patch", shape=False)
 
 
-def liftoff_memory(n: int) -> float:
-    """Bytes a line or patch solution needs at N points (about 250 N^2, measured)."""
-    return 250.0 * n * n
-
-
-def solve_problem(problem: str, f: float, w_hat: float | None, n: int, *,
-                  lam: float | None = None, e: float | None = None,
-                  lam_b: float | None = None, e_minus_w: float | None = None,
-                  chaise: bool = False, stick_zone_limit: float,
-                  refine_max_n: int | None = None, interface: Any = None) -> Any:
-    """One solution of a named problem.
-
-    The line load needs ``lam`` and ``e`` (sec. 6.4), a patch ``w_hat``, ``lam_b`` and
-    ``e_minus_w`` (sec. 7.4; lambda_a follows from w). ``chaise`` solves the
-    bounded-bounded-only model of Chaise et al. instead of the preformed one.
-    ``refine_max_n``: raise N up to it while the solution fails the contact checks.
-    ``interface``: a rough interface (:mod:`contactlab.receding.core.interface`; None:
-    smooth).
-    """
-    if problem not in PROBLEMS:
-        raise ValueError(f"unknown problem {problem!r}; use one of {', '.join(PROBLEMS)}")
-    rough = {} if interface is None else {"interface": interface}
-    scale = 1.0 if interface is None else 4.0  # the compliant densities and bridges
-    check_memory("--n", n, scale * liftoff_memory(n))
-    if refine_max_n is not None and refine_max_n > n:
-        check_memory("--refine-max-n", refine_max_n, scale * liftoff_memory(refine_max_n))
-    if problem == "line":
-        from contactlab.receding.liftoff.line import solve_line
-
-        def solve(m: int, guess: Any = None) -> Any:
-            seed = None if guess is None else (guess.a, guess.b)
-            return solve_line(f, m, lam, e, guess=seed, preformed=not chaise,
-                              stick_zone_limit=stick_zone_limit, **rough)
-    else:
-        from contactlab.receding.liftoff.patch import solve_patch
-
-        def solve(m: int, guess: Any = None) -> Any:
-            seed = None if guess is None else (guess.a, guess.b)
-            return solve_patch(problem, f, w_hat, m, lam_b=lam_b, e=w_hat + e_minus_w,
-                               guess=seed, preformed=not chaise,
-                               stick_zone_limit=stick_zone_limit, **rough)
-    sol = solve(n)
-    if refine_max_n is None:
-        return sol
-    from contactlab.receding.core.solution import refine_in_n
-
-    return refine_in_n(solve, sol, refine_max_n)[0]
-
-
-def _solve_args(args: argparse.Namespace, problem: str, chaise: bool = False,
-                interface: Any = None) -> Any:
-    """:func:`solve_problem` with the command's options."""
-    return solve_problem(problem, args.f, getattr(args, "w_hat", None), args.n,
-                         lam=getattr(args, "lam", None), e=getattr(args, "e", None),
-                         lam_b=getattr(args, "lam_b", None),
-                         e_minus_w=getattr(args, "e_minus_w", None), chaise=chaise,
-                         stick_zone_limit=args.stick_zone_limit,
-                         refine_max_n=getattr(args, "refine_max_n", None),
-                         interface=interface)
-
-
-def interface_of(args: argparse.Namespace) -> Any:
-    """The rough interface of ``receding solve --interface-compliance C
-    [--interface-compliance-t C_T]`` (C_T: C/m, Mindlin's m at --nu), or None (smooth)."""
-    C, C_T = args.interface_compliance, args.interface_compliance_t
-    for flag, value in (("--interface-compliance", C), ("--interface-compliance-t", C_T)):
-        if value is not None and not (value >= 0 and value < float("inf")):
-            raise ValueError(f"{flag} {value:g}: a compliance number must be finite and >= 0 "
-                             "(a positive interface stiffness; 0: smooth)")
-    if not C and not C_T:
-        return None
-    from contactlab.receding.core.interface import linear_interface, mindlin_ratio
-
-    C = C or 0.0
-    if C_T is None:
-        C_T = C / mindlin_ratio(args.nu)
-    return linear_interface(C, C_T)
-
-
-def summary(sol: Any, seconds: float) -> dict:
-    """The JSON object of ``contactlab receding solve`` for a line or patch (NaN -> null)."""
-    from contactlab.receding.core.solution import json_ready
-
-    return json_ready({
-        "problem": sol.problem, "f": sol.f, "w_hat": sol.load.w, "N": sol.n,
-        "regime": sol.regime, "a": sol.a, "b": sol.b, "K_T": sol.K_T,
-        "converged": bool(sol.converged), "admissible": bool(sol.admissible),
-        "residual": sol.residual, **sol.remote_slip_record(),
-        "lambda_a": sol.lam_a, "lambda_b": sol.lam_b, "e": sol.e, "iterations": sol.nfev,
-        "flags": " ".join(sol.flags), "log10_a": sol.log10_a,
-        "seconds": round(seconds, 4), **sol.checks,
-    })
-
-
-def rough_summary(sol: Any, law: Any) -> dict:
-    """The rough interface ``law`` asked for, whether a compliance number of it is below
-    what the solver resolves (solved as zero: ``sol.interface``), and the solution's
-    certificates, beside :func:`summary` (NaN -> null)."""
-    from contactlab.receding.core.solution import json_ready
-
-    return json_ready({"interface": law.kind, "C": law.C, "C_T": law.C_T,
-                       "below_resolution": sol.interface is not law,
-                       "approach": sol.compliant.approach if sol.compliant is not None
-                       else 0.0, **sol.certify()})
-
-
-def _number(value: Any, spec: str) -> str:
-    """A number of a printed answer, ``n/a`` where there is none (NaN or null)."""
-    return "n/a" if value is None or value != value else format(value, spec)
-
-
-def run_solve(args: argparse.Namespace) -> None:
-    """``receding solve`` of a line or patch problem: one solution, printed or as JSON."""
-    if args.f < 0:
-        raise ValueError(f"--f {args.f:g}: the friction coefficient must be >= 0")
-    interface = interface_of(args)
-    law = None
-    if interface is not None:
-        from contactlab.receding.core.interface import resolved
-
-        law = resolved(interface)  # a compliance below the solver's resolution: zero
-    start = time.perf_counter()
-    sol = _solve_args(args, args.problem, interface=None if law is None or law.smooth
-                      else law)
-    out = summary(sol, time.perf_counter() - start)
-    if interface is not None:
-        out.update(rough_summary(sol, interface))
-    if args.json:
-        print(json.dumps(out))
-        return
-    where = "line load" if args.problem == "line" else \
-        f"{args.problem} pressure patch, half-width w/c = {sol.load.w:g}"
-    a, b, k_t = (sol.a, sol.b, sol.K_T) if sol.converged else (None, None, None)
-    print(f"{where}, f = {sol.f:g}, N = {sol.n}: {sol.regime}\n"
-          f"  stick-slip point      a/c = {_number(a, '.6g')}\n"
-          f"  separation point      b/c = {_number(b, '.6g')}\n"
-          f"  remote slope          K_T = {_number(k_t, '.6g')}  (k_l 2 mu/((kappa + 1) "
-          f"T), T = load per thickness)\n"
-          f"  largest residual {_number(sol.residual, '.1e')} (units of T), remote slip error "
-          f"{_number(out['remote_slip_error'], '.1e')}, converged {sol.converged}, "
-          f"admissible {sol.admissible}, {out['seconds']} s")
-    if interface is not None:
-        print(f"  rough interface      C = {out['C']:.6g}, C_T = {out['C_T']:.6g} (linear law); "
-              f"equilibrium error {_number(out['equilibrium_error'], '.1e')}")
-    if out.get("below_resolution"):
-        from contactlab.receding.core.interface import RESOLVED_COMPLIANCE
-
-        print(f"  below resolution     a compliance number below {RESOLVED_COMPLIANCE:g} is "
-              f"not resolved: solved as zero (C = {sol.interface.C:g}, C_T = "
-              f"{sol.interface.C_T:g}), certified by the contact checks above")
-    if interface is not None and not sol.converged:
-        print("  not solved           no root of the transition-point equations; a "
-              "compliant interface is reached from the smooth one through C = 0.01 ... 1e4, "
-              "and the contact must stay within the truncation e (b < e - 0.25)")
+def solve_problem(args: argparse.Namespace, problem: str, chaise: bool = False) -> Any:
+    """The solution of ``problem`` with the command's options (N, the maps and preformed
+    density, the stick-zone limit, f and w/c), refined in N up to ``--refine-max-n`` while
+    it fails a contact check; ``chaise``: the bounded-bounded-only model of Chaise et al.
+    instead of the preformed one."""
+    spec = registry()[problem]
+    check_memory("--n", args.n, spec.memory(args.n))
+    if args.refine_max_n > args.n:
+        check_memory("--refine-max-n", args.refine_max_n, spec.memory(args.refine_max_n))
+    point = spec.point(args.f, getattr(args, "w_hat", None))
+    settings = {k: getattr(args, k) for k in spec.settings}
+    return spec.solve_refined(point, args.n, args.refine_max_n, preformed=not chaise,
+                              **settings)
 
 
 def _log_time(ds: Any, start: float) -> None:
     """The sweep's counts and wall time to the job's log; results carry no timings."""
     from contactlab.receding.core.summary import log_summary
 
-    problem = ds.attrs["problem"]
-    log_summary(ds, f"{'line' if problem == 'line' else problem + ' patch'} sweep "
-                    f"N = {ds.attrs['N']}",
-                time.perf_counter() - start)
+    problem = registry()[ds.attrs["problem"]]
+    log_summary(ds, f"{problem.name}{' patch' if problem.widths else ''} sweep "
+                    f"N = {ds.attrs['N']}", time.perf_counter() - start)
 
 
 def _line_sweep(args: argparse.Namespace) -> None:
-    check_memory("--n", args.n, liftoff_memory(args.n))
+    check_memory("--n", args.n, registry()["line"].memory(args.n))
     import numpy as np
 
     from contactlab.io import stamp, write_netcdf
@@ -225,14 +85,14 @@ def _line_sweep(args: argparse.Namespace) -> None:
 
 
 def _patch_sweep(args: argparse.Namespace) -> None:
-    check_memory("--n", args.n, liftoff_memory(args.n))
+    check_memory("--n", args.n, registry()[args.problem].memory(args.n))
     import numpy as np
 
     from contactlab.io import stamp, write_netcdf
     from contactlab.receding.liftoff.sweep import sweep_patch
 
     shape = None
-    if args.problem == "table":
+    if registry()[args.problem].shape:
         shape = {"x": args.table_x, "p": args.table_p}
     start = time.perf_counter()
     ds = sweep_patch(args.problem, np.asarray(args.f), np.asarray(args.w_hat), args.n,
@@ -248,30 +108,24 @@ def _patch_sweep(args: argparse.Namespace) -> None:
 
 
 def _gather(args: argparse.Namespace) -> None:
-    from contactlab.io import concat_chunks, stamp, write_netcdf
-    from contactlab.receding.core.summary import summary_attrs
+    from contactlab.io import stamp, write_netcdf
+    from contactlab.receding.core.sweep import gather
 
-    ds, parts = concat_chunks(args.chunks, "f")
-    if len({part.attrs.get("problem") for part in parts}) != 1:
-        raise ValueError(f"sweep chunks {', '.join(map(str, args.chunks))} mix problems")
-    ds.attrs.update(summary_attrs(ds))
-    if "converged_chaise" in ds:
-        ds.attrs.update(summary_attrs(ds, "_chaise"))
-    title = parts[0].attrs.get("title", "")
-    stamp(ds, title=title, source=SOURCE, history=args.history)
+    ds, parts = gather(args.chunks, "f")
+    stamp(ds, title=parts[0].attrs.get("title", ""), source=SOURCE, history=args.history)
     write_netcdf(ds, args.out)
 
 
 def _profile(args: argparse.Namespace, problem: str) -> None:
     check_memory("--points", args.points, 128.0 * args.points * args.n)
     chaise = bool(getattr(args, "chaise", False))
-    sol = _solve_args(args, problem)
-    chaise_sol = _solve_args(args, problem, chaise=True) if chaise else None
+    sol = solve_problem(args, problem)
+    chaise_sol = solve_problem(args, problem, chaise=True) if chaise else None
     from contactlab.io import stamp, write_netcdf
     from contactlab.receding.liftoff.sweep import profile_dataset
 
     ds = profile_dataset(sol, args.x_max, args.points, chaise_sol)
-    where = f", w/c = {args.w_hat}" if problem != "line" else ""
+    where = f", w/c = {args.w_hat}" if registry()[problem].widths else ""
     stamp(ds, title=f"{problem} (thesis chs 6-7): interface profiles at f = {args.f}{where}",
           source=SOURCE, history=args.history)
     write_netcdf(ds, args.out)
@@ -320,11 +174,11 @@ COMMANDS = (
         NAME, "patch-sweep", "pressure patch (ch. 7) over (f, w/c)",
         description="a, b and K_T of a pressure patch on |x| <= w (uniform A1, hertz A2, "
                     "punch A3, or a table) over (f, w/c), lambda_a from w as in sec. 7.4.",
-        options=(Option("--problem", "pressure law of the patch", choices=(*LAWS, "table")),
+        options=(Option("--problem", "pressure law of the patch", choices=PATCH_PROBLEMS),
                  Option("--table-x", "points x/w of the pressure shape (0..1 or -1..1)",
-                        float, nargs="+", only=("table",)),
+                        float, nargs="+", only=names(shape=True)),
                  Option("--table-p", "relative pressure at those points (>= 0)", float,
-                        nargs="+", only=("table",)),
+                        nargs="+", only=names(shape=True)),
                  f_values(), Option("--w-hat", "patch half-widths w/c", float, nargs="+"),
                  n_option(PATCHES), *patch_options(), *robustness(PATCHES),
                  out_option("netCDF output (one chunk)")),

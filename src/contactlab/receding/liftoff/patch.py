@@ -24,6 +24,7 @@ from contactlab.receding.core.solution import check_friction
 from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT, solve_no_stick, try_limit
 from contactlab.receding.liftoff.line import fallbacks, line_guess
 from contactlab.receding.liftoff.loading import Load, make_load
+from contactlab.receding.liftoff.seeds import patch_seeds
 from contactlab.receding.liftoff.solver import (
     COARSE_N,
     LiftoffSolution,
@@ -31,66 +32,23 @@ from contactlab.receding.liftoff.solver import (
     solve_liftoff,
 )
 
-LAWS = ("uniform", "hertz", "punch")
-
-
-#: (f, w) grid and the offsets a - a_line(f), b - b_line(f) of converged patch solutions
-#: (N = 100, sec. 7.4 settings) from the line load's (``line.line_guess``), only to seed
-#: the root finder of a cold solve: b - b_line depends on w alone, a - a_line on f too
-GUESS_F = np.array([0.1, 0.3, 0.5, 0.7, 1.0])
-GUESS_W = np.array([0.25, 0.5, 1.0, 2.0, 2.5, 5.0, 10.0, 20.0])
-GUESS_OFFSETS = {
-    "uniform": (
-        [[0.0, 0.0, 0.002, 0.019, 0.042, 0.359, 2.88, 12.345],
-         [0.008, 0.032, 0.146, 0.666, 1.025, 3.211, 8.102, 18.069],
-         [0.02, 0.081, 0.321, 1.087, 1.531, 3.923, 8.884, 18.868],
-         [0.055, 0.14, 0.441, 1.283, 1.748, 4.181, 9.155, 19.142],
-         [0.037, 0.138, 0.47, 1.344, 1.816, 4.264, 9.241, 19.231]],
-        [[0.029, 0.115, 0.426, 1.325, 1.809, 4.279, 9.265, 19.26],
-         [0.035, 0.136, 0.486, 1.414, 1.901, 4.368, 9.346, 19.341],
-         [0.038, 0.152, 0.525, 1.461, 1.947, 4.413, 9.393, 19.383],
-         [0.037, 0.154, 0.528, 1.458, 1.942, 4.401, 9.377, 19.36],
-         [0.027, 0.139, 0.494, 1.405, 1.883, 4.329, 9.289, 19.282]]),
-    "hertz": (
-        [[0.0, 0.0, 0.001, 0.008, 0.017, 0.146, 1.295, 8.763],
-         [0.006, 0.023, 0.098, 0.429, 0.674, 2.372, 6.862, 16.587],
-         [0.015, 0.06, 0.233, 0.823, 1.19, 3.344, 8.134, 18.005],
-         [0.047, 0.111, 0.343, 1.046, 1.458, 3.739, 8.602, 18.517],
-         [0.028, 0.105, 0.373, 1.138, 1.572, 3.913, 8.813, 18.746]],
-        [[0.022, 0.087, 0.332, 1.11, 1.56, 3.947, 8.885, 18.839],
-         [0.026, 0.102, 0.381, 1.199, 1.649, 4.02, 8.939, 18.886],
-         [0.029, 0.116, 0.417, 1.25, 1.704, 4.078, 8.989, 18.926],
-         [0.026, 0.114, 0.42, 1.257, 1.705, 4.076, 8.976, 18.915],
-         [0.017, 0.104, 0.396, 1.215, 1.66, 4.012, 8.901, 18.822]]),
-    "punch": (
-        [[0.0, 0.0, 0.005, 0.132, 0.334, 1.953, 7.022, 17.201],
-         [0.012, 0.053, 0.283, 1.183, 1.673, 4.173, 9.188, 19.199],
-         [0.031, 0.127, 0.5, 1.469, 1.968, 4.474, 9.482, 19.487],
-         [0.07, 0.197, 0.611, 1.591, 2.091, 4.596, 9.603, 19.608],
-         [0.054, 0.198, 0.625, 1.605, 2.106, 4.612, 9.619, 19.622]],
-        [[0.044, 0.169, 0.589, 1.617, 2.13, 4.647, 9.658, 19.663],
-         [0.053, 0.198, 0.66, 1.703, 2.216, 4.737, 9.748, 19.753],
-         [0.057, 0.219, 0.697, 1.73, 2.241, 4.762, 9.774, 19.779],
-         [0.056, 0.223, 0.689, 1.716, 2.223, 4.742, 9.753, 19.766],
-         [0.046, 0.203, 0.648, 1.653, 2.164, 4.684, 9.698, 19.704]]),
-}
-
 
 def patch_guess(law: str, f: float, w: float) -> tuple[float, float]:
-    """(a, b) to seed a cold solve: the line load's plus the tabulated offsets (linear in
-    f and in log w; a user's table as the uniform patch; below w = 0.25 scaled to 0, beyond
-    w = 20 moved with the edge)."""
+    """(a, b) to seed a cold solve: the line load's plus the tabulated offsets
+    (``seeds.patch_seeds``; linear in f and in log w; a user's table as the uniform patch;
+    below the table's smallest w scaled to 0, beyond its largest moved with the edge)."""
     a_line, b_line = line_guess(f)
-    tables = GUESS_OFFSETS.get(law, GUESS_OFFSETS["uniform"])
-    fc = float(np.clip(f, GUESS_F[0], GUESS_F[-1]))
+    grid_f, grid_w, offsets_by_law = patch_seeds()
+    tables = offsets_by_law.get(law, offsets_by_law["uniform"])
+    fc = float(np.clip(f, grid_f[0], grid_f[-1]))
     offsets = []
     for table in tables:
-        row = [np.interp(fc, GUESS_F, column) for column in np.asarray(table).T]
-        value = float(np.interp(np.log(max(w, GUESS_W[0])), np.log(GUESS_W), row))
-        if w < GUESS_W[0]:
-            value *= w / GUESS_W[0]
-        elif w > GUESS_W[-1]:
-            value += w - GUESS_W[-1]
+        row = [np.interp(fc, grid_f, column) for column in table.T]
+        value = float(np.interp(np.log(max(w, grid_w[0])), np.log(grid_w), row))
+        if w < grid_w[0]:
+            value *= w / grid_w[0]
+        elif w > grid_w[-1]:
+            value += w - grid_w[-1]
         offsets.append(value)
     return a_line + offsets[0], b_line + offsets[1]
 
@@ -190,6 +148,10 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
 def solve_uniform(f: float = 0.3, w_hat: float = 2.5, n: int = 100) -> LiftoffSolution:
     """The constant pressure patch (problem A1)."""
     return solve_patch("uniform", f, w_hat, n)
+
+
+#: the laws with the thesis's amplitudes A1, A2, A3 (eqs 7.34-7.39), i.e. with K_N and K_B
+NORMALISED_LAWS = ("uniform", "hertz", "punch")
 
 
 def slope_normalisations(law: str, w: float, k_t: float) -> dict[str, float]:

@@ -15,10 +15,13 @@ import xarray as xr
 from contactlab.receding.core.solution import FLAGS
 from contactlab.receding.core.summary import sweep_counts, unsolved_points
 from contactlab.receding.liftoff.sweep import WIDE_FIT_BASIS, wide_fits
+from contactlab.receding.problems import names, registry
 from contactlab.report.section import ReportSection
 
-LAW_NAMES = {"uniform": "constant (A1)", "hertz": "Hertzian (A2)", "punch": "flat punch (A3)"}
-LAW_COLORS = {"uniform": "C0", "hertz": "C1", "punch": "C2", "line": "k"}
+#: the named pressure laws (the problems' titles) and their colours, the line load's black
+LAW_NAMES = {law: registry()[law].title for law in names(family="patch", shape=False)}
+LAW_COLORS = {**{law: f"C{k}" for k, law in enumerate(LAW_NAMES)},
+              **dict.fromkeys(names(family="line"), "k")}
 
 
 def law_name(law: str) -> str:
@@ -31,7 +34,7 @@ def law_color(law: str, patches: dict[str, xr.Dataset]) -> str:
     if law in LAW_COLORS:
         return LAW_COLORS[law]
     users = [name for name in patches if name not in LAW_COLORS]
-    return f"C{3 + users.index(law)}"
+    return f"C{len(LAW_NAMES) + users.index(law)}"
 
 
 def _open(path: Path) -> xr.Dataset:
@@ -302,15 +305,17 @@ def build_section(line_path: Path, patch_paths: list[Path], profile_paths: list[
     for path in patch_paths:
         ds = _open(path)
         # a user's pressure shape (receding.patches.tables) is named by its file, table_<name>
-        patches[Path(path).stem if ds.attrs["problem"] == "table" else ds.attrs["problem"]] = ds
+        shape = registry()[ds.attrs["problem"]].shape
+        patches[Path(path).stem if shape else ds.attrs["problem"]] = ds
     profiles = [_open(p) for p in profile_paths]
     section = ReportSection("51_receding_line_patch", report_dir)
     section.paragraph("problem")
     section.paragraph("remote_slip")
     section.note_text(_diagnostics(section, line, patches))
     section.figure(line_zones_figure(line), "receding_line_zones")
-    line_prof = [p for p in profiles if p.attrs.get("problem") == "line"]
-    patch_prof = [p for p in profiles if p.attrs.get("problem") != "line"]
+    lines = names(family="line")
+    line_prof = [p for p in profiles if p.attrs.get("problem") in lines]
+    patch_prof = [p for p in profiles if p.attrs.get("problem") not in lines]
     if line_prof:
         lp = min(line_prof, key=lambda p: abs(p.attrs["f"] - 0.5))
         title = f"line load, f = {lp.attrs['f']:g}, N = {lp.attrs['N']}"

@@ -31,8 +31,6 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from contactlab.io import concat_chunks
-from contactlab.progress import Progress
 from contactlab.receding.core.interface import (
     RESOLVED_COMPLIANCE,
     SMOOTH,
@@ -42,69 +40,42 @@ from contactlab.receding.core.interface import (
     resolved,
 )
 from contactlab.receding.core.measured_law import StiffnessLaw
-from contactlab.receding.core.solution import (
-    CHECK_TOL,
-    flag_attrs,
-    flag_bits,
-    largest_check,
-    refine_in_n,
-    regime_attrs,
-)
+from contactlab.receding.core.problem import Point
+from contactlab.receding.core.solution import CHECK_TOL, refine_in_n
 from contactlab.receding.core.summary import summary_attrs
-from contactlab.receding.liftoff.line import solve_line
-from contactlab.receding.liftoff.patch import default_lambdas, solve_patch
-from contactlab.receding.liftoff.solver import REGIMES, LiftoffSolution
+from contactlab.receding.core.sweep import Sweep, gather, record_variables
+from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT
+from contactlab.receding.liftoff.patch import default_lambdas
+from contactlab.receding.liftoff.solver import LiftoffSolution
+from contactlab.receding.problems import named_liftoff, registry
+from contactlab.receding.problems.liftoff import LiftoffProblem
 
-PROBLEMS = ("line", "uniform", "hertz", "punch")
+#: the problems on a rough interface: the line load and the named pressure patches
+PROBLEMS = named_liftoff()
 ONE = "1"
-#: the contact checks of a compliant interface (``compliant.compliant_checks``), units T
-CHECKS = {
-    "max_tension": "largest N/T in contact (admissible <= 0)",
-    "max_stick_excess": "largest |S| - f|N| in the stick zone, /T (admissible <= 0)",
-    "max_slip_mismatch": "largest friction-law mismatch | |S| - f|N| | in the slip zone, "
-                         "or |S| where S opposes the irreversible slip u - c_t S, /T",
-    "max_separated_traction": "largest |N|, |S| in the separation zone, /T",
-    "max_overlap": "largest interpenetration beyond the closure outside contact (negative "
-                   "gap for x > b), 2 mu g / ((kappa + 1) T c)",
-    "max_closure_mismatch": "largest |g + closure(P)| / (closure(P)/P) in contact: the "
-                            "normal interface law as a traction, /T",
-    "max_stick_law_mismatch": "largest |u - c_t S| / c_t in the stick zone: the tangential "
-                              "interface law as a traction, /T",
-}
-#: residual certificates beyond the checks (``solver.LiftoffSolution.certify``)
-CERTIFICATES = {
-    "equilibrium_error": "|2 int_0^b N dx / (T c) + 1|: the interface carries the load",
-    "end_traction": "|N(b)|/T: the pressure vanishes at the end of contact",
-    "end_gap": "|g(b)|, 2 mu g / ((kappa + 1) T c): the gap closes at the end of contact",
-    "stick_end_mismatch": "| |S(a)| - f|N(a)| | / T: the stick law meets the friction "
-                          "limit at a",
-    "centre_slip": "|u(0)|, 2 mu u / ((kappa + 1) T c): zero by symmetry",
-    "remote_slip_error": "remote slip relation (corrected eq. 6.32/7.32): lhs - rhs, "
-                         "in (kappa + 1) T c / (2 mu)",
-}
-SCALARS = {
-    "a": "end of the central stick zone a/c",
-    "b": "end of contact b/c (start of separation)",
-    "K_T": "remote slope of the layer k_l 2 mu / ((kappa + 1) T), T = load per thickness",
-    "approach": "gap at the centre g(0), 2 mu g / ((kappa + 1) T c): minus the closure "
-                "there (0 on a smooth interface)",
-    "a_resolution": "distance of the first node of the slip zone's glide density beyond a, "
-                    "/c (on a compliant interface a is resolved to ~10 % where a is 8 "
-                    "times this, ~1 % at 20 times)",
-    "residual": "largest residual of all discretised equations at the solution (units of T)",
-}
-EXTRA = {
-    "converged": ("root finder converged (1) or not", np.int8),
-    "admissible": (f"every contact check holds within CHECK_TOL = {CHECK_TOL} (1) or not",
-                   np.int8),
-    "nfev": ("linear solves (assemblies) used by the root finder", np.int32),
-    "n_used": ("Gauss-Chebyshev points N of the reported solution (the sweep's N unless "
-               "refined; N_k = N on the stick and contact zones)", np.int32),
-    "max_check_at_n": ("largest contact check value at the sweep's N, /T", float),
-    "below_resolution": (f"C or C_T is below RESOLVED_COMPLIANCE = {RESOLVED_COMPLIANCE:g}, "
-                         "which the solver does not resolve: solved as zero there, i.e. the "
-                         "smooth interface in that direction (1) or not", np.int8),
-}
+
+
+def liftoff_problem(problem: str) -> LiftoffProblem:
+    """The lift-off problem ``problem`` (one of :data:`PROBLEMS`)."""
+    if problem not in PROBLEMS:
+        raise ValueError(f"problem must be one of {', '.join(PROBLEMS)}, got {problem!r}")
+    return registry()[problem]
+
+
+def settings(problem: str, lam: float, e_extra: float) -> dict[str, float]:
+    """The solver's discretisation from ``lam`` (the line load's lambda of both densities,
+    a patch's lambda_b) and ``e_extra`` (e for the line load, e - w for a patch), with the
+    solvers' stick-zone limit."""
+    if liftoff_problem(problem).family == "line":
+        return {"lam": lam, "e": e_extra, "stick_zone_limit": STICK_ZONE_LIMIT}
+    return {"lam_b": lam, "e_minus_w": e_extra, "stick_zone_limit": STICK_ZONE_LIMIT}
+
+
+def rough_point_of(problem: str, f: float, w_hat: float, interface: Interface) -> Point:
+    """The point of ``problem`` at (f, w/c) on ``interface`` (w/c ignored for the line
+    load)."""
+    spec = liftoff_problem(problem)
+    return spec.point(f, w_hat if spec.widths else None, interface=interface)
 
 
 def solve_rough(problem: str, f: float, w_hat: float, interface: Interface, *, n: int,
@@ -115,58 +86,17 @@ def solve_rough(problem: str, f: float, w_hat: float, interface: Interface, *, n
 
     ``lam``: the map scale of the line load (both densities, sec. 6.4) or lambda_b of a
     patch, whose lambda_a is the thesis's (``patch.default_lambdas``, sec. 7.4);
-    ``e_extra``: e - w (e for the line load); ``guess``: (a, b) of a neighbour.
-
-    A compliance number below what the solver resolves is solved as zero (the smooth
-    interface in that direction, ``core.interface.resolved``): ``below_resolution``."""
-    interface = resolved(interface)
-    if problem not in PROBLEMS:
-        raise ValueError(f"problem must be one of {', '.join(PROBLEMS)}, got {problem!r}")
-    if problem == "line":
-        return solve_line(f, n, lam, e_extra, guess=guess, interface=interface)
-    if not (np.isfinite(w_hat) and w_hat > 0):
-        raise ValueError(f"w_hat must be positive for a patch, got {w_hat}")
-    lam_a = default_lambdas(w_hat)[0]
-    return solve_patch(problem, f, w_hat, n, lam_a=lam_a, lam_b=lam, e=w_hat + e_extra,
-                       guess=guess, interface=interface)
+    ``e_extra``: e - w (e for the line load); ``guess``: (a, b) of a neighbour."""
+    point = rough_point_of(problem, f, w_hat, interface)
+    return registry()[problem].solve(point, n, guess, **settings(problem, lam, e_extra))
 
 
-def below_resolution(interface: Interface) -> bool:
-    """A compliance number of ``interface`` is below what the solver resolves (it is solved
-    as zero: ``core.interface.resolved``)."""
-    return resolved(interface) is not interface
-
-
-def solution_record(sol: LiftoffSolution, start: float = np.nan,
-                    law: Interface = SMOOTH) -> dict[str, float]:
-    """The numbers of one solution: SCALARS, CHECKS, CERTIFICATES and EXTRA (NaN where
-    they do not apply; a, b, K_T NaN unless converged); ``start`` is the largest check at
-    the sweep's N of a refined point, ``law`` the interface asked for (its compliance
-    numbers below what the solver resolves set ``below_resolution``)."""
-    rec: dict[str, float] = {k: np.nan for k in [*SCALARS, *CHECKS, *CERTIFICATES]}
-    certificates = sol.certificates or sol.certify()
-    rec.update({k: float(v) for k, v in certificates.items()})
-    rec["remote_slip_error"] = sol.remote_slip_record()["remote_slip_error"]
-    rec.update(a=sol.a, b=sol.b, K_T=sol.K_T, residual=sol.residual,
-               approach=sol.compliant.approach if sol.compliant is not None else 0.0)
-    if sol.glide is not None and sol.glide.mapping == "semi-infinite":
-        rec["a_resolution"] = float(sol.glide.nodes.min() - sol.a)
-    if sol.converged:
-        rec.update({k: float(sol.checks.get(k, 0.0 if k in ("max_closure_mismatch",
-                                                              "max_stick_law_mismatch")
-                                            else np.nan)) for k in CHECKS})
-    else:
-        rec.update(a=np.nan, b=np.nan, K_T=np.nan, approach=np.nan)
-    rec["converged"] = int(sol.converged)
-    rec["admissible"] = int(sol.admissible)
-    rec["regime"] = REGIMES.index(sol.regime) if (sol.converged
-                                                  and sol.regime in REGIMES) else -1
-    rec["nfev"] = sol.nfev
-    rec["flags"] = flag_bits(sol.flags)
-    rec["n_used"] = sol.n
-    rec["max_check_at_n"] = start if np.isfinite(start) else largest_check(sol.checks)
-    rec["below_resolution"] = int(below_resolution(law))
-    return rec
+def solution_record(sol: LiftoffSolution, start: float = np.nan) -> dict[str, float]:
+    """The numbers of one solution on a compliant interface: a, b, K_T, the contact checks,
+    the certificates and how it was solved (``problems.liftoff.compliant_variables``; NaN
+    where they do not apply; a, b, K_T NaN unless converged); ``start`` is the largest
+    check at the sweep's N of a refined point."""
+    return liftoff_problem(sol.load.law).compliant().record(sol, start)
 
 
 def rough_point(problem: str, f: float, w_hat: float, C: float, C_T: float, *, n: int,
@@ -188,9 +118,10 @@ def rough_point(problem: str, f: float, w_hat: float, C: float, C_T: float, *, n
                                         e_extra=e_extra, guess=(seed.a, seed.b)),
             sol, refine_max_n)
     rec: dict[str, float | str] = {"problem": problem, "f": float(f),
-                                   "w_hat": float(w_hat) if problem != "line" else 0.0,
+                                   "w_hat": float(w_hat) if registry()[problem].widths
+                                   else 0.0,
                                    "C": float(C), "C_T": float(C_T), "N": int(n)}
-    rec.update(solution_record(sol, start, interface))
+    rec.update(solution_record(sol, start))
     return rec
 
 
@@ -230,42 +161,42 @@ def sweep_rough(problem: str, f_values: Sequence[float], C_values: Sequence[floa
     thesis's method, exactly today's answers). See the module docstring for the order of
     solution, the seeds and the refinement; every parameter is an attribute or a
     coordinate of the result."""
-    if problem not in PROBLEMS:
-        raise ValueError(f"problem must be one of {', '.join(PROBLEMS)}, got {problem!r}")
+    spec = liftoff_problem(problem)
     if interface not in ("linear", "measured"):
         raise ValueError(f"interface must be linear or measured, got {interface!r}")
     f_values = _check_values("f", f_values)
     C_values = np.sort(_check_values("C", C_values))
     ratios = _check_values("ct_ratio", ct_ratios)
-    patch = problem != "line"
+    patch = spec.widths
     if patch and w_values is None:
         raise ValueError(f"a {problem} patch sweep needs w_hat values")
     w_list = _check_values("w_hat", w_values, positive=True) if patch else np.zeros(1)
     if refine_max_n < n:
         raise ValueError(f"refine_max_n = {refine_max_n} is below N = {n}")
-    shape = (f_values.size, w_list.size, ratios.size, C_values.size)
-    records = np.empty(shape, dtype=object)
-    what = f"{problem} rough sweep N = {n}"
-    with Progress(f"{what}: solving", int(np.prod(shape)), "points") as progress:
-        for i, f in enumerate(f_values):
-            for j, w in enumerate(w_list):
-                for k, ratio in enumerate(ratios):
-                    seed = None
-                    for m, C in enumerate(C_values):
-                        records[i, j, k, m], seed = _sweep_point(
-                            problem, float(f), float(w), _interface(interface, float(C),
-                                                                    float(ratio), pi0),
-                            seed, n, lam, e_extra, refine_max_n)
-                        progress.advance()
-    dims = ("f", "w_hat", "ct_ratio", "C")
-    if not patch:
-        records = records[:, 0]
-        dims = ("f", "ct_ratio", "C")
-    ds = xr.Dataset(_variables(records, dims), coords=_coords(f_values, w_list if patch
-                                                              else None, ratios, C_values))
+    axes = {"f": f_values, **({"w_hat": w_list} if patch else {}), "ct_ratio": ratios,
+            "C": C_values}
+
+    def point_at(index: tuple[int, ...]) -> Point:
+        f, *w, k, m = index
+        law = _interface(interface, float(C_values[m]), float(ratios[k]), pi0)
+        return spec.point(float(f_values[f]), float(w_list[w[0]]) if w else None,
+                          interface=law)
+
+    compliant = spec.compliant()
+    records = Sweep(compliant, axes, point_at, n, settings=settings(problem, lam, e_extra),
+                    refine_max_n=refine_max_n, continuation=False,
+                    what=f"{problem} rough sweep N = {n}").run()
+    ds = xr.Dataset(record_variables(compliant, records, tuple(axes)),
+                    coords=_coords(f_values, w_list if patch else None, ratios, C_values))
     ds["C_T"] = (("ct_ratio", "C"), ratios[:, None] * C_values[None, :],
                  {"long_name": "tangential compliance number (2 mu/(kappa + 1))/(c k_t)",
                   "units": ONE})
+    unresolved = (C_values[None, :] > 0) & ((C_values[None, :] < RESOLVED_COMPLIANCE)
+                                            | (ds["C_T"].values < RESOLVED_COMPLIANCE))
+    ds["below_resolution"] = (("ct_ratio", "C"), unresolved.astype(np.int8), {
+        "long_name": f"C or C_T is below RESOLVED_COMPLIANCE = {RESOLVED_COMPLIANCE:g}, "
+                     "which the solver does not resolve: solved as zero there, i.e. the "
+                     "smooth interface in that direction (1) or not", "units": ONE})
     ds.attrs.update({"problem": problem, "N": int(n), "N_k": int(n), "lambda": lam,
                      "resolved_compliance": RESOLVED_COMPLIANCE,
                      "e_minus_w": e_extra, "refine_max_n": int(refine_max_n),
@@ -280,56 +211,6 @@ def sweep_rough(problem: str, f_values: Sequence[float], C_values: Sequence[floa
                           {"long_name": "map scale lambda_a of [a, inf)", "units": ONE})
     ds.attrs.update(summary_attrs(ds))
     return ds
-
-
-def _sweep_point(problem: str, f: float, w: float, law: Interface,
-                 seed: tuple[float, float] | None, n: int, lam: float, e_extra: float,
-                 refine_max_n: int) -> tuple[dict[str, float], tuple[float, float] | None]:
-    """One point of a sweep: seeded, then cold; refined in N; its record and the seed it
-    passes on."""
-    def solve(m: int, guess: tuple[float, float] | None) -> LiftoffSolution:
-        return solve_rough(problem, f, w, law, n=m, lam=lam, e_extra=e_extra, guess=guess)
-
-    sol = None
-    try:
-        sol = solve(n, seed if not resolved(law).smooth else None)
-        if not sol.converged and seed is not None:
-            cold = solve(n, None)
-            if cold.converged or not sol.converged:
-                sol = cold
-                sol.flags = (*sol.flags, "continuation")
-        sol, start = refine_in_n(lambda m, s: solve(m, (s.a, s.b) if s.a > 0 else None),
-                                 sol, refine_max_n)
-    except (ValueError, np.linalg.LinAlgError, FloatingPointError):
-        if sol is None:
-            return _failed_record(n, law), seed
-        start = np.nan
-    good = sol.converged and sol.regime == "slip_separation"
-    return solution_record(sol, start, law), ((sol.a, sol.b) if good else seed)
-
-
-def _failed_record(n: int, law: Interface) -> dict[str, float]:
-    rec = {k: np.nan for k in [*SCALARS, *CHECKS, *CERTIFICATES]}
-    rec.update(converged=0, admissible=0, regime=-1, nfev=0, flags=0, n_used=n,
-               max_check_at_n=np.inf, below_resolution=int(below_resolution(law)))
-    return rec
-
-
-def _variables(records: np.ndarray, dims: tuple[str, ...]) -> dict:
-    flat = records.ravel()
-    shape = records.shape
-    out = {}
-    for key, name in {**SCALARS, **CHECKS, **CERTIFICATES}.items():
-        values = np.array([r[key] for r in flat], dtype=float).reshape(shape)
-        out[key] = (dims, values, {"long_name": name, "units": ONE})
-    for key, (name, dtype) in EXTRA.items():
-        out[key] = (dims, np.array([r[key] for r in flat], dtype=dtype).reshape(shape),
-                    {"long_name": name, "units": ONE})
-    out["regime"] = (dims, np.array([r["regime"] for r in flat], dtype=np.int8).reshape(shape),
-                     regime_attrs(REGIMES))
-    out["flags"] = (dims, np.array([r["flags"] for r in flat], dtype=np.int8).reshape(shape),
-                    flag_attrs())
-    return out
 
 
 def _coords(f_values: np.ndarray, w_values: np.ndarray | None, ratios: np.ndarray,
@@ -349,10 +230,8 @@ def _coords(f_values: np.ndarray, w_values: np.ndarray | None, ratios: np.ndarra
 
 def gather_rough(paths: Sequence[str]) -> xr.Dataset:
     """Chunks of one sweep (split along f) joined along f, with the summary attributes of
-    the whole (``core.summary``)."""
-    ds, _ = concat_chunks(list(paths), "f")
-    ds.attrs.update(summary_attrs(ds))
-    return ds
+    the whole (``core.sweep.gather``)."""
+    return gather(paths, "f")[0]
 
 
 # --------------------------------------------------------------------------- profile
@@ -365,7 +244,7 @@ def rough_profile(problem: str, f: float, w_hat: float, interface: Interface, *,
     ``_smooth``) of the same problem."""
     rough = solve_rough(problem, f, w_hat, interface, n=n, lam=lam, e_extra=e_extra)
     smooth = solve_rough(problem, f, w_hat, SMOOTH, n=n, lam=lam, e_extra=e_extra)
-    w = 0.0 if problem == "line" else float(w_hat)
+    w = float(w_hat) if liftoff_problem(problem).widths else 0.0
     x = np.linspace(0.0, w + x_max, points)
     unit_g = "times 2 mu / ((kappa + 1) T c)"
     data: dict[str, tuple[np.ndarray, str]] = {}
@@ -402,7 +281,8 @@ def rough_profile(problem: str, f: float, w_hat: float, interface: Interface, *,
                                            "units": ONE})})
     ds.attrs.update({"problem": problem, "f": float(f), "w_hat": w, "N": int(n),
                      "lambda": lam, "e_minus_w": e_extra, "x_max": x_max,
-                     **interface.attrs(), "below_resolution": int(below_resolution(interface)),
+                     **interface.attrs(),
+                     "below_resolution": int(resolved(interface) is not interface),
                      "resolved_compliance": RESOLVED_COMPLIANCE})
     for suffix, sol in (("", rough), ("_smooth", smooth)):
         ds.attrs.update({f"{k}{suffix}": v for k, v in (
@@ -423,18 +303,18 @@ def tested_pairs(laws: Mapping[str, StiffnessLaw], pressures: Mapping[str, float
                  c_values: Sequence[float], n: int, lam: float, e_extra: float,
                  linearised_only: Sequence[str] = ()) -> xr.Dataset:
     """a, b, K_T of a layer (E [kN/mm^2], nu, thickness c [mm]) pressed by a patch of
-    half-width w = w_hat c and mean pressure p [kN/mm^2] (``pressures`` per test) onto a
-    half-plane of the same material through each tested pair's interface (``laws``, e.g.
+    half-width w = w_hat c and mean pressure p [kN/mm^2] (``pressures`` per test), or by
+    the line load P = 2 w p that carries the same load, onto a half-plane of the same
+    material through each tested pair's interface (``laws``, e.g.
     ``core.measured_law.law_from_summary``), at the pair's f: dims (test, c, law) with
     law ``smooth`` (the thesis's interface), ``linear`` (the stiffness at p, k_n(p) and
     Cc k_n(p)) and ``measured`` (the law of eqs 2.4, 2.7 with T = 2 w p / c; NaN with
     the reason in ``refused`` where the fit has k_n <= 0 at the contact edge, or for the
-    tests of ``linearised_only``).
+    tests of ``linearised_only``). ``lam`` and ``e_extra`` as for :func:`solve_rough`.
 
     The smooth solution is solved once per test; each law follows c downwards (C
     upwards), every point seeded by the last and solved cold where that fails."""
-    if problem not in PROBLEMS[1:]:
-        raise ValueError(f"tested pairs need a patch problem, got {problem!r}")
+    liftoff_problem(problem)
     tests = list(laws)
     missing = [t for t in tests if t not in pressures]
     if missing:

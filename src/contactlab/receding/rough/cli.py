@@ -24,12 +24,25 @@ from contactlab.cliutil import (
     section_outputs,
 )
 from contactlab.command import Command, Option
-from contactlab.receding.options import LINE, NAME, PATCHES, line_options, patch_options
+from contactlab.receding.options import (
+    LINE,
+    NAME,
+    PAIRS,
+    PATCHES,
+    ROUGH,
+    line_options,
+    patch_options,
+)
+from contactlab.receding.problems import named_liftoff, registry
 
-ROUGH = "receding.rough"
-PAIRS = f"{ROUGH}.pairs"
-LAWS = ("uniform", "hertz", "punch")
-PROBLEMS = ("line", *LAWS)
+#: the problems on a rough interface (the line load and the named pressure laws)
+PROBLEMS = named_liftoff()
+#: The stiffness summary a tested pair's law is read from when ``receding solve`` is given
+#: no --summary: the workflow's, from the raw data (``snakemake
+#: results/stiffness/summary.nc``; the published fits: summary_from_published_steps.nc).
+SUMMARY = "results/stiffness/summary.nc"
+LAWS = tuple(p for p in PROBLEMS if registry()[p].widths)
+LINES = tuple(p for p in PROBLEMS if not registry()[p].widths)
 SOURCE = ("distributed dislocations on a compliant interface: the densities of chs 6-7 "
           "extended over the contact and stick zones, Gaussian bridges through a and b "
           "(contactlab.receding.liftoff.compliant, core.bridge); Part II's laws (eqs 2.2-2.7)")
@@ -57,9 +70,131 @@ def check_numbers(option: str, values: Any, *, positive: bool = False) -> None:
             raise ValueError(f"{option} {value:g}: must be finite and {need}")
 
 
+def _read_summary(path: Any) -> Any:
+    """The stiffness summary dataset at ``path``."""
+    import xarray as xr
+
+    with xr.open_dataset(path) as ds:
+        return ds.load()
+
+
+def _fit_numbers(words: list[str]) -> dict[str, float]:
+    """``--interface-fit beta_n_per_um=... P0_kN=...`` as the fit's numbers."""
+    from contactlab.receding.core.measured_law import FIT_KEYS
+
+    spec: dict[str, float] = {}
+    for word in words:
+        key, sep, value = word.partition("=")
+        if not sep or key not in FIT_KEYS:
+            raise ValueError(f"--interface-fit {word!r}: give KEY=VALUE with KEY one of "
+                             f"{', '.join(FIT_KEYS)}")
+        try:
+            spec[key] = float(value)
+        except ValueError:
+            raise ValueError(f"--interface-fit {word!r}: {value!r} is not a number") from None
+    return spec
+
+
+def interface_of(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
+    """The interface law of ``receding solve`` and what it was made of (for the answer):
+    ``--interface-compliance C [--interface-compliance-t C_T]`` the linear law (C_T: C/m,
+    Mindlin's m at --nu); ``--interface-from-test TEST`` (from --summary) or
+    ``--interface-fit ...`` a tested pair's law (eqs 2.4, 2.7), measured or linearised
+    (--interface-law), under a layer of thickness --c, modulus --E, --nu, loaded by --load
+    (T = P/c); none of them: smooth (None)."""
+    C, C_T = args.interface_compliance, args.interface_compliance_t
+    test, fit = args.interface_from_test, args.interface_fit
+    linear = [flag for flag, v in (("--interface-compliance", C),
+                                   ("--interface-compliance-t", C_T)) if v is not None]
+    tested = [flag for flag, v in (("--interface-from-test", test),
+                                   ("--interface-fit", fit)) if v is not None]
+    if len(tested) > 1 or (linear and tested):
+        raise ValueError(f"{' and '.join(linear + tested)}: give one interface law")
+    if tested:
+        return _tested_interface(args)
+    for flag, value in (("--interface-compliance", C), ("--interface-compliance-t", C_T)):
+        if value is not None and not (value >= 0 and value < float("inf")):
+            raise ValueError(f"{flag} {value:g}: a compliance number must be finite and >= 0 "
+                             "(a positive interface stiffness; 0: smooth)")
+    if not C and not C_T:
+        return None, {}
+    from contactlab.receding.core.interface import linear_interface, mindlin_ratio
+
+    C = C or 0.0
+    if C_T is None:
+        C_T = C / mindlin_ratio(args.nu)
+    return linear_interface(C, C_T), {}
+
+
+def _tested_interface(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
+    """A tested pair's law under the layer of ``receding solve`` (:func:`interface_of`)."""
+    from pathlib import Path
+
+    from contactlab.receding.core.measured_law import pair_law
+
+    missing = [flag for flag, v in (("--c", args.c), ("--load", args.load)) if v is None]
+    if missing:
+        raise ValueError(f"a tested pair's law needs the physical scale: {', '.join(missing)} "
+                         "(layer thickness c [mm], load per unit depth P [kN/mm])")
+    check_numbers("--c", args.c, positive=True)
+    check_numbers("--load", args.load, positive=True)
+    check_numbers("--E", args.E, positive=True)
+    spec: dict[str, Any] = {"law": args.interface_law}
+    if args.pressure is not None:
+        check_numbers("--pressure", args.pressure, positive=True)
+        spec["pressure"] = args.pressure
+    summary, source = None, "fit numbers"
+    if args.interface_from_test is not None:
+        name = str(args.interface_from_test)
+        where = f"--interface-from-test {name}"
+        path = Path(args.summary) if args.summary is not None else Path(SUMMARY)
+        if not path.is_file():
+            raise FileNotFoundError(
+                f"--summary {path}: no stiffness summary there" + (
+                    " (the workflow's: run snakemake results/stiffness/summary.nc, or give "
+                    "--summary results/stiffness/summary_from_published_steps.nc)"
+                    if args.summary is None else ""))
+        summary = _read_summary(path)
+        spec["from_test"] = name
+        source = str(path)
+    else:
+        name, where = "fit", "--interface-fit"
+        spec.update(_fit_numbers(args.interface_fit))
+    law, pressure, kind = pair_law(
+        name, spec, summary, key="", where=where, normal_direction=args.normal_direction,
+        tangential_direction=args.tangential_direction, cc_basis=args.cc_basis)
+    T = args.load / args.c
+    if kind == "measured":
+        interface = law.measured(T=T, E=args.E, nu=args.nu, c=args.c)
+    else:
+        interface = law.linearised(pressure=pressure, E=args.E, nu=args.nu, c=args.c)
+    info = {"interface_source": f"{law.source} from {source}", "interface_law": kind,
+            "c_mm": args.c, "E_kN_mm2": args.E, "nu": args.nu, "load_kN_mm": args.load,
+            "T_kN_mm2": T, "pressure_kN_mm2": pressure, "beta_n_per_mm": law.beta_n,
+            "p0_kN_mm2": law.p0, "Cc": law.cc, "f_of_pair": law.f,
+            "k_n_kN_mm3": float(law.k_n(T if kind == "measured" else pressure))}
+    return interface, info
+
+
+def interface_lines(info: dict[str, Any]) -> list[str]:
+    """What ``receding solve`` prints of a tested pair's law (:func:`interface_of`)."""
+    if not info:
+        return []
+    at = ("C, C_T at p = T" if info["interface_law"] == "measured"
+          else f"linearised at p = {info['pressure_kN_mm2']:.4g} kN/mm^2")
+    return [f"  interface law         {info['interface_source']}, {info['interface_law']} "
+            f"(eqs 2.4, 2.7; {at})",
+            f"  physical scale        c = {info['c_mm']:g} mm, E = {info['E_kN_mm2']:g} kN/mm^2, "
+            f"nu = {info['nu']:g}, P = {info['load_kN_mm']:g} kN/mm: T = P/c = "
+            f"{info['T_kN_mm2']:.4g} kN/mm^2",
+            f"  law's numbers         beta_n = {info['beta_n_per_mm']:.4g} 1/mm, p0 = "
+            f"{info['p0_kN_mm2']:.4g} kN/mm^2, Cc = {info['Cc']:.4g}, k_n = "
+            f"{info['k_n_kN_mm3']:.4g} kN/mm^3; the pair's own f = {info['f_of_pair']:.4g}"]
+
+
 def _lam_e(args: argparse.Namespace, problem: str) -> tuple[float, float]:
     """lambda and e of the line load, lambda_b and e - w of a patch."""
-    if problem == "line":
+    if not registry()[problem].widths:
         return args.lam, args.e
     return args.lam_b, args.e_minus_w
 
@@ -115,7 +250,7 @@ def _profile(args: argparse.Namespace) -> None:
                        n=args.n, lam=lam, e_extra=e_extra, x_max=args.x_max,
                        points=args.points)
     ds.attrs["nu_mindlin"] = args.nu
-    where = f", w/c = {w_hat:g}" if args.problem != "line" else ""
+    where = f", w/c = {w_hat:g}" if registry()[args.problem].widths else ""
     stamp(ds, title=f"{args.problem} on a rough interface: profiles at f = {args.f:g}{where}, "
                     f"C = {args.C:g}, beside the smooth interface", source=SOURCE,
           history=args.history)
@@ -150,9 +285,10 @@ def _pairs(args: argparse.Namespace) -> None:
         if kind == "linearised":
             linearised.append(name)
     start = time.perf_counter()
+    lam, e_extra = _lam_e(args, args.problem)
     ds = tested_pairs(laws, pressures, problem=args.problem, w_hat=args.w_hat, E=args.E,
-                      nu=args.nu, c_values=args.c, n=args.n, lam=args.lam_b,
-                      e_extra=args.e_minus_w, linearised_only=linearised)
+                      nu=args.nu, c_values=args.c, n=args.n, lam=lam, e_extra=e_extra,
+                      linearised_only=linearised)
     import logging
 
     logging.getLogger(__name__).info("tested pairs: %d solutions in %.1f s",
@@ -160,8 +296,10 @@ def _pairs(args: argparse.Namespace) -> None:
     ds.attrs.update(normal_direction=args.normal_direction,
                     tangential_direction=args.tangential_direction, cc_basis=args.cc_basis,
                     summary=str(args.summary or ""))
-    stamp(ds, title=f"Tested pairs' interfaces under a layer: a, b, K_T of a {args.problem} "
-                    f"patch, w/c = {args.w_hat:g}, over the layer thickness c", source=SOURCE,
+    what = (f"a {args.problem} patch, w/c = {args.w_hat:g}" if registry()[args.problem].widths
+            else f"a line load carrying a patch's load, w/c = {args.w_hat:g}")
+    stamp(ds, title=f"Tested pairs' interfaces under a layer: a, b, K_T of {what}, over the "
+                    "layer thickness c", source=SOURCE,
           history=args.history, inputs=[summary] if summary is not None else [])
     write_netcdf(ds, args.out)
 
@@ -177,7 +315,8 @@ def _report(args: argparse.Namespace) -> None:
 
 def _by_problem(name: str) -> dict[str, str]:
     """The config key ``receding.rough.{line,patches}.<name>`` of each problem."""
-    return {"line": f"{ROUGH}.line.{name}", **dict.fromkeys(LAWS, f"{ROUGH}.patches.{name}")}
+    return {**dict.fromkeys(LINES, f"{ROUGH}.line.{name}"),
+            **dict.fromkeys(LAWS, f"{ROUGH}.patches.{name}")}
 
 
 def _discretisation(refine: bool = True) -> tuple[Option, ...]:
@@ -189,7 +328,7 @@ def _discretisation(refine: bool = True) -> tuple[Option, ...]:
                            "contact checks is re-solved (--n: none)", int,
                            key=_by_problem("refine_max_n")),)
     return (*options,
-            *(Option(o.flag, o.help, o.type, key={"line": o.key}, only=("line",))
+            *(Option(o.flag, o.help, o.type, key=dict.fromkeys(LINES, o.key), only=LINES)
               for o in line_options(LINE)),
             *(Option(o.flag, o.help, o.type, key=dict.fromkeys(LAWS, o.key), only=LAWS)
               for o in patch_options(PATCHES)))
@@ -256,9 +395,10 @@ COMMANDS = (
                         key=f"{PAIRS}.tangential_direction"),
                  Option("--cc-basis", "Kn of Cc = Kt0/Kn of a from_test law",
                         choices=("mean", "loading", "unloading"), key=f"{PAIRS}.cc_basis"),
-                 Option("--problem", "pressure patch law", choices=LAWS,
-                        key=f"{PAIRS}.problem"),
-                 Option("--w-hat", "patch half-width w/c", float, key=f"{PAIRS}.w"),
+                 Option("--problem", "pressure patch law, or the line load carrying the "
+                        "patch's load", choices=PROBLEMS, key=f"{PAIRS}.problem"),
+                 Option("--w-hat", "patch half-width w/c (the line load carries the load "
+                        "2 w p of that patch)", float, key=f"{PAIRS}.w"),
                  Option("--E", "Young's modulus of layer and half-plane", float,
                         unit="kN/mm^2", key=f"{PAIRS}.E"),
                  Option("--nu", "Poisson's ratio of layer and half-plane", float,
@@ -266,9 +406,13 @@ COMMANDS = (
                  Option("--c", "layer thicknesses", float, unit="mm", nargs="+",
                         key=f"{PAIRS}.c"),
                  Option("--n", "Gauss-Chebyshev points N (even)", int,
-                        key=f"{ROUGH}.patches.n"),
-                 *patch_options(PATCHES), out_option()),
-        run=_pairs),
+                        key=_by_problem("n")),
+                 *(Option(o.flag, o.help, o.type, key=dict.fromkeys(LAWS, o.key), only=LAWS)
+                   for o in patch_options(PATCHES)),
+                 *(Option(o.flag, o.help, o.type, key=dict.fromkeys(LINES, o.key),
+                          only=LINES) for o in line_options(LINE)),
+                 out_option()),
+        run=_pairs, select="problem"),
     Command(
         NAME, "report-rough", "report section of the rough interface",
         description="HTML report section: a, b and K_T over the compliance, the tested "

@@ -18,6 +18,7 @@ import pandas as pd
 import xarray as xr
 
 from contactlab.receding.core.summary import sweep_counts, unsolved_points
+from contactlab.receding.problems import registry
 from contactlab.report.section import ReportSection
 
 #: The columns of the FE comparison table (one row per problem, C and transition point).
@@ -185,7 +186,8 @@ def profiles_figure(profiles: Sequence[xr.Dataset], kind: str) -> plt.Figure:
             ax.axvline(prof.attrs[key], color=style, lw=0.6, ls="-")
             ax.axvline(prof.attrs[key + "_smooth"], color=style, lw=0.6, ls=":")
         ax.axhline(0, color="0.7", lw=0.5)
-        where = f", w/c = {prof.attrs['w_hat']:g}" if prof.attrs["problem"] != "line" else ""
+        widths = registry()[prof.attrs["problem"]].widths
+        where = f", w/c = {prof.attrs['w_hat']:g}" if widths else ""
         ax.set_title(f"{prof.attrs['problem']}{where}, f = {prof.attrs['f']:g}, "
                      f"C = {prof.attrs['C']:g}, C_T = {prof.attrs['C_T']:.3g} (lines: a, b; "
                      "dotted: smooth)", fontsize=8)
@@ -266,8 +268,10 @@ def build_section(sweep_paths: Sequence[Path], profile_paths: Sequence[Path],
     section.table(summary_table(sweeps), "receding_rough_summary", digits=0)
     section.table(sweep_table(sweeps), "receding_rough_sweep", digits=5)
     section.heading("heading_pairs")
-    section.paragraph("pairs", problem=pairs.attrs["problem"], w_hat=pairs.attrs["w_hat"],
-                      E=pairs.attrs["E_kN_mm2"], nu=pairs.attrs["nu"])
+    problem = registry()[pairs.attrs["problem"]]
+    load = section.say("pairs_patch" if problem.widths else "pairs_line",
+                       problem=problem.name, w_hat=pairs.attrs["w_hat"])
+    section.paragraph("pairs", load=load, E=pairs.attrs["E_kN_mm2"], nu=pairs.attrs["nu"])
     section.figure(pairs_figure(pairs), "receding_rough_pairs")
     section.table(pairs_table(pairs), "receding_rough_pairs", digits=4)
     section.heading("heading_profiles")
