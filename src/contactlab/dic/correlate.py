@@ -67,12 +67,14 @@ The engine uses scipy's B-spline prefilter and FFT and numba for its inner loops
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterable
-from dataclasses import dataclass
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, fields
+from typing import Any
 
 import numpy as np
 
 from contactlab.dic import bspline, kernels
+from contactlab.dic.images import COLOUR_MODES
 from contactlab.dic.regions import SubsetGrid
 
 __all__ = [
@@ -124,6 +126,14 @@ class Settings:
     outlier_threshold : normalised median residual above which a valid vector is flagged
         ``outlier`` (:func:`flag_outliers`; 0: no test).
     outlier_epsilon : the test's allowance for the noise of the vectors, pixels.
+    incremental : in a sequence, each frame starts from the previous frames' solution
+        (:func:`next_guess`); else every frame from the regions' FFT shift.
+    colour : colour image files are refused (``"refuse"``) or converted to luminance
+        (``"luminance"``), :func:`contactlab.dic.images.read_image`.
+
+    The fields are the options of the ``dic`` commands and the keys of the config's ``dic``
+    section of the same names, whose defaults the schema holds; :meth:`of` takes them from
+    parsed options or a mapping.
     """
 
     order: int
@@ -133,6 +143,17 @@ class Settings:
     prefilter_sigma: float
     outlier_threshold: float
     outlier_epsilon: float
+    incremental: bool
+    colour: str
+
+    @classmethod
+    def of(cls, values: Mapping[str, Any]) -> Settings:
+        """The settings named in ``values`` (e.g. ``vars(args)`` of a ``dic`` command or a
+        config's ``dic`` section); other keys are ignored."""
+        missing = [f.name for f in fields(cls) if f.name not in values]
+        if missing:
+            raise ValueError(f"correlation settings: no value for {', '.join(missing)}")
+        return cls(**{f.name: values[f.name] for f in fields(cls)})
 
     def __post_init__(self) -> None:
         if self.order not in bspline.ORDERS:
@@ -153,13 +174,19 @@ class Settings:
         if not self.outlier_epsilon > 0:
             raise ValueError(f"outlier_epsilon must be > 0 pixels, got "
                              f"{self.outlier_epsilon}")
+        if not isinstance(self.incremental, bool | np.bool_):
+            raise ValueError(f"incremental must be true or false, got {self.incremental!r}")
+        if self.colour not in COLOUR_MODES:
+            raise ValueError(f"colour must be one of {COLOUR_MODES}, got {self.colour!r}")
 
-    def as_attrs(self) -> dict[str, float | int]:
+    def as_attrs(self) -> dict[str, float | int | str]:
+        """Every setting as a global attribute of a result (units in the names)."""
         return {"order": int(self.order), "max_iterations": int(self.max_iterations),
                 "tolerance_px": float(self.tolerance), "zncc_min": float(self.zncc_min),
                 "prefilter_sigma_px": float(self.prefilter_sigma),
                 "outlier_threshold": float(self.outlier_threshold),
-                "outlier_epsilon_px": float(self.outlier_epsilon)}
+                "outlier_epsilon_px": float(self.outlier_epsilon),
+                "incremental": int(self.incremental), "colour": str(self.colour)}
 
 
 @dataclass(frozen=True)
@@ -487,13 +514,12 @@ def next_guess(ref: Reference, previous: FrameResult,
 
 
 def correlate_sequence(reference: np.ndarray, images: Iterable[tuple[str, np.ndarray]],
-                       grid: SubsetGrid, settings: Settings, *, incremental: bool
-                       ) -> list[FrameResult]:
+                       grid: SubsetGrid, settings: Settings) -> list[FrameResult]:
     """Correlate each (label, image) of ``images`` with ``reference`` on ``grid``.
 
-    ``incremental``: each frame starts from the previous frame's solution (else every frame
-    starts from :func:`coarse_guess`). ``images`` may be any iterable (e.g. a generator that
-    reads one file at a time).
+    With ``settings.incremental`` each frame starts from the previous frames' solution
+    (:func:`next_guess`), else every frame from :func:`coarse_guess`. ``images`` may be any
+    iterable (e.g. a generator that reads one file at a time).
     """
     ref = Reference(reference, grid, settings)
     results: list[FrameResult] = []
@@ -503,7 +529,7 @@ def correlate_sequence(reference: np.ndarray, images: Iterable[tuple[str, np.nda
                              f"{grid.shape}")
         frame = prepare(image, settings)
         guess = None
-        if incremental and results:
+        if settings.incremental and results:
             guess = next_guess(ref, results[-1], results[-2] if len(results) > 1 else None)
         results.append(correlate_frame(ref, frame, guess, label=label))
     return results
