@@ -359,10 +359,7 @@ def _integer_shift(ref: Reference, frame: Frame, subsets: np.ndarray, prior: np.
 
 def coarse_guess(ref: Reference, frame: Frame) -> np.ndarray:
     """Start parameters (subsets x 6): each region's integer rigid shift, the peak of the
-    phase correlation of the whole region (:func:`_phase_peaks`, zero-padded to a fast FFT
-    length)."""
-    from scipy import fft
-
+    phase correlation of the whole region (:func:`_phase_peaks`, circular: no padding)."""
     grid = ref.grid
     p = np.zeros((grid.size, 6))
     top = round(grid.y.min() - grid.half)
@@ -373,8 +370,7 @@ def coarse_guess(ref: Reference, frame: Frame) -> np.ndarray:
         right = round(grid.xc[mine].max() + grid.half) + 1
         window = (slice(top, bottom), slice(left, right))
         ky, kx = _phase_peaks(ref.image[window].copy(), frame.image[window].copy(),
-                              (fft.next_fast_len(bottom - top, real=True),
-                               fft.next_fast_len(right - left, real=True)))
+                              (bottom - top, right - left))
         p[mine, 0] = kx
         p[mine, 3] = ky
     return p
