@@ -47,3 +47,10 @@ def test_reference_sums_are_the_means_spreads_and_hessians_of_the_subsets() -> N
         assert spread[k] == pytest.approx(np.sqrt(((f - f.mean()) ** 2).sum()), rel=1e-12)
         np.testing.assert_allclose(hessian[k], jacobian.T @ jacobian, rtol=1e-12,
                                    atol=1e-12 * np.abs(hessian[k]).max())
+
+
+def test_the_status_codes_of_the_loops_are_those_of_the_flags() -> None:
+    from contactlab.dic import correlate
+
+    for name in ("VALID", "TEXTURELESS", "LEFT_IMAGE", "NOT_CONVERGED", "LOW_ZNCC"):
+        assert getattr(kernels, f"_{name}") == getattr(correlate, name), name

@@ -15,9 +15,10 @@ fractional part of a coordinate, the weights of the ``order + 1`` coefficients f
 from the truncated-power form of :func:`contactlab.dic.bspline.bspline`.
 
 Why compiled: each IC-GN iteration samples the deformed image at every pixel of every
-active subset, 36 coefficients per sample for the quintic spline; done by
-:func:`scipy.ndimage.map_coordinates` on stacked arrays this was three quarters of the
-time of a frame, and the arrays of the stack the rest (``docs/dic.md``, "Speed").
+active subset, 36 coefficients per sample for the quintic spline, which is most of the
+work of a frame; a loop over subsets and pixels does it without intermediate arrays, and
+no well-kept library evaluates a B-spline at scattered points faster (``docs/dic.md``,
+"Why numba").
 """
 
 from __future__ import annotations
