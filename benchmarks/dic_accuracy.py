@@ -25,7 +25,8 @@ import time  # noqa: E402
 
 import numpy as np  # noqa: E402
 
-from contactlab.dic.correlate import Settings, correlate_sequence  # noqa: E402
+from contactlab.dic.cli import default_settings  # noqa: E402
+from contactlab.dic.correlate import correlate_sequence  # noqa: E402
 from contactlab.dic.regions import Region, subset_grid  # noqa: E402
 from contactlab.dic.speckle import AffineField, Camera, render, speckle_pattern  # noqa: E402
 
@@ -42,12 +43,10 @@ def errors(order: int, prefilter: float, speckle: float, noise: float, subset: i
     fields = [AffineField(s, 0.7 * s) for s in SHIFTS]
     reference, images = render(pattern, SHAPE, fields, camera, seed=seed + 1)
     grid = subset_grid(SHAPE, [Region("all", 0, SHAPE[1])], subset=subset, step=16)
-    settings = Settings(order=order, max_iterations=20, tolerance=1e-3, zncc_min=0.9,
-                        prefilter_sigma=prefilter, outlier_threshold=2.0,
-                        outlier_epsilon=0.1)
+    settings = default_settings(order=order, prefilter_sigma=prefilter, incremental=False)
     results = correlate_sequence(reference, [(f"{s:.1f} px", im) for s, im in
                                              zip(SHIFTS, images, strict=True)],
-                                 grid, settings, incremental=False)
+                                 grid, settings)
     bias = spread = 0.0
     for shift, result in zip(SHIFTS, results, strict=True):
         ok = result.valid
@@ -92,12 +91,10 @@ def errors_by_axis(speckle: float, aspect: float, seed: int) -> list[float]:
     fields = [AffineField(s, 0.7 * s) for s in SHIFTS]
     reference, images = render(pattern, SHAPE, fields, camera, seed=seed + 1)
     grid = subset_grid(SHAPE, [Region("all", 0, SHAPE[1])], subset=31, step=16)
-    settings = Settings(order=5, max_iterations=20, tolerance=1e-3, zncc_min=0.9,
-                        prefilter_sigma=0.0, outlier_threshold=2.0,
-                        outlier_epsilon=0.1)
+    settings = default_settings(order=5, prefilter_sigma=0.0, incremental=False)
     results = correlate_sequence(reference, [(f"{s:.1f} px", im) for s, im in
                                              zip(SHIFTS, images, strict=True)],
-                                 grid, settings, incremental=False)
+                                 grid, settings)
     out = [0.0, 0.0, 0.0, 0.0]
     for shift, result in zip(SHIFTS, results, strict=True):
         ok = result.valid

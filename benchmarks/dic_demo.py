@@ -27,7 +27,9 @@ from pathlib import Path  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
-from contactlab.dic.demo import fields_from_images, render_demo  # noqa: E402
+from contactlab.dic.cli import default_settings  # noqa: E402
+from contactlab.dic.demo import render_demo  # noqa: E402
+from contactlab.dic.fields import fields_from_images  # noqa: E402
 from contactlab.io import write_netcdf  # noqa: E402
 from contactlab.stiffness.displacement import contact_displacement  # noqa: E402
 from contactlab.stiffness.readers import read_fields_netcdf, read_load_log  # noqa: E402
@@ -44,11 +46,8 @@ def main() -> None:
         size = sum(p.stat().st_size for p in folder.iterdir())
         log = read_load_log(folder / "load_log.csv")
         cpu, wall = time.process_time(), time.perf_counter()
-        fields = fields_from_images(folder, log["frame"].tolist(), subset=None, step=None,
-                                    order=5, max_iterations=20, tolerance=1e-3,
-                                    zncc_min=0.9, prefilter_sigma=0.0, outlier_threshold=2.0,
-                                    outlier_epsilon=0.1, incremental=True,
-                                    colour="refuse")
+        fields = fields_from_images(folder, log["frame"].tolist(), default_settings(),
+                                    subset=None, step=None)
         correlate_cpu, correlate_wall = time.process_time() - cpu, time.perf_counter() - wall
         write_netcdf(fields, Path(tmp) / "fields.nc")
         nc_size = (Path(tmp) / "fields.nc").stat().st_size

@@ -4,16 +4,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from contactlab.dic.correlate import Settings
+from contactlab.dic.cli import default_settings as settings
 from contactlab.dic.speckle import Camera, DisplacementField, render, speckle_pattern
 
-#: The recommended correlation parameters (docs/dic.md), as the tests use them.
-RECOMMENDED = {"order": 5, "max_iterations": 20, "tolerance": 1e-3, "zncc_min": 0.9,
-               "prefilter_sigma": 0.0, "outlier_threshold": 2.0, "outlier_epsilon": 0.1}
-
-
-def settings(**changes: float) -> Settings:
-    return Settings(**{**RECOMMENDED, **changes})  # type: ignore[arg-type]
+__all__ = ["images", "settings"]
 
 
 def images(shape: tuple[int, int], fields: list[DisplacementField], *, speckle_size: float,

@@ -35,7 +35,7 @@ def test_rigid_subpixel_shifts(speckle_size: float, noise: float, subset: int, o
     grid = subset_grid(shape, [Region("all", 0, shape[1])], subset=subset, step=10,
                        roi=(2, 148, 2, 148))  # clear of the edges by more than the motion
     results = correlate_sequence(reference, [(str(k), im) for k, im in enumerate(deformed)],
-                                 grid, settings(order=order), incremental=False)
+                                 grid, settings(order=order, incremental=False))
     for field, result in zip(fields, results, strict=True):
         assert result.valid.all()
         u, v = field.displacement(grid.xc, grid.yc)
@@ -54,8 +54,8 @@ def test_uniform_strain_is_recovered_from_the_affine_parameters_and_a_fit() -> N
     reference, (image,) = images(shape, [field], speckle_size=4.0, noise=1.5, seed=21)
     grid = subset_grid(shape, [Region("all", 0, shape[1])], subset=31, step=12,
                        roi=(2, 238, 2, 198))
-    (result,) = correlate_sequence(reference, [("strain", image)], grid, settings(),
-                                   incremental=False)
+    (result,) = correlate_sequence(reference, [("strain", image)], grid,
+                                   settings(incremental=False))
     assert result.valid.all()
     for column, truth in ((1, field.dudx), (2, field.dudy), (4, field.dvdx), (5, field.dvdy)):
         assert result.p[:, column].mean() == pytest.approx(truth, abs=1e-4)
@@ -75,8 +75,8 @@ def test_large_motion_through_the_fft_guess() -> None:
     reference, (image,) = images(shape, [field], speckle_size=4.0, noise=1.5, seed=31,
                                  margin=20)
     grid = subset_grid(shape, [Region("all", 0, shape[1])], subset=25, step=10)
-    (result,) = correlate_sequence(reference, [("large", image)], grid, settings(),
-                                   incremental=False)
+    (result,) = correlate_sequence(reference, [("large", image)], grid,
+                                   settings(incremental=False))
     half = grid.half
     outside = ((grid.xc + 12.3 + half > shape[1] - 0.5)
                | (grid.yc - 7.6 - half < -0.5))
@@ -101,8 +101,8 @@ def test_sequence_with_incremental_guesses_and_a_jump() -> None:
     grid = subset_grid(shape, [Region("all", 16, 164)], subset=25, step=12,
                        roi=(16, 164, 12, 138))
     frames = [(f"frame {k}", im) for k, im in enumerate(deformed)]
-    incremental = correlate_sequence(reference, frames, grid, settings(), incremental=True)
-    independent = correlate_sequence(reference, frames, grid, settings(), incremental=False)
+    incremental = correlate_sequence(reference, frames, grid, settings(incremental=True))
+    independent = correlate_sequence(reference, frames, grid, settings(incremental=False))
     for field, a, b in zip(fields, incremental, independent, strict=True):
         u, v = field.displacement(grid.xc, grid.yc)
         for result in (a, b):

@@ -157,3 +157,21 @@ def test_correlate_writes_a_cf_file_in_pixels_or_um(demo: Path, tmp_path: Path) 
             assert ("pixels" in ds["u"].attrs["long_name"]) == (not extra)
             assert bool(ds["valid"].all()) and ds["u"].dims == ("image", "y", "x")
         assert cf_errors(out) == []
+
+
+def test_the_correlation_options_are_the_fields_of_settings() -> None:
+    """Declared once: the correlation options of ``correlate`` and ``fields`` are the fields
+    of ``Settings`` by name, each fed from the config key ``dic.<field>`` (whose schema
+    default a command given no option takes), and the commands build ``Settings`` whole."""
+    from dataclasses import fields
+
+    from contactlab.dic.cli import COMMANDS, default_settings, settings_options
+    from contactlab.dic.correlate import Settings
+
+    names = [f.name for f in fields(Settings)]
+    assert [opt.dest for opt in settings_options()] == names
+    assert [opt.key for opt in settings_options()] == [f"dic.{name}" for name in names]
+    for command in COMMANDS:
+        if command.name in ("correlate", "fields"):
+            assert {opt.dest for opt in command.options} >= set(names), command.name
+    assert default_settings(order=3) == Settings.of({**vars(default_settings()), "order": 3})

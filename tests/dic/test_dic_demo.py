@@ -9,9 +9,10 @@ import numpy as np
 import pandas as pd
 import pytest
 from PIL import Image
+from speckle_cases import settings
 
-from contactlab.dic.demo import demo_motion, fields_from_images, render_demo
-from contactlab.dic.fields import correlate_images
+from contactlab.dic.demo import demo_motion, render_demo
+from contactlab.dic.fields import correlate_images, fields_from_images
 from contactlab.io import write_netcdf
 from contactlab.stiffness.demo import generate_test
 from contactlab.stiffness.displacement import contact_displacement
@@ -19,9 +20,6 @@ from contactlab.stiffness.readers import read_fields_netcdf, read_load_log
 
 SEED = 20180501
 FRAMES = [1, 2, 11, 12, 13, 14, 40]
-CORRELATION = {"order": 5, "max_iterations": 20, "tolerance": 1e-3, "zncc_min": 0.9,
-               "prefilter_sigma": 0.0, "outlier_threshold": 2.0, "outlier_epsilon": 0.1,
-               "incremental": True, "colour": "refuse"}
 
 
 def test_the_rendered_motion_is_that_of_the_stiffness_demo() -> None:
@@ -65,8 +63,7 @@ def test_fields_from_the_demo_images_recover_the_contact_displacement(demo: Path
     truth on this 384 x 256 px crop (4 x 7 vectors per body; the full frame of the
     benchmark reaches 0.005), every vector valid."""
     log = read_load_log(demo / "load_log.csv")
-    ds = fields_from_images(demo, log["frame"].tolist(), subset=None, step=None,
-                            **CORRELATION)
+    ds = fields_from_images(demo, log["frame"].tolist(), settings(), subset=None, step=None)
     assert ds.attrs["subset_px"] == 31 and ds.attrs["step_px"] == 32
     assert "RECONSTRUCTED" in ds.attrs["title"] and ds.attrs["reconstructed"] == 1
     placed = ds["status"] != 6
@@ -80,15 +77,27 @@ def test_fields_from_the_demo_images_recover_the_contact_displacement(demo: Path
 
 def test_fields_from_images_refuses_a_frame_the_folder_lacks(demo: Path) -> None:
     with pytest.raises(ValueError, match=rf"^{demo}: no image for frame 3 "):
-        fields_from_images(demo, [1, 2, 3], subset=None, step=None, **CORRELATION)
+        fields_from_images(demo, [1, 2, 3], settings(), subset=None, step=None)
+
+
+def test_the_history_says_when_the_sidecar_overrides_the_subset(demo: Path) -> None:
+    """The sidecar's subset and step (31 and 32 px) win over those given (21, 16 px), and
+    the history line of the run says so after the command as typed."""
+    typed = "contactlab dic fields --subset 21 --step 16"
+    ds = fields_from_images(demo, [1, 2], settings(), subset=21, step=16, history=typed)
+    assert (ds.attrs["subset_px"], ds.attrs["step_px"]) == (31, 32)
+    assert ds.attrs["history"].splitlines()[-1].endswith(
+        f"{typed}  # subset 31 px and step 32 px from the sidecar {demo / 'contactlab.json'}")
+    same = fields_from_images(demo, [1, 2], settings(), subset=31, step=None, history=typed)
+    assert same.attrs["history"].splitlines()[-1].endswith(
+        f"{typed}  # step 32 px from the sidecar {demo / 'contactlab.json'}")
 
 
 def test_correlate_images_with_a_region_of_interest_in_um(demo: Path) -> None:
     """Single use: images against a reference, an ROI, positions and displacements in um."""
     files = [demo / f"frame_{f:04d}.png" for f in (11, 12)]
-    ds = correlate_images(demo / "frame_0000.png", files, subset=31, step=16,
-                          roi=(16, 160, 16, 240), pixel_size_um=0.5,
-                          **{k: v for k, v in CORRELATION.items()})
+    ds = correlate_images(demo / "frame_0000.png", files, settings(), subset=31, step=16,
+                          roi=(16, 160, 16, 240), pixel_size_um=0.5)
     assert ds["u"].dims == ("image", "y", "x") and ds["u"].attrs["units"] == "um"
     assert ds["file"].values.tolist() == ["frame_0011.png", "frame_0012.png"]
     assert ds.attrs["roi_px"] == "16 160 16 240" and ds.attrs["pixel_size_um"] == 0.5
@@ -113,6 +122,6 @@ def test_a_16_bit_tiff_demo(tmp_path: Path) -> None:
     with tifffile.TiffFile(tmp_path / "frame_0002.tif") as tif:
         assert tif.pages[0].dtype == np.uint16
         assert tif.pages[0].description.startswith("RECONSTRUCTED")
-    ds = fields_from_images(tmp_path, [1, 2], subset=None, step=None, **CORRELATION)
+    ds = fields_from_images(tmp_path, [1, 2], settings(), subset=None, step=None)
     placed = ds["status"] != 6
     assert (ds["valid"] == placed).all() and int(placed.sum()) == 2 * 2 * 3 * 4

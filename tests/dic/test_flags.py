@@ -3,9 +3,11 @@ regions and settings are refused with one line naming what is wrong."""
 
 from __future__ import annotations
 
+from dataclasses import fields
+
 import numpy as np
 import pytest
-from speckle_cases import RECOMMENDED, images, settings
+from speckle_cases import images, settings
 
 from contactlab.dic.correlate import (
     OUTLIER,
@@ -45,8 +47,8 @@ def test_subsets_over_a_textureless_patch_are_rejected(noise: float, reasons: se
     image = flatten(image, PATCH, noise, 2)
     grid = subset_grid(SHAPE, [Region("all", 0, 240)], subset=21, step=10,
                        roi=(2, 238, 2, 158))
-    (result,) = correlate_sequence(reference, [("patch", image)], grid, settings(),
-                                   incremental=False)
+    (result,) = correlate_sequence(reference, [("patch", image)], grid,
+                                   settings(incremental=False))
     half = grid.half
     inside = ((grid.xc - half >= 80) & (grid.xc + half < 180) & (grid.yc - half >= 40)
               & (grid.yc + half < 120))
@@ -74,7 +76,7 @@ def test_a_region_without_texture_is_an_error_naming_frame_and_region(noise: flo
                        subset=21, step=10)
     with pytest.raises(ValueError, match=r"^frame_0001\.png: region 'specimen': all \d+ "
                                          r"subsets rejected \(") as error:
-        correlate_sequence(reference, frames, grid, settings(), incremental=True)
+        correlate_sequence(reference, frames, grid, settings(incremental=True))
     assert len(str(error.value).splitlines()) == 1
 
 
@@ -87,8 +89,8 @@ def test_subsets_that_cross_into_the_other_body_are_flagged_left_region() -> Non
     reference, (image,) = images(SHAPE, [field], speckle_size=4.0, noise=1.5, seed=73)
     grid = subset_grid(SHAPE, [Region("pad", 0, 128), Region("specimen", 128, 240)],
                        subset=32, step=32, roi=(0, 240, 8, 152))
-    (result,) = correlate_sequence(reference, [("closing", image)], grid, settings(),
-                                   incremental=False)
+    (result,) = correlate_sequence(reference, [("closing", image)], grid,
+                                   settings(incremental=False))
     at_interface = (grid.xc == 111.5) | (grid.xc == 143.5)  # columns 96-127 and 128-159
     assert at_interface.sum() == 8
     reasons = [STATUS_MEANINGS[s] for s in result.status[at_interface]]
@@ -121,10 +123,18 @@ def test_bad_regions_are_refused(regions: list[Region], kwargs: dict, words: str
     ({"prefilter_sigma": -1.0}, "prefilter_sigma"),
     ({"outlier_threshold": -1.0}, "outlier_threshold"),
     ({"outlier_epsilon": 0.0}, "outlier_epsilon"),
+    ({"incremental": "yes"}, "incremental must be true or false"),
+    ({"colour": "rgb"}, "colour must be one of"),
 ])
 def test_impossible_settings_are_refused(change: dict, words: str) -> None:
     with pytest.raises(ValueError, match=words):
-        Settings(**{**RECOMMENDED, **change})
+        settings(**change)
+
+
+def test_settings_of_a_mapping_name_what_is_missing() -> None:
+    with pytest.raises(ValueError, match="no value for zncc_min, colour"):
+        Settings.of({f.name: None for f in fields(Settings)
+                     if f.name not in ("zncc_min", "colour")})
 
 
 def test_an_image_of_another_size_is_refused_naming_it() -> None:
@@ -132,8 +142,8 @@ def test_an_image_of_another_size_is_refused_naming_it() -> None:
                                  seed=74)
     grid = subset_grid(SHAPE, [Region("all", 0, 240)], subset=21, step=20)
     with pytest.raises(ValueError, match=r"^frame 9: image has shape \(160, 239\)"):
-        correlate_sequence(reference, [("frame 9", image[:, :-1])], grid, settings(),
-                           incremental=True)
+        correlate_sequence(reference, [("frame 9", image[:, :-1])], grid,
+                           settings(incremental=True))
 
 
 def test_a_vector_far_from_its_neighbours_is_an_outlier_the_interface_jump_is_not() -> None:

@@ -58,7 +58,7 @@ def test_contact_displacement_of_two_bodies(tmp_path: Path, jump_u: float, jump_
         assert np.all(grid.xc[mine] - half >= region.x_min)  # footprint [xc - h, xc + h + 1)
         assert np.all(grid.xc[mine] + half + 1 <= region.x_max)
     results = correlate_sequence(reference, [("rest", deformed[0]), ("moved", deformed[1])],
-                                 grid, settings(), incremental=True)
+                                 grid, settings(incremental=True))
     assert all(r.valid.all() for r in results)
     ds = fields_dataset(grid, results, frames=[1, 2], pixel_size_um=PIXEL_UM,
                         geometry=geometry(), settings=settings(), title="SYNTHETIC test",
@@ -78,8 +78,8 @@ def test_fields_follow_the_stiffness_format(tmp_path: Path) -> None:
     field = two_body_field(1.0, 0.5)
     reference, deformed = images(SHAPE, [field], speckle_size=4.0, noise=1.0, seed=61)
     grid = subset_grid(SHAPE, [PAD, SPECIMEN], subset=31, step=16, roi=ROI)
-    results = correlate_sequence(reference, [("moved", deformed[0])], grid, settings(),
-                                 incremental=True)
+    results = correlate_sequence(reference, [("moved", deformed[0])], grid,
+                                 settings(incremental=True))
     ds = fields_dataset(grid, results, frames=[7], pixel_size_um=PIXEL_UM,
                         geometry=geometry(qt_positive=-1), settings=settings(),
                         title="SYNTHETIC test", source="SYNTHETIC", history="test")

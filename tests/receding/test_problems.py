@@ -12,7 +12,6 @@ import numpy as np
 import pytest
 import yaml
 
-from contactlab.schema import SCHEMA_PATH
 from contactlab.receding.core.interface import linear_interface, measured_interface
 from contactlab.receding.core.problem import (
     Continuation,
@@ -28,6 +27,7 @@ from contactlab.receding.problems import (
     registry,
     schema_enums,
 )
+from contactlab.schema import SCHEMA_PATH
 
 SECTIONS = Path(__file__).resolve().parents[2] / "src" / "contactlab" / "report" / "sections"
 

@@ -3,11 +3,12 @@
 An image is represented as ``g(x, y) = sum_kl c_kl b(x - l) b(y - k)`` with the centred
 B-spline ``b`` of order 3 or 5; the coefficients ``c`` come from the recursive prefilter
 (:func:`scipy.ndimage.spline_filter`, once per frame) so that ``g`` passes through the
-pixel values, and :func:`scipy.ndimage.map_coordinates` with ``prefilter=False`` evaluates
-it anywhere. The gradient of the same interpolant at the pixel centres is a separable
-filter of the coefficients: ``b'`` along one axis, ``b`` at the integers along the other
-(``b'(x) = b_{n-1}(x + 1/2) - b_{n-1}(x - 1/2)``). Boundaries: mirror (``mode='mirror'``
-in ``scipy.ndimage``), the same in all three steps.
+pixel values, and :func:`contactlab.dic.kernels.sample` evaluates it anywhere (as
+:func:`scipy.ndimage.map_coordinates` with ``prefilter=False`` does). The gradient of the
+same interpolant at the pixel centres is a separable filter of the coefficients: ``b'``
+along one axis, ``b`` at the integers along the other (``b'(x) = b_{n-1}(x + 1/2) -
+b_{n-1}(x - 1/2)``). Boundaries: mirror (``mode='mirror'`` in ``scipy.ndimage``), the same
+in all three steps.
 
 Higher orders lower the interpolation bias (the S-shaped error of the sub-pixel shift,
 Schreier, Braasch and Sutton, Opt. Eng. 39 (2000) 2915) at a higher cost per sample.
@@ -21,7 +22,7 @@ from math import comb, factorial
 import numpy as np
 from scipy import ndimage
 
-__all__ = ["ORDERS", "bspline", "coefficients", "gradients", "sample"]
+__all__ = ["ORDERS", "bspline", "coefficients", "gradients"]
 
 ORDERS = (3, 5)
 MODE = "mirror"
@@ -53,8 +54,8 @@ def _check(order: int) -> None:
 
 
 def coefficients(image: np.ndarray, order: int) -> np.ndarray:
-    """B-spline coefficients of ``image`` (float64), for :func:`sample` and
-    :func:`gradients`."""
+    """B-spline coefficients of ``image`` (float64), for :func:`gradients` and
+    :mod:`contactlab.dic.kernels`."""
     _check(order)
     return ndimage.spline_filter(np.asarray(image, dtype=float), order=order, mode=MODE)
 
@@ -69,13 +70,3 @@ def gradients(coeffs: np.ndarray, order: int) -> tuple[np.ndarray, np.ndarray]:
     gy = ndimage.correlate1d(along_cols, slope, axis=0, mode=MODE)
     return gx, gy
 
-
-def sample(coeffs: np.ndarray, points: np.ndarray, order: int) -> np.ndarray:
-    """The interpolant at ``points`` (2 x ..., rows ``y`` then ``x``; x along columns).
-
-    ``points`` is passed to :func:`scipy.ndimage.map_coordinates` as one contiguous array
-    (no copy); the result has the shape of ``points[0]``.
-    """
-    flat = points.reshape(2, -1)
-    out = ndimage.map_coordinates(coeffs, flat, order=order, prefilter=False, mode=MODE)
-    return out.reshape(points.shape[1:])

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from contactlab.cliutil import (
     check_memory,
@@ -23,7 +24,10 @@ from contactlab.cliutil import (
     published_dir_option,
     section_outputs,
 )
-from contactlab.command import Command, Group, Option
+from contactlab.command import Command, Group, Option, schema_default
+
+if TYPE_CHECKING:
+    from contactlab.dic.correlate import Settings
 
 NAME = "dic"
 DIC = "dic"
@@ -47,7 +51,9 @@ command's --help.
 
 
 def settings_options() -> tuple[Option, ...]:
-    """The correlation's parameters (config ``dic``), shared by ``correlate`` and ``fields``."""
+    """The correlation's parameters (config ``dic``), shared by ``correlate`` and ``fields``:
+    one option per field of :class:`contactlab.dic.correlate.Settings`, of the same name,
+    which ``Settings.of(vars(args))`` builds."""
     return (
         Option("--order", "B-spline order of the grey-level interpolation (3 cubic, 5 "
                "quintic)", int, choices=(3, 5), key=f"{DIC}.order"),
@@ -72,13 +78,15 @@ def settings_options() -> tuple[Option, ...]:
     )
 
 
-def _settings(args: argparse.Namespace) -> dict[str, object]:
-    return {"order": args.order, "max_iterations": args.max_iterations,
-            "tolerance": args.tolerance, "zncc_min": args.zncc_min,
-            "prefilter_sigma": args.prefilter_sigma,
-            "outlier_threshold": args.outlier_threshold,
-            "outlier_epsilon": args.outlier_epsilon, "incremental": args.incremental,
-            "colour": args.colour}
+
+
+def default_settings(**changes: object) -> Settings:
+    """The correlation's settings of a ``dic`` command given none of its options: the
+    config schema's ``dic`` defaults, with ``changes`` (for scripts and tests)."""
+    from contactlab.dic.correlate import Settings
+
+    defaults = {opt.dest: schema_default(str(opt.key)) for opt in settings_options()}
+    return Settings.of({**defaults, **changes})
 
 
 def _check_frames(args: argparse.Namespace) -> None:
@@ -99,24 +107,26 @@ def _check_frames(args: argparse.Namespace) -> None:
 
 def _correlate(args: argparse.Namespace) -> None:
     _check_frames(args)
+    from contactlab.dic.correlate import Settings
     from contactlab.dic.fields import correlate_images
     from contactlab.io import write_netcdf
 
-    ds = correlate_images(args.reference, args.images, subset=args.subset, step=args.step,
+    ds = correlate_images(args.reference, args.images, Settings.of(vars(args)),
+                          subset=args.subset, step=args.step,
                           roi=None if args.roi is None else tuple(args.roi),
-                          pixel_size_um=args.pixel_size_um, history=args.history,
-                          **_settings(args))
+                          pixel_size_um=args.pixel_size_um, history=args.history)
     write_netcdf(ds, args.out)
 
 
 def _fields(args: argparse.Namespace) -> None:
-    from contactlab.dic.demo import fields_from_images
+    from contactlab.dic.correlate import Settings
+    from contactlab.dic.fields import fields_from_images
     from contactlab.io import write_netcdf
     from contactlab.stiffness.readers import read_load_log
 
     frames = read_load_log(args.load_log)["frame"].tolist()
-    ds = fields_from_images(args.images, frames, subset=args.subset, step=args.step,
-                            test=args.test, history=args.history, **_settings(args))
+    ds = fields_from_images(args.images, frames, Settings.of(vars(args)), subset=args.subset,
+                            step=args.step, test=args.test, history=args.history)
     ds.attrs["load_log"] = str(args.load_log)
     write_netcdf(ds, args.out)
 

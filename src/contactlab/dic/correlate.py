@@ -33,16 +33,18 @@ converged when the increment moves its corners by less than ``tolerance`` (pixel
 Optionally both images are smoothed by a Gaussian of ``prefilter_sigma`` pixels first,
 which lowers the interpolation bias of fine speckle.
 
-All subsets of a frame are solved together as stacked arrays (subsets x pixels), in blocks
-of about two million pixels; converged subsets are frozen, the others iterate on.
+The reference is prepared once (its subsets' means, spreads and inverse Hessians); the
+iterations run subset by subset in a compiled loop (:mod:`contactlab.dic.kernels`, numba),
+each subset stopping when it converges; the FFT guesses are computed for blocks of subsets
+as stacked arrays.
 
 First guess: an integer shift per subset from the phase correlation (FFT) of the reference
 subset with the window of the deformed image at the prior guess, the prior being the
 previous frame's solution, extrapolated linearly from the two previous frames where the
 motion is steady (incremental), or, for the first frame and for subsets that fail from the
-previous solution (a jump between frames), the shift of the whole region from
-:func:`skimage.registration.phase_cross_correlation`. Where the integer shift agrees with
-the prior, the prior (sub-pixel, with its gradients) is kept.
+previous solution (a jump between frames), the shift of the whole region by the same
+phase correlation. Where the integer shift agrees with the prior, the prior (sub-pixel,
+with its gradients) is kept.
 
 Flags (``status``; ``valid`` is ``status == 0``): 1 ``textureless`` (the reference subset has
 no usable gradient), 2 ``left_image`` (a warped pixel centre left the image's area),
@@ -57,20 +59,22 @@ Why written here: the pip-installable DIC codes are global finite-element method
 (muDIC, pyxel), compiled GPL code (spam), or local codes that pull GUI toolkits and
 parallel runtimes (sun-dic, pyALDIC); none places subsets by region on the two sides of an
 interface, and each would bring those dependencies for what is here a few hundred lines of
-numpy (``docs/dic.md``). scikit-image's ``optical_flow_ilk`` is a dense Lucas-Kanade flow
-without subset shape functions, correlation coefficients or rejection. The engine uses
-scipy's B-splines and FFT and scikit-image's FFT registration.
+numpy and numba (``docs/dic.md``). scikit-image's ``optical_flow_ilk`` is a dense
+Lucas-Kanade flow without subset shape functions, correlation coefficients or rejection.
+The engine uses scipy's B-spline prefilter and FFT and numba for its inner loops.
 """
 
 from __future__ import annotations
 
 import itertools
-from collections.abc import Iterable
-from dataclasses import dataclass
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, fields
+from typing import Any
 
 import numpy as np
 
-from contactlab.dic import bspline
+from contactlab.dic import bspline, kernels
+from contactlab.dic.images import COLOUR_MODES
 from contactlab.dic.regions import SubsetGrid
 
 __all__ = [
@@ -99,10 +103,9 @@ REJECTED = tuple(k for k in range(len(STATUS_MEANINGS)) if k not in (VALID, NO_S
 #: fewest valid neighbours (of the eight) for the normalised median test of a vector
 MEDIAN_TEST_NEIGHBOURS = 3
 _RETRY = (LEFT_IMAGE, LEFT_REGION, NOT_CONVERGED, LOW_ZNCC)
-#: pixels (subsets x pixels per subset) solved together; bounds the memory (~10 arrays)
-BLOCK_PIXELS = 1 << 21
-#: the reference keeps its subsets' grey levels and gradients stacked up to this size (bytes)
-STACK_BYTES = 128 * 2**20
+#: pixels (subsets x pixels per subset) of the FFT guesses computed together: arrays that
+#: stay in the processor's cache
+BLOCK_PIXELS = 1 << 17
 #: reference subsets whose Hessian is this ill-conditioned have no usable texture
 MAX_CONDITION = 1e10
 #: a sequence extrapolates a subset's motion only if it changed less than this between the
@@ -123,6 +126,14 @@ class Settings:
     outlier_threshold : normalised median residual above which a valid vector is flagged
         ``outlier`` (:func:`flag_outliers`; 0: no test).
     outlier_epsilon : the test's allowance for the noise of the vectors, pixels.
+    incremental : in a sequence, each frame starts from the previous frames' solution
+        (:func:`next_guess`); else every frame from the regions' FFT shift.
+    colour : colour image files are refused (``"refuse"``) or converted to luminance
+        (``"luminance"``), :func:`contactlab.dic.images.read_image`.
+
+    The fields are the options of the ``dic`` commands and the keys of the config's ``dic``
+    section of the same names, whose defaults the schema holds; :meth:`of` takes them from
+    parsed options or a mapping.
     """
 
     order: int
@@ -132,6 +143,17 @@ class Settings:
     prefilter_sigma: float
     outlier_threshold: float
     outlier_epsilon: float
+    incremental: bool
+    colour: str
+
+    @classmethod
+    def of(cls, values: Mapping[str, Any]) -> Settings:
+        """The settings named in ``values`` (e.g. ``vars(args)`` of a ``dic`` command or a
+        config's ``dic`` section); other keys are ignored."""
+        missing = [f.name for f in fields(cls) if f.name not in values]
+        if missing:
+            raise ValueError(f"correlation settings: no value for {', '.join(missing)}")
+        return cls(**{f.name: values[f.name] for f in fields(cls)})
 
     def __post_init__(self) -> None:
         if self.order not in bspline.ORDERS:
@@ -152,19 +174,25 @@ class Settings:
         if not self.outlier_epsilon > 0:
             raise ValueError(f"outlier_epsilon must be > 0 pixels, got "
                              f"{self.outlier_epsilon}")
+        if not isinstance(self.incremental, bool | np.bool_):
+            raise ValueError(f"incremental must be true or false, got {self.incremental!r}")
+        if self.colour not in COLOUR_MODES:
+            raise ValueError(f"colour must be one of {COLOUR_MODES}, got {self.colour!r}")
 
-    def as_attrs(self) -> dict[str, float | int]:
+    def as_attrs(self) -> dict[str, float | int | str]:
+        """Every setting as a global attribute of a result (units in the names)."""
         return {"order": int(self.order), "max_iterations": int(self.max_iterations),
                 "tolerance_px": float(self.tolerance), "zncc_min": float(self.zncc_min),
                 "prefilter_sigma_px": float(self.prefilter_sigma),
                 "outlier_threshold": float(self.outlier_threshold),
-                "outlier_epsilon_px": float(self.outlier_epsilon)}
+                "outlier_epsilon_px": float(self.outlier_epsilon),
+                "incremental": int(self.incremental), "colour": str(self.colour)}
 
 
 @dataclass(frozen=True)
 class Frame:
     """An image ready for correlation: grey levels (float, prefiltered) and their
-    B-spline coefficients."""
+    B-spline coefficients with a mirrored border (:func:`kernels.bordered`)."""
 
     image: np.ndarray
     coeffs: np.ndarray
@@ -179,7 +207,7 @@ def prepare(image: np.ndarray, settings: Settings) -> Frame:
         raise ValueError(f"an image must be 2-D grey levels, got shape {grey.shape}")
     if settings.prefilter_sigma > 0:
         grey = ndimage.gaussian_filter(grey, settings.prefilter_sigma, mode=bspline.MODE)
-    return Frame(grey, bspline.coefficients(grey, settings.order))
+    return Frame(grey, kernels.bordered(bspline.coefficients(grey, settings.order)))
 
 
 @dataclass(frozen=True)
@@ -224,57 +252,26 @@ class Reference:
         self.settings = settings
         frame = prepare(image, settings)
         self.image = frame.image
-        self.gx, self.gy = bspline.gradients(frame.coeffs, settings.order)
+        interior = frame.coeffs[kernels.BORDER:-kernels.BORDER, kernels.BORDER:-kernels.BORDER]
+        self.gx, self.gy = bspline.gradients(interior, settings.order)
         cols = grid.shape[1]
-        self.dx, self.dy = grid.offsets()
-        self.moments = np.column_stack([np.ones_like(self.dx), self.dx, self.dy])
-        col0, row0 = grid.first_pixel()
+        self.xc, self.yc = grid.xc, grid.yc
+        self.col0, self.row0 = grid.first_pixel()
         s = grid.subset
         self.offsets = (np.arange(s)[:, None] * cols + np.arange(s)[None, :]).ravel()
-        self.base = row0 * cols + col0
+        self.base = self.row0 * cols + self.col0
         n = grid.size
         self.mean = np.empty(n)
         self.spread = np.empty(n)
-        self.hinv = np.empty((n, 6, 6))
-        self.textureless = np.zeros(n, dtype=bool)
-        quad = np.column_stack([np.ones_like(self.dx), self.dx, self.dy, self.dx**2,
-                                self.dx * self.dy, self.dy**2])
-        pair = np.array([[0, 1, 2], [1, 3, 4], [2, 4, 5]])  # (1, dx, dy) x (1, dx, dy)
-        for block in self.blocks(np.arange(n)):
-            idx = self.pixels(block)
-            f = self.image.ravel().take(idx)
-            self.mean[block] = f.mean(axis=1)
-            self.spread[block] = np.sqrt(((f - self.mean[block, None]) ** 2).sum(axis=1))
-            fx = self.gx.ravel().take(idx)
-            fy = self.gy.ravel().take(idx)
-            sxx, sxy, syy = ((a * b) @ quad for a, b in ((fx, fx), (fx, fy), (fy, fy)))
-            h = np.empty((len(block), 6, 6))
-            h[:, :3, :3] = sxx[:, pair]
-            h[:, :3, 3:] = sxy[:, pair]
-            h[:, 3:, :3] = sxy[:, pair]
-            h[:, 3:, 3:] = syy[:, pair]
-            with np.errstate(divide="ignore", invalid="ignore"):
-                condition = np.linalg.cond(h)
-            flat = ~(self.spread[block] > 0) | ~(condition < MAX_CONDITION)
-            h[flat] = np.eye(6)
-            self.hinv[block] = np.linalg.inv(h)
-            self.textureless[block] = flat
-        #: the subsets' grey levels and gradients stacked, if small enough to keep
-        self.stack: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
-        if 3 * n * grid.subset**2 * 8 <= STACK_BYTES:
-            idx = self.pixels(np.arange(n))
-            self.stack = (self.image.ravel().take(idx) - self.mean[:, None],
-                          self.gx.ravel().take(idx), self.gy.ravel().take(idx))
-
-    def subset_data(self, subsets: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """(f - f_m, df/dx, df/dy) at the pixels of ``subsets`` (subsets x pixels), new
-        arrays: from the stored stack if the reference keeps one, else from the images."""
-        if self.stack is not None:
-            return self.stack[0][subsets], self.stack[1][subsets], self.stack[2][subsets]
-        idx = self.pixels(subsets)
-        f = self.image.ravel().take(idx)
-        f -= self.mean[subsets, None]
-        return f, self.gx.ravel().take(idx), self.gy.ravel().take(idx)
+        h = np.empty((n, 6, 6))
+        kernels.reference_sums(self.image, self.gx, self.gy, self.col0, self.row0, s,
+                               self.mean, self.spread, h)
+        eigen = np.abs(np.linalg.eigvalsh(h))  # H is symmetric: its 2-norm condition
+        with np.errstate(divide="ignore", invalid="ignore"):
+            condition = eigen.max(axis=1) / eigen.min(axis=1)
+        self.textureless = ~(self.spread > 0) | ~(condition < MAX_CONDITION)
+        h[self.textureless] = np.eye(6)
+        self.hinv = np.linalg.inv(h)
 
     def blocks(self, subsets: np.ndarray) -> list[np.ndarray]:
         """``subsets`` split into blocks of about :data:`BLOCK_PIXELS` pixels."""
@@ -286,24 +283,6 @@ class Reference:
         return self.base[subsets, None] + self.offsets[None, :]
 
 
-def _compose(p: np.ndarray, dp: np.ndarray) -> np.ndarray:
-    """Parameters of ``W(p) o W(dp)^-1`` for affine warps (rows of 6 parameters)."""
-    a11, a12, a21, a22 = 1 + p[:, 1], p[:, 2], p[:, 4], 1 + p[:, 5]
-    b11, b12, b21, b22 = 1 + dp[:, 1], dp[:, 2], dp[:, 4], 1 + dp[:, 5]
-    det = b11 * b22 - b12 * b21
-    i11, i12, i21, i22 = b22 / det, -b12 / det, -b21 / det, b11 / det  # inverse of B
-    tx = -(i11 * dp[:, 0] + i12 * dp[:, 3])
-    ty = -(i21 * dp[:, 0] + i22 * dp[:, 3])
-    out = np.empty_like(p)
-    out[:, 1] = a11 * i11 + a12 * i21 - 1
-    out[:, 2] = a11 * i12 + a12 * i22
-    out[:, 4] = a21 * i11 + a22 * i21
-    out[:, 5] = a21 * i12 + a22 * i22 - 1
-    out[:, 0] = p[:, 0] + a11 * tx + a12 * ty
-    out[:, 3] = p[:, 3] + a21 * tx + a22 * ty
-    return out
-
-
 def _extent(p: np.ndarray, half: float) -> tuple[np.ndarray, np.ndarray]:
     """Half-widths in x and y of the warped subset's pixel centres."""
     return ((np.abs(1 + p[:, 1]) + np.abs(p[:, 2])) * half,
@@ -311,68 +290,45 @@ def _extent(p: np.ndarray, half: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _icgn(ref: Reference, frame: Frame, subsets: np.ndarray, p: np.ndarray) -> FrameResult:
-    """Solve ``subsets`` from the start parameters ``p``."""
+    """Solve ``subsets`` from the start parameters ``p`` (:func:`kernels.icgn`)."""
     settings = ref.settings
-    grid = ref.grid
-    rows, cols = grid.shape
-    half = grid.half
-    p = p.copy()
     n = len(subsets)
-    zncc = np.full(n, np.nan)
-    iterations = np.zeros(n, dtype=np.int32)
-    increment = np.full(n, np.nan)
-    status = np.full(n, VALID, dtype=np.int8)
-    status[ref.textureless[subsets]] = TEXTURELESS
-    active = np.flatnonzero(status == VALID)
-    xc, yc = grid.xc[subsets], grid.yc[subsets]
-    for _ in range(settings.max_iterations):
-        if not len(active):
-            break
-        pa = p[active]
-        cx, cy = xc[active] + pa[:, 0], yc[active] + pa[:, 3]
-        ex, ey = _extent(pa, half)
-        inside = ((cx - ex >= -0.5) & (cx + ex <= cols - 0.5) & (cy - ey >= -0.5)
-                  & (cy + ey <= rows - 0.5))
-        if not inside.all():
-            status[active[~inside]] = np.where(np.isfinite(cx[~inside] + cy[~inside]),
-                                               LEFT_IMAGE, NOT_CONVERGED)
-            active, pa, cx, cy = active[inside], pa[inside], cx[inside], cy[inside]
-            if not len(active):
-                break
-        sub = subsets[active]
-        points = np.empty((2, len(active), len(ref.dx)))
-        np.multiply(pa[:, 4, None], ref.dx, out=points[0])
-        points[0] += (1 + pa[:, 5, None]) * ref.dy
-        points[0] += cy[:, None]
-        np.multiply(1 + pa[:, 1, None], ref.dx, out=points[1])
-        points[1] += pa[:, 2, None] * ref.dy
-        points[1] += cx[:, None]
-        g = bspline.sample(frame.coeffs, points, settings.order)
-        g -= g.mean(axis=1)[:, None]
-        dg = np.sqrt(np.einsum("ij,ij->i", g, g))
-        f, fx, fy = ref.subset_data(sub)
-        df = ref.spread[sub]
-        flat = ~(dg > 0)
-        dg[flat] = 1.0
-        zncc[active] = np.einsum("ij,ij->i", f, g) / (df * dg)
-        g *= -(df / dg)[:, None]
-        g += f  # the residual e_i = (f_i - f_m) - (df / dg) (g_i - g_m)
-        b = np.concatenate([(fx * g) @ ref.moments, (fy * g) @ ref.moments], axis=1)
-        dp = -np.einsum("aij,aj->ai", ref.hinv[sub], b)
-        p[active] = _compose(pa, dp)
-        iterations[active] += 1
-        step = np.sqrt(dp[:, 0] ** 2 + dp[:, 3] ** 2
-                       + half**2 * (dp[:, 1] ** 2 + dp[:, 2] ** 2 + dp[:, 4] ** 2
-                                    + dp[:, 5] ** 2))
-        increment[active] = step
-        status[active[flat]] = LOW_ZNCC
-        lost = ~(step < grid.subset / 2)  # beyond any linearisation: a lost subset
-        status[active[lost & ~flat]] = NOT_CONVERGED
-        done = (step < settings.tolerance) | flat | lost
-        active = active[~done]
-    status[active] = NOT_CONVERGED
+    p = np.array(p, dtype=np.float64, order="C")
+    zncc = np.empty(n)
+    iterations = np.empty(n, dtype=np.int32)
+    increment = np.empty(n)
+    status = np.empty(n, dtype=np.int8)
+    kernels.icgn(frame.coeffs, settings.order, ref.image, ref.gx, ref.gy, ref.mean,
+                 ref.spread, ref.hinv, ref.textureless, ref.col0, ref.row0, ref.xc, ref.yc,
+                 ref.grid.subset, np.asarray(subsets, dtype=np.int64), p,
+                 int(settings.max_iterations), float(settings.tolerance), zncc, iterations,
+                 increment, status)
     status[(status == VALID) & ~(zncc >= settings.zncc_min)] = LOW_ZNCC
     return FrameResult(p, zncc, iterations, increment, status)
+
+
+def _phase_peaks(f: np.ndarray, g: np.ndarray, shape: tuple[int, int]
+                 ) -> tuple[np.ndarray, np.ndarray]:
+    """Integer shifts (rows, columns) of the windows ``g`` against ``f`` (stacks of 2-D
+    windows, both changed in place) at the peak of their phase correlation.
+
+    Each window less its mean is zero-padded to ``shape``; the peak of the inverse
+    transform of the normalised cross-power spectrum ``conj(F) G / |conj(F) G|`` is the
+    shift, wrapped into ``(-shape/2, shape/2]`` (Kuglin and Hines 1975).
+    """
+    from scipy import fft
+
+    f -= f.mean(axis=(-2, -1), keepdims=True)
+    g -= g.mean(axis=(-2, -1), keepdims=True)
+    cross = np.conj(fft.rfft2(f, s=shape)) * fft.rfft2(g, s=shape)
+    magnitude = np.abs(cross)
+    cross /= magnitude + 1e-12 * magnitude.max(axis=(-2, -1), keepdims=True) + 1e-300
+    surface = fft.irfft2(cross, s=shape)
+    peak = surface.reshape(*surface.shape[:-2], -1).argmax(axis=-1)
+    ky, kx = np.divmod(peak, shape[1])
+    ky = np.where(ky > shape[0] // 2, ky - shape[0], ky)
+    kx = np.where(kx > shape[1] // 2, kx - shape[1], kx)
+    return ky, kx
 
 
 def _integer_shift(ref: Reference, frame: Frame, subsets: np.ndarray, prior: np.ndarray
@@ -380,43 +336,30 @@ def _integer_shift(ref: Reference, frame: Frame, subsets: np.ndarray, prior: np.
     """Integer (u, v) of each subset by phase correlation around the prior shift (px).
 
     The reference subset is correlated with the window of the deformed image of the same
-    size displaced by the rounded prior; the peak of the inverse transform of the
-    normalised cross-power spectrum is the remaining integer shift (less than half a
-    subset). Both windows are zero-padded to a fast FFT length. Also returns which windows
-    the prior puts (partly) outside the image: those are moved inside and their shift is
-    not to be trusted.
+    size displaced by the rounded prior (:func:`_phase_peaks`, zero-padded to a fast FFT
+    length); the peak is the remaining integer shift (less than half a subset). Also
+    returns which windows the prior puts (partly) outside the image: those are moved
+    inside and their shift is not to be trusted.
     """
     from scipy import fft
 
-    grid = ref.grid
-    rows, cols = grid.shape
-    s = grid.subset
+    rows, cols = ref.grid.shape
+    s = ref.grid.subset
     n = fft.next_fast_len(s, real=True)
-    col0, row0 = grid.first_pixel()
-    col0, row0 = col0[subsets], row0[subsets]
+    col0, row0 = ref.col0[subsets], ref.row0[subsets]
     wx = col0 + np.rint(prior[:, 0]).astype(np.int64)
     wy = row0 + np.rint(prior[:, 1]).astype(np.int64)
     outside = (wx < 0) | (wx > cols - s) | (wy < 0) | (wy > rows - s)
     wx, wy = np.clip(wx, 0, cols - s), np.clip(wy, 0, rows - s)
     f = ref.image.ravel().take(ref.pixels(subsets)).reshape(-1, s, s)
     g = frame.image.ravel().take((wy * cols + wx)[:, None] + ref.offsets).reshape(-1, s, s)
-    f -= f.mean(axis=(1, 2), keepdims=True)
-    g -= g.mean(axis=(1, 2), keepdims=True)
-    cross = np.conj(fft.rfft2(f, s=(n, n))) * fft.rfft2(g, s=(n, n))
-    magnitude = np.abs(cross)
-    cross /= magnitude + 1e-12 * magnitude.max(axis=(1, 2), keepdims=True) + 1e-300
-    peak = fft.irfft2(cross, s=(n, n)).reshape(len(subsets), -1).argmax(axis=1)
-    ky, kx = np.divmod(peak, n)
-    ky = np.where(ky > n // 2, ky - n, ky)
-    kx = np.where(kx > n // 2, kx - n, kx)
+    ky, kx = _phase_peaks(f, g, (n, n))
     return np.column_stack([wx - col0 + kx, wy - row0 + ky]).astype(float), outside
 
 
 def coarse_guess(ref: Reference, frame: Frame) -> np.ndarray:
-    """Start parameters (subsets x 6): each region's integer rigid shift by phase
-    correlation of the whole region (:func:`skimage.registration.phase_cross_correlation`)."""
-    from skimage.registration import phase_cross_correlation
-
+    """Start parameters (subsets x 6): each region's integer rigid shift, the peak of the
+    phase correlation of the whole region (:func:`_phase_peaks`, circular: no padding)."""
     grid = ref.grid
     p = np.zeros((grid.size, 6))
     top = round(grid.y.min() - grid.half)
@@ -425,27 +368,24 @@ def coarse_guess(ref: Reference, frame: Frame) -> np.ndarray:
         mine = grid.region == r
         left = round(grid.xc[mine].min() - grid.half)
         right = round(grid.xc[mine].max() + grid.half) + 1
-        shift, _, _ = phase_cross_correlation(ref.image[top:bottom, left:right],
-                                              frame.image[top:bottom, left:right],
-                                              normalization="phase")
-        p[mine, 0] = -shift[1]
-        p[mine, 3] = -shift[0]
+        window = (slice(top, bottom), slice(left, right))
+        ky, kx = _phase_peaks(ref.image[window].copy(), frame.image[window].copy(),
+                              (bottom - top, right - left))
+        p[mine, 0] = kx
+        p[mine, 3] = ky
     return p
 
 
 def _solve(ref: Reference, frame: Frame, subsets: np.ndarray, guess: np.ndarray
            ) -> FrameResult:
-    """Integer FFT check of the guess, then IC-GN, block by block."""
-    result = FrameResult.empty(len(subsets))
+    """Integer FFT check of the guess (block by block), then IC-GN."""
+    start = np.array(guess, dtype=np.float64)
     for block in ref.blocks(np.arange(len(subsets))):
-        sub = subsets[block]
-        start = guess[block].copy()
-        shift, outside = _integer_shift(ref, frame, sub, start[:, [0, 3]])
-        jumped = np.any(shift != np.rint(start[:, [0, 3]]), axis=1) & ~outside
-        start[jumped, 0] = shift[jumped, 0]
-        start[jumped, 3] = shift[jumped, 1]
-        result.put(block, _icgn(ref, frame, sub, start))
-    return result
+        shift, outside = _integer_shift(ref, frame, subsets[block], start[block][:, [0, 3]])
+        jumped = np.any(shift != np.rint(start[block][:, [0, 3]]), axis=1) & ~outside
+        start[block[jumped], 0] = shift[jumped, 0]
+        start[block[jumped], 3] = shift[jumped, 1]
+    return _icgn(ref, frame, subsets, start)
 
 
 def _check_regions(ref: Reference, result: FrameResult, label: str) -> None:
@@ -570,13 +510,12 @@ def next_guess(ref: Reference, previous: FrameResult,
 
 
 def correlate_sequence(reference: np.ndarray, images: Iterable[tuple[str, np.ndarray]],
-                       grid: SubsetGrid, settings: Settings, *, incremental: bool
-                       ) -> list[FrameResult]:
+                       grid: SubsetGrid, settings: Settings) -> list[FrameResult]:
     """Correlate each (label, image) of ``images`` with ``reference`` on ``grid``.
 
-    ``incremental``: each frame starts from the previous frame's solution (else every frame
-    starts from :func:`coarse_guess`). ``images`` may be any iterable (e.g. a generator that
-    reads one file at a time).
+    With ``settings.incremental`` each frame starts from the previous frames' solution
+    (:func:`next_guess`), else every frame from :func:`coarse_guess`. ``images`` may be any
+    iterable (e.g. a generator that reads one file at a time).
     """
     ref = Reference(reference, grid, settings)
     results: list[FrameResult] = []
@@ -586,7 +525,7 @@ def correlate_sequence(reference: np.ndarray, images: Iterable[tuple[str, np.nda
                              f"{grid.shape}")
         frame = prepare(image, settings)
         guess = None
-        if incremental and results:
+        if settings.incremental and results:
             guess = next_guess(ref, results[-1], results[-2] if len(results) > 1 else None)
         results.append(correlate_frame(ref, frame, guess, label=label))
     return results

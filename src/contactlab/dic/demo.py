@@ -25,38 +25,29 @@ levels, speckles of 4 px (:mod:`contactlab.dic.speckle`: exact pixel integrals).
 specimen ranges leave a band of two grid steps around the interface out, and a margin of
 16 px along the image's edges (more than the largest motion, so no subset leaves the image).
 
-:func:`fields_from_images` reads such a folder (or a real one with the same sidecar) and
-returns the DIC fields of the stiffness branch for the frames asked for.
+:func:`contactlab.dic.fields.fields_from_images` reads such a folder (or a real one with the
+same sidecar) and returns the DIC fields of the stiffness branch for the frames asked for.
 """
 
 from __future__ import annotations
 
 import json
-import logging
 import math
 from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
-import xarray as xr
 
 from contactlab.atomic import atomic_dir, atomic_path
-from contactlab.dic.correlate import Settings, correlate_sequence
-from contactlab.dic.fields import fields_dataset
-from contactlab.dic.images import ImageFolder
-from contactlab.dic.regions import subset_grid
-from contactlab.dic.sidecar import SIDECAR, read_sidecar, sidecar_dict
+from contactlab.dic.sidecar import SIDECAR, sidecar_dict
 from contactlab.dic.speckle import AffineField, Camera, TwoBlockField, speckle_pattern
 from contactlab.dic.speckle import blob_image as _blob_image
 from contactlab.io import write_text
 from contactlab.progress import track
 from contactlab.stiffness.readers import Geometry, geometry_of
 
-__all__ = ["RECONSTRUCTED", "demo_motion", "fields_from_images", "render_demo",
-           "write_image"]
-
-LOG = logging.getLogger(__name__)
+__all__ = ["RECONSTRUCTED", "demo_motion", "render_demo", "write_image"]
 
 RECONSTRUCTED = (
     "RECONSTRUCTED demo images: synthetic speckle frames rendered by contactlab from the "
@@ -237,83 +228,3 @@ def _render(out: Path, final: Path, *, test: str, seed: int, shape: tuple[int, i
     paths["truth"] = write_text(truth_header + motion.to_csv(
         index=False, lineterminator="\n", float_format="%.9g"), out / "truth.csv")
     return {key: final / path.name for key, path in paths.items()}
-
-
-def fields_from_images(folder: str | Path, frames: Sequence[int], *, subset: int | None,
-                       step: int | None, order: int, max_iterations: int, tolerance: float,
-                       zncc_min: float, prefilter_sigma: float, outlier_threshold: float,
-                       outlier_epsilon: float, incremental: bool,
-                       colour: str, test: str | None = None,
-                       history: str | None = None) -> xr.Dataset:
-    """DIC fields (stiffness format) of ``frames`` of an image folder with a sidecar.
-
-    Parameters
-    ----------
-    folder : directory with the frames and ``contactlab.json`` (:mod:`.sidecar`).
-    frames : frame ids to correlate (e.g. the load log's), in order.
-    subset, step : pixels, where the sidecar gives none: the sidecar's ``subset`` and
-        ``step`` win, as they belong to the images (an error if neither gives one).
-    order, max_iterations, tolerance, zncc_min, prefilter_sigma, outlier_threshold,
-    outlier_epsilon : see
-        :class:`contactlab.dic.correlate.Settings`.
-    incremental : each frame starts from the previous frame's solution.
-    colour : ``"refuse"`` or ``"luminance"`` for colour files.
-    test : the test id the fields belong to (recorded as the attribute ``test``).
-    history : the command line the fields record (default: a description of the call).
-
-    Returns the Dataset of :func:`contactlab.dic.fields.fields_dataset` (u, v in um, dims
-    frame, y, x; geometry from the sidecar; quality variables). A demo folder's sidecar
-    names the thesis test it was rendered from: attribute ``demo_test``.
-    """
-    setup = read_sidecar(folder)
-    images = ImageFolder(setup.folder, reference=setup.reference, colour=colour)
-    frames = [int(f) for f in frames]
-    if not frames:
-        raise ValueError(f"{setup.folder}: no frames to correlate")
-    images.require(frames)
-    given = {"subset": subset, "step": step}
-    subset = setup.subset if setup.subset is not None else subset
-    step = setup.step if setup.step is not None else step
-    if subset is None or step is None:
-        raise ValueError(f"{setup.path}: no subset/step given and the sidecar has none "
-                         "(keys 'subset', 'step')")
-    for name, value in (("subset", subset), ("step", step)):
-        if given[name] is not None and given[name] != value:
-            LOG.info("%s: the sidecar's %s of %d px wins over the %d px given", setup.path,
-                     name, value, given[name])
-    settings = Settings(order=order, max_iterations=max_iterations, tolerance=tolerance,
-                        zncc_min=zncc_min, prefilter_sigma=prefilter_sigma,
-                        outlier_threshold=outlier_threshold, outlier_epsilon=outlier_epsilon)
-    try:
-        grid = subset_grid(setup.shape, list(setup.regions()), subset=subset, step=step,
-                           roi=setup.roi())
-    except ValueError as exc:
-        raise ValueError(f"{setup.path}: {exc}") from None
-    sequence = ((f"{images.path(f)} (frame {f})", images.read(f))
-                for f in track(frames, f"correlate {setup.folder}", unit="frames"))
-    results = correlate_sequence(images.read_reference(), sequence, grid, settings,
-                                 incremental=incremental)
-    label = f" ({setup.reconstructed.split(':')[0]})" if setup.reconstructed else ""
-    attrs: dict[str, object] = {"images": str(setup.folder), "reference": setup.reference,
-                                "sidecar": str(setup.path),
-                                "subset_from": "sidecar" if setup.subset is not None
-                                else "given", "step_from": "sidecar" if setup.step is not None
-                                else "given", "incremental": int(incremental),
-                                "colour": colour,
-                                "roi_px": " ".join(f"{v:g}" for v in setup.roi())}
-    if test is not None:
-        attrs["test"] = str(test)
-    if setup.reconstructed:
-        attrs["reconstructed"] = 1
-        attrs["comment_images"] = setup.reconstructed
-        if setup.test:
-            attrs["demo_test"] = setup.test
-    return fields_dataset(
-        grid, results, frames=frames, pixel_size_um=setup.pixel_size_um,
-        geometry=setup.geometry, settings=settings,
-        title=f"DIC displacement fields from images{label}",
-        source="contactlab.dic local subset correlation (ZNSSD, IC-GN) of the images in "
-               f"{setup.folder}" + (f"; {setup.reconstructed}" if setup.reconstructed
-                                    else ""),
-        history=history or f"contactlab.dic.demo.fields_from_images {setup.folder}",
-        attrs=attrs)

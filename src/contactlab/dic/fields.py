@@ -1,12 +1,14 @@
-"""Correlation results as datasets: the stiffness branch's fields format and a plain one.
+"""Images to displacement datasets: the stiffness branch's fields format and a plain one.
 
 :func:`fields_dataset` builds the DIC displacement fields that
 :func:`contactlab.stiffness.readers.read_fields_netcdf` reads (``docs/stiffness_formats.md``):
 dims ``frame, y, x``; ``x``, ``y`` in um from the image's left/top edge; ``u``, ``v`` in um
 (NaN where no valid vector: the interface band between the regions and every rejected
 subset); the geometry ``pad_x_min`` ... ``specimen_x_max`` on ``x`` and ``qt_positive`` on
-``y``. :func:`correlate_images` correlates a list of images with a reference (dims
-``image, y, x``, pixels or um). Both carry the quality of every vector (``zncc``,
+``y``; :func:`fields_from_images` correlates the frames of an image folder with its sidecar
+(``contactlab.json``: pixel size, reference, pad and specimen ranges) into them, the entry
+point of real camera frames. :func:`correlate_images` correlates a list of images with a
+reference (dims ``image, y, x``, pixels or um). Both carry the quality of every vector (``zncc``,
 ``iterations``, ``valid``, ``status``), the affine displacement gradients and every
 parameter of the correlation as attributes; ``increment`` (the last IC-GN step) shows how
 far each vector converged.
@@ -14,6 +16,7 @@ far each vector converged.
 
 from __future__ import annotations
 
+import logging
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -28,12 +31,16 @@ from contactlab.dic.correlate import (
     Settings,
     correlate_sequence,
 )
-from contactlab.dic.images import read_image
+from contactlab.dic.images import ImageFolder, read_image
 from contactlab.dic.regions import Region, SubsetGrid, subset_grid
+from contactlab.dic.sidecar import read_sidecar
 from contactlab.io import stamp
+from contactlab.progress import track
 from contactlab.stiffness.readers import Geometry
 
-__all__ = ["correlate_images", "fields_dataset", "grid_variables"]
+__all__ = ["correlate_images", "fields_dataset", "fields_from_images", "grid_variables"]
+
+LOG = logging.getLogger(__name__)
 
 _GRADIENTS = (("dudx", 1, "du/dx"), ("dudy", 2, "du/dy"), ("dvdx", 4, "dv/dx"),
               ("dvdy", 5, "dv/dy"))
@@ -142,11 +149,9 @@ def _parameters(grid: SubsetGrid, settings: Settings) -> dict[str, object]:
 
 
 def correlate_images(reference: str | Path | np.ndarray,
-                     images: Sequence[str | Path | np.ndarray], *, subset: int, step: int,
-                     order: int, max_iterations: int, tolerance: float, zncc_min: float,
-                     prefilter_sigma: float, outlier_threshold: float,
-                     outlier_epsilon: float, incremental: bool,
-                     colour: str, roi: tuple[float, float, float, float] | None = None,
+                     images: Sequence[str | Path | np.ndarray], settings: Settings, *,
+                     subset: int, step: int,
+                     roi: tuple[float, float, float, float] | None = None,
                      pixel_size_um: float | None = None,
                      history: str | None = None) -> xr.Dataset:
     """Correlate ``images`` with ``reference`` on a grid of subsets (single use).
@@ -154,16 +159,14 @@ def correlate_images(reference: str | Path | np.ndarray,
     Parameters
     ----------
     reference, images : file paths (8/16-bit grey TIFF or PNG) or 2-D arrays.
+    settings : the correlation's settings (:class:`contactlab.dic.correlate.Settings`;
+        ``settings.colour`` for colour files, :func:`read_image`; with
+        ``settings.incremental`` each image starts from the previous image's solution).
     subset, step : subset size and grid step, pixels.
-    order, max_iterations, tolerance, zncc_min, prefilter_sigma, outlier_threshold,
-    outlier_epsilon : see :class:`contactlab.dic.correlate.Settings`.
-    incremental : each image starts from the previous image's solution (a sequence);
-        otherwise every image starts from the FFT guess.
     roi : (x0, x1, y0, y1) in pixels from the image's left/top edge (columns
         ``x0 <= x < x1``); None: the whole image.
     pixel_size_um : if given, positions and displacements in um, else in pixels (units
         "1", the long names say pixels: UDUNITS has no pixel).
-    colour : ``"refuse"`` or ``"luminance"`` for colour files (:func:`read_image`).
     history : the command line the result records (default: a description of the call).
 
     Returns a Dataset with dims ``(image, y, x)``: ``u``, ``v``, the gradients, ``zncc``,
@@ -171,16 +174,13 @@ def correlate_images(reference: str | Path | np.ndarray,
     in ``file``. Raises ValueError naming the image for a size differing from the
     reference's and for an image whose subsets are all rejected.
     """
-    settings = Settings(order=order, max_iterations=max_iterations, tolerance=tolerance,
-                        zncc_min=zncc_min, prefilter_sigma=prefilter_sigma,
-                        outlier_threshold=outlier_threshold, outlier_epsilon=outlier_epsilon)
     if pixel_size_um is not None and not pixel_size_um > 0:
         raise ValueError(f"pixel size must be > 0 um, got {pixel_size_um}")
 
     def load(item: str | Path | np.ndarray) -> tuple[str, np.ndarray]:
         if isinstance(item, np.ndarray):
             return "array", item
-        return Path(item).name, read_image(item, colour=colour)
+        return Path(item).name, read_image(item, colour=settings.colour)
 
     ref_name, ref_image = load(reference)
     if ref_image.ndim != 2:
@@ -202,8 +202,7 @@ def correlate_images(reference: str | Path | np.ndarray,
                                  f"reference {ref_name} has {cols} x {rows}")
             yield label, image
 
-    results = correlate_sequence(ref_image, frames(), grid, settings,
-                                 incremental=incremental)
+    results = correlate_sequence(ref_image, frames(), grid, settings)
     scale, unit = (pixel_size_um, "um") if pixel_size_um else (1.0, "px")
     x, y, x_attrs, y_attrs = _positions(grid, scale, unit, " (subset centre)")
     ds = xr.Dataset(
@@ -215,8 +214,7 @@ def correlate_images(reference: str | Path | np.ndarray,
                 "y": ("y", y, y_attrs), "x": ("x", x, x_attrs)},
     )
     ds.attrs.update(_parameters(grid, settings), reference=ref_name,
-                    roi_px="none" if roi is None else " ".join(f"{v:g}" for v in roi),
-                    incremental=int(incremental), colour=colour)
+                    roi_px="none" if roi is None else " ".join(f"{v:g}" for v in roi))
     if pixel_size_um:
         ds.attrs["pixel_size_um"] = float(pixel_size_um)
     else:  # pixels are no UDUNITS unit: a count, "1", said in the long name
@@ -227,3 +225,77 @@ def correlate_images(reference: str | Path | np.ndarray,
                  source="contactlab.dic local subset correlation (ZNSSD, IC-GN)",
                  history=history
                  or f"contactlab.dic.fields.correlate_images reference={ref_name}")
+
+
+def fields_from_images(folder: str | Path, frames: Sequence[int], settings: Settings, *,
+                       subset: int | None, step: int | None, test: str | None = None,
+                       history: str | None = None) -> xr.Dataset:
+    """DIC fields (stiffness format) of ``frames`` of an image folder with a sidecar.
+
+    Parameters
+    ----------
+    folder : directory with the frames and ``contactlab.json`` (:mod:`.sidecar`).
+    frames : frame ids to correlate (e.g. the load log's), in order.
+    settings : the correlation's settings (:class:`contactlab.dic.correlate.Settings`).
+    subset, step : pixels, where the sidecar gives none: the sidecar's ``subset`` and
+        ``step`` win, as they belong to the images (an error if neither gives one).
+    test : the test id the fields belong to (recorded as the attribute ``test``).
+    history : the command line the fields record (default: a description of the call).
+        Where the sidecar's subset or step differs from the one given, the line says which
+        were used and where they came from.
+
+    Returns the Dataset of :func:`fields_dataset` (u, v in um, dims frame, y, x; geometry
+    from the sidecar; quality variables). A demo folder's sidecar names the thesis test it
+    was rendered from: attribute ``demo_test``.
+    """
+    setup = read_sidecar(folder)
+    images = ImageFolder(setup.folder, reference=setup.reference, colour=settings.colour)
+    frames = [int(f) for f in frames]
+    if not frames:
+        raise ValueError(f"{setup.folder}: no frames to correlate")
+    images.require(frames)
+    given = {"subset": subset, "step": step}
+    used = {"subset": setup.subset if setup.subset is not None else subset,
+            "step": setup.step if setup.step is not None else step}
+    if used["subset"] is None or used["step"] is None:
+        raise ValueError(f"{setup.path}: no subset/step given and the sidecar has none "
+                         "(keys 'subset', 'step')")
+    overridden = [name for name in used if used[name] != given[name]]
+    for name in overridden:
+        if given[name] is not None:
+            LOG.info("%s: the sidecar's %s of %d px wins over the %d px given", setup.path,
+                     name, used[name], given[name])
+    try:
+        grid = subset_grid(setup.shape, list(setup.regions()), subset=used["subset"],
+                           step=used["step"], roi=setup.roi())
+    except ValueError as exc:
+        raise ValueError(f"{setup.path}: {exc}") from None
+    sequence = ((f"{images.path(f)} (frame {f})", images.read(f))
+                for f in track(frames, f"correlate {setup.folder}", unit="frames"))
+    results = correlate_sequence(images.read_reference(), sequence, grid, settings)
+    label = f" ({setup.reconstructed.split(':')[0]})" if setup.reconstructed else ""
+    attrs: dict[str, object] = {"images": str(setup.folder), "reference": setup.reference,
+                                "sidecar": str(setup.path),
+                                "subset_from": "sidecar" if setup.subset is not None
+                                else "given", "step_from": "sidecar" if setup.step is not None
+                                else "given",
+                                "roi_px": " ".join(f"{v:g}" for v in setup.roi())}
+    if test is not None:
+        attrs["test"] = str(test)
+    if setup.reconstructed:
+        attrs["reconstructed"] = 1
+        attrs["comment_images"] = setup.reconstructed
+        if setup.test:
+            attrs["demo_test"] = setup.test
+    line = history or f"contactlab.dic.fields.fields_from_images {setup.folder}"
+    if overridden:
+        line += "  # " + " and ".join(f"{name} {used[name]} px" for name in overridden) + \
+            f" from the sidecar {setup.path}"
+    return fields_dataset(
+        grid, results, frames=frames, pixel_size_um=setup.pixel_size_um,
+        geometry=setup.geometry, settings=settings,
+        title=f"DIC displacement fields from images{label}",
+        source="contactlab.dic local subset correlation (ZNSSD, IC-GN) of the images in "
+               f"{setup.folder}" + (f"; {setup.reconstructed}" if setup.reconstructed
+                                    else ""),
+        history=line, attrs=attrs)
