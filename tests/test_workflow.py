@@ -73,7 +73,9 @@ BRANCHES = ("demo", "surfaces", "stiffness", "dic", "prediction", "asperity", "r
 @cache
 def _netcdf_and_layouts(results: Path) -> tuple[list[Path], list[Path]]:
     """The run's netCDF files and the first of each layout, found once per worker."""
-    netcdf = sorted(p for p in results.rglob("*.nc") if "studies" not in p.parts)
+    # the other studies' folders and the store of shared results (hard links) aside
+    netcdf = sorted(p for p in results.rglob("*.nc")
+                    if p.relative_to(results).parts[0] not in ("studies", "store"))
     return netcdf, one_per_layout(netcdf)
 
 
@@ -162,8 +164,9 @@ def check_every_file_is_declared(work: Path, snakemake) -> None:
     summary = snakemake(work, "--summary", "all")
     assert summary.returncode == 0, summary.stderr[-3000:]
     declared = {line.split("\t")[0] for line in summary.stdout.splitlines()[1:]}
+    # results/store/ holds the jobs' files again, by key (contactlab.studies.store)
     written = {p.relative_to(work).as_posix() for p in (work / "results").rglob("*")
-               if p.is_file()}
+               if p.is_file() and not p.relative_to(work).as_posix().startswith("results/store/")}
     # a folder a rule writes whole (directory(), e.g. the image demo) declares its files
     folders = tuple(f"{path}/" for path in declared if (work / path).is_dir())
     undeclared = {path for path in written - declared if not path.startswith(folders)}
