@@ -18,6 +18,7 @@ from __future__ import annotations
 import html
 import os
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -28,6 +29,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pandas as pd
 
+from contactlab.display import shown, with_units
 from contactlab.io import atomic_path, write_table, write_text
 from contactlab.report.declaration import Declaration, caption_file, load
 from contactlab.report.style import STYLE, rebase_links
@@ -68,13 +70,19 @@ class Section:
         self.blocks.append(f'<p class="note">{html.escape(text)}</p>')
 
     def table(
-        self, table: pd.DataFrame, caption: str, csv_path: str | os.PathLike[str], digits: int = 3
+        self, table: pd.DataFrame, caption: str, csv_path: str | os.PathLike[str],
+        digits: int = 4, units: Mapping[str, str] | None = None,
+        margins: Mapping[str, str] | None = None,
     ) -> None:
-        """Write ``table`` to CSV/Markdown and show it with a caption and a download link."""
-        write_table(table, csv_path, digits)
-        body = table.to_html(
-            index=False, float_format=lambda v: f"{v:.{digits}f}", na_rep="–", border=0
-        )
+        """Write ``table`` to CSV/Markdown and show it with a caption and a download link:
+        each column of numbers headed with its unit (``units``, else
+        ``table.attrs["units"]``), each number with the digits its margin justifies
+        (:mod:`contactlab.display`; ``margins`` names margin columns the ``_moe`` suffix does
+        not, ``digits`` the significant digits of the others)."""
+        write_table(table, csv_path, digits, units=units, margins=margins)
+        text = shown(table, digits, margins)
+        text.columns = with_units(table, units).columns
+        body = text.to_html(index=False, border=0)
         link = self._relative(csv_path)
         self.blocks.append(
             f"<figure class='table' id='tab-{Path(csv_path).stem}'>"
@@ -221,18 +229,21 @@ class ReportSection:
         path, caption = self._file("figure", stem, values)
         self.page.image(path, caption)
 
-    def table(self, table: pd.DataFrame, stem: str, /, digits: int = 3, **values: Any) -> None:
+    def table(self, table: pd.DataFrame, stem: str, /, digits: int = 4,
+              units: Mapping[str, str] | None = None,
+              margins: Mapping[str, str] | None = None, **values: Any) -> None:
         """Write ``table`` as the declared table ``stem`` (CSV, Markdown) and show it with
-        its caption."""
+        its caption (units and digits: :meth:`Section.table`)."""
         path, caption = self._file("table", stem, values)
-        self.page.table(table, caption, path, digits)
+        self.page.table(table, caption, path, digits, units, margins)
 
-    def table_file(self, table: pd.DataFrame, stem: str, /, digits: int = 3,
-                   **values: Any) -> None:
+    def table_file(self, table: pd.DataFrame, stem: str, /, digits: int = 4,
+                   units: Mapping[str, str] | None = None,
+                   margins: Mapping[str, str] | None = None, **values: Any) -> None:
         """Write ``table`` as the declared table ``stem`` (CSV, Markdown) without showing
         it on the page; its caption goes to Snakemake's report only."""
         path, _ = self._file("table", stem, values)
-        write_table(table, path, digits)
+        write_table(table, path, digits, units=units, margins=margins)
 
     def caption_text(self, caption: str) -> str:
         """The caption file of a figure or table: its caption, the section it belongs to

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from contactlab.io import read_table
 from contactlab.published import PUBLISHED_DIR, read_published
 
 __all__ = [
@@ -177,8 +178,8 @@ def read_recomputed(table: str, tables_dir: Path) -> pd.DataFrame | None:
     path = tables_dir / f"table_{table}.csv"
     if not path.is_file():
         return None
-    return pd.read_csv(path, dtype={"test": str, "steps_used": str}, keep_default_na=False,
-                       na_values=[""])
+    return read_table(path, dtype={"test": str, "steps_used": str}, keep_default_na=False,
+                      na_values=[""])
 
 
 #: Summary values the thesis prints with a 95% margin: table -> (row key, quantities).

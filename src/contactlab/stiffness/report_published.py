@@ -17,6 +17,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from contactlab.io import read_table
 from contactlab.published import read_published
 from contactlab.report.section import ReportSection
 from contactlab.stiffness.compare import COMPARED_TABLES, THESIS_DISCREPANCIES, comparison
@@ -31,7 +32,7 @@ def _ours(tables_dir: Path, table: str) -> pd.DataFrame:
     path = Path(tables_dir) / f"table_{table}{SUFFIX}.csv"
     if not path.is_file():
         raise FileNotFoundError(f"{path}: recomputed table not found")
-    return pd.read_csv(path, dtype={"test": str, "steps_used": str})
+    return read_table(path, dtype={"test": str, "steps_used": str})
 
 
 def _legend(ax: plt.Axes) -> None:
