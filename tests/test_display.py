@@ -93,3 +93,11 @@ def test_units_of_a_dataset() -> None:
                     coords={"test": ("test", ["RU1"]), "x": ("x", [0.0], {"units": "1"})})
     assert units_of(ds) == {"Kn_An": "kN/mm3", "x": "1"}
     assert units_of(ds, ["Kn_An", "missing"]) == {"Kn_An": "kN/mm3"}
+
+
+def test_figure_labels_write_powers_with_a_caret() -> None:
+    from contactlab.display import axis_label, unit_text
+
+    assert unit_text("kN/mm3") == "kN/mm^3" and unit_text("1/um") == "1/um"
+    assert axis_label("Kn/An", "kN/mm3") == "Kn/An (kN/mm^3)"
+    assert axis_label("f", "1") == "f" and axis_label("a/c", None) == "a/c"

@@ -64,10 +64,15 @@ def units_of(ds: xr.Dataset | xr.DataArray, names: Any = None) -> dict[str, str]
             if "units" in variables[n].attrs}
 
 
+def unit_text(unit: str) -> str:
+    """A unit as a figure shows it: powers with a caret (``kN/mm3`` -> ``kN/mm^3``)."""
+    return re.sub(r"(?<=[A-Za-z])(-?\d+)", r"^\1", unit)
+
+
 def axis_label(name: str, unit: str | None) -> str:
-    """A figure's axis label: ``name (unit)``; a dimensionless or unitless quantity is its
-    name alone."""
-    return f"{name} ({unit})" if unit and unit != ONE else name
+    """A figure's axis label: ``name (unit)`` (:func:`unit_text`); a dimensionless or
+    unitless quantity is its name alone."""
+    return f"{name} ({unit_text(unit)})" if unit and unit != ONE else name
 
 
 def _finite(value: Any) -> float | None:

@@ -116,10 +116,14 @@ def _report_published(args: argparse.Namespace) -> None:
 
 
 def _figures(args: argparse.Namespace) -> None:
+    import xarray as xr
+
     from contactlab.stiffness.report_raw import test_figures
 
+    with xr.open_dataset(args.summary) as opened:
+        summary = opened.load()
     for result in args.results:
-        test_figures(result, args.out_dir, args.published_dir)
+        test_figures(result, summary, args.out_dir, args.published_dir)
 
 
 def kt0_threshold_option(section: str) -> Option:
@@ -209,7 +213,10 @@ COMMANDS = (
         NAME, "figures", "figures of one or more per-test results",
         description="Figures like Figs 2.8-2.17 (normal and tangential fits, per-step "
                     "stiffness, mean-row Kt0) of per-test results, published values overlaid.",
-        options=(results_option(), published_dir_option(),
+        options=(results_option(),
+                 Option("--summary", "results/stiffness/summary.nc (the per-step f, beta_t, "
+                        "Kt0 with their margins)", input_file),
+                 published_dir_option(),
                  Option("--out-dir", "directory for the PNG/PDF figures", Path,
                         default=Path("results/report/figures"))),
         run=_figures),

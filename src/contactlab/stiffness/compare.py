@@ -18,6 +18,7 @@ import pandas as pd
 
 from contactlab.io import read_table
 from contactlab.published import PUBLISHED_DIR, read_published
+from contactlab.stiffness.errors import stiffness_at
 
 __all__ = [
     "COMPARED_TABLES",
@@ -182,6 +183,19 @@ def read_recomputed(table: str, tables_dir: Path) -> pd.DataFrame | None:
                       na_values=[""])
 
 
+#: kN/(um mm^2) in kN/mm^3: a stiffness (kN/um) per nominal area (mm^2).
+PER_UM_MM2 = 1000.0
+
+
+def published_stiffness_An(beta: float, offset: float, load_kN: np.ndarray,
+                           area_mm2: float) -> np.ndarray:
+    """The stiffness per nominal area (kN/mm^3) of a published fit on the loads
+    ``load_kN`` (the load grid of our result): eq. (2.4) with beta_n and P0 of Tables
+    2.1/2.7, or eq. (2.5) with beta_t and Qs of Appendix A (:func:`.errors.stiffness_at`),
+    over the nominal area An (mm^2)."""
+    return stiffness_at(beta, offset, load_kN) * PER_UM_MM2 / area_mm2
+
+
 #: Summary values the thesis prints with a 95% margin: table -> (row key, quantities).
 MARGIN_CHECKS: dict[str, tuple[str, tuple[str, ...]]] = {
     "2.1": ("direction", ("Kn_An", "beta_n")), "2.7": ("direction", ("Kn_An", "beta_n")),
@@ -214,6 +228,22 @@ def summary_within_margins(ours: dict[str, pd.DataFrame],
                 "within": (rows[f"{q}_ours"] - rows[q]).abs() <= rows[f"{q}_moe"]}))
     columns = ["table", "test", "key", "quantity", "published", "moe", "ours", "within"]
     return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=columns)
+
+
+def within_by_quantity(cells: pd.DataFrame) -> pd.DataFrame:
+    """Of :func:`summary_within_margins`: per quantity, the values within the published
+    margins and the values compared."""
+    if not len(cells):
+        return pd.DataFrame(columns=["quantity", "within", "cells"])
+    grouped = cells.groupby("quantity", sort=False)["within"]
+    return pd.DataFrame({"within": grouped.sum().astype(int),
+                         "cells": grouped.count()}).reset_index()
+
+
+def within_totals(cells: pd.DataFrame) -> dict[str, int]:
+    """Of :func:`summary_within_margins`: the values within the published margins
+    (``within``) and the values compared (``cells``)."""
+    return {"within": int(cells["within"].sum()) if len(cells) else 0, "cells": len(cells)}
 
 
 def raw_vs_published(tables_dir: Path, published_dir: Path | None = None) -> pd.DataFrame:

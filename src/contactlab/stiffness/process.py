@@ -21,7 +21,7 @@ from contactlab.io import stamp
 from contactlab.progress import track
 from contactlab.stiffness.aggregate import mean_row_statistics
 from contactlab.stiffness.displacement import contact_displacement, contact_displacement_rows
-from contactlab.stiffness.errors import ErrorModel, add_margins, kn_margin
+from contactlab.stiffness.errors import ErrorModel, add_margins, kn_margin, stiffness_at
 from contactlab.stiffness.fit import PARAMETERS, fit_step, model, varpro_fit
 from contactlab.stiffness.readers import (
     check_fields_match_log,
@@ -167,7 +167,7 @@ def fit_load_step(kind: str, x: np.ndarray, y: np.ndarray, *, label: str, p_max:
         if kind == "normal":
             k, k_moe = kn_margin(beta, moe[1], c, moe[2], load, error_model)
         else:
-            k = beta * (load - c)
+            k = stiffness_at(beta, c, load)
             d_load = add_margins(error_model.qs_rel_extra * np.abs(load), moe[2])
             k_moe = np.abs(k) * np.hypot(moe[1] / abs(beta), d_load / np.abs(load - c))
         curves["stiffness_An"] = k * _PER_UM / area

@@ -25,7 +25,7 @@ from contactlab.published import GROUP_TABLES, TANGENTIAL_TABLES, user_step_tabl
 from contactlab.stiffness.errors import ErrorModel
 from contactlab.stiffness.process import step_tables
 from contactlab.stiffness.summary import published_inputs, read_seq, summary_dataset
-from contactlab.stiffness.tables import build_tables, write_tables
+from contactlab.stiffness.tables import build_tables, units, write_tables
 from contactlab.testsheet import read_test_sheet
 
 __all__ = ["raw_tables", "summarize_raw", "table_files", "tests_of"]
@@ -134,7 +134,8 @@ def summarize_raw(results: list[Path], tests_path: Path, out: Path, *,
     for stem, table in files.items():
         if stem.startswith("table_A.") or stem.startswith("table_fit_") or stem.startswith(
                 "table_mean_row_"):
-            write_table(table, Path(tables_dir) / f"{stem}.csv")
+            write_table(table, Path(tables_dir) / f"{stem}.csv", digits=3,
+                        units=units(table.columns))
     ds = summary_dataset(tables, tests_of(datasets, sheet), tables["mean_row"])
     steps = tables["steps"]
     test_ids = [str(t) for t in ds["test"].values]

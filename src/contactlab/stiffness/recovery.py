@@ -58,3 +58,24 @@ def recovery_table(results: list[Path], published_dir: Path | None = None) -> pd
                 row["within_margins"] = inside
                 rows.append(row)
     return pd.DataFrame(rows)
+
+
+def recovery_by_test(recovery: pd.DataFrame) -> pd.DataFrame:
+    """Per test of a :func:`recovery_table`: the steps compared, those whose fitted
+    parameters all lie within the published margins, and their fraction."""
+    columns = ["test", "fraction_within", "steps_within", "steps"]
+    if not len(recovery):
+        return pd.DataFrame(columns=columns)
+    grouped = recovery.groupby("test", sort=False)["within_margins"]
+    out = pd.DataFrame({"steps_within": grouped.sum().astype(int),
+                        "steps": grouped.count()}).reset_index()
+    out["fraction_within"] = out["steps_within"] / out["steps"]
+    return out[columns]
+
+
+def recovery_totals(recovery: pd.DataFrame) -> dict[str, float]:
+    """Of a :func:`recovery_table`: the steps within the published margins (``within``), the
+    steps compared (``steps``) and the fraction (``fraction``, NaN without steps)."""
+    within, steps = int(recovery["within_margins"].sum()) if len(recovery) else 0, len(recovery)
+    return {"within": within, "steps": steps,
+            "fraction": within / steps if steps else float("nan")}

@@ -9,8 +9,9 @@ into one dataset with coordinates
 
 and variables Kn_An, Kt0_An, beta_n, beta_t, f, Cc with their 95% margins ``*_moe``
 (sec. 2.5, covariance neglected as in the thesis) and ``*_moe_cov`` (fit covariance kept; NaN
-without it), beta_n_Seq, Seq, per-step Kt0_An_step/f_step/beta_t_step with margins and the
-``step_used`` flag, and the mean-row statistics of sec. 2.5.4 when given.
+without it), beta_n_Seq, Seq, the normal pressure Pn_An, per-step
+Kt0_An_step/f_step/beta_t_step with margins and the ``step_used`` flag, and the mean-row
+statistics of sec. 2.5.4 when given.
 """
 
 from __future__ import annotations
@@ -147,6 +148,11 @@ def summary_dataset(tables: Mapping[str, pd.DataFrame], tests: pd.DataFrame,
                                                 "units": "1"})):
             if col in seq.columns:
                 ds[col] = ("test", _grid(seq, ("test",), (test_ids,), col), attrs)
+    ds["Pn_An"] = ("test", _grid(normal.drop_duplicates("test"), ("test",), (test_ids,),
+                                 "Pn_An"),
+                   {"long_name": "normal pressure -Pn/An of the tangential steps (the test's "
+                                 "maximum normal load over its nominal area)",
+                    "units": "kN/mm2"})
     sheet = tests.reindex(test_ids)
     ds["max_normal_load_kN"] = ("test", sheet["max_normal_load_kN"].to_numpy(dtype=float),
                                 {"long_name": "normal load -Pn of the tangential steps",

@@ -22,7 +22,7 @@ Ground tests (test-sheet ``group`` "ground") go to 2.1-2.4, structured ones to 2
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from pathlib import Path
 
 import pandas as pd
@@ -32,7 +32,8 @@ from contactlab.published import GROUP_TABLES
 from contactlab.stiffness import aggregate
 from contactlab.stiffness.errors import ErrorModel
 
-__all__ = ["TABLE_COLUMNS", "build_tables", "split_by_group", "write_tables"]
+__all__ = ["TABLE_COLUMNS", "UNITS", "build_tables", "split_by_group", "units",
+           "write_tables"]
 
 _NORMAL = ["test", "direction", "gof", "Pn_An", "Kn_An", "Kn_An_moe", "beta_n", "beta_n_moe",
            "alpha_n", "alpha_n_moe", "P0", "P0_moe", "Kn_An_moe_cov"]
@@ -53,14 +54,22 @@ TABLE_COLUMNS: dict[str, list[str]] = {
     "2.9": _with_wavelength(_CC),
 }
 
-_TABLE_UNITS: dict[str, str] = {
+#: Units of the tables' columns of numbers (by name); every other number is dimensionless.
+UNITS: dict[str, str] = {
     "Pn_An": "kN/mm2", "Kn_An": "kN/mm3", "Kn_An_moe": "kN/mm3", "Kn_An_moe_cov": "kN/mm3",
     "Kt0_An": "kN/mm3", "Kt0_An_moe": "kN/mm3", "Kt0_An_moe_cov": "kN/mm3",
     "beta_n": "1/um", "beta_n_moe": "1/um", "beta_t": "1/um", "beta_t_moe": "1/um",
     "alpha_n": "kN", "alpha_n_moe": "kN", "P0": "kN", "P0_moe": "kN", "Seq": "um",
-    "Seq_scan": "um",
+    "Seq_scan": "um", "alpha_t": "kN", "alpha_t_moe": "kN", "Qs": "kN", "Qs_moe": "kN",
+    "Kt0_An_mean_row": "kN/mm3", "Kt0_An_mean_row_moe": "kN/mm3",
+    "Kt0_An_row_max": "kN/mm3", "Kt0_An_row_min": "kN/mm3",
     "texture_wavelength": "um",
 }
+
+
+def units(columns: Iterable[str]) -> dict[str, str]:
+    """The unit of each column of a stiffness table (:data:`UNITS`, else dimensionless)."""
+    return {c: UNITS.get(c, "1") for c in columns}
 
 
 def build_tables(steps: pd.DataFrame, normal: pd.DataFrame, tests: pd.DataFrame,
@@ -109,7 +118,7 @@ def split_by_group(tables: Mapping[str, pd.DataFrame], tests: pd.DataFrame,
             if "texture_wavelength" in TABLE_COLUMNS[number]:
                 part["texture_wavelength"] = part["test"].map(wavelength).astype(float)
             part = part.reindex(columns=TABLE_COLUMNS[number]).reset_index(drop=True)
-            part.attrs["units"] = {c: _TABLE_UNITS.get(c, "1") for c in part.columns}
+            part.attrs["units"] = units(part.columns)
             out[number] = part
     return out
 
