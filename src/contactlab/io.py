@@ -134,6 +134,14 @@ def stamp(ds: xr.Dataset, *, title: str, source: str, history: str,
     return ds
 
 
+def variable(dims: str | Sequence[str], data: object, long_name: str, units: str = "1",
+             **attrs: object) -> xr.Variable:
+    """A CF-style variable of a result: ``data`` along ``dims`` with its ``long_name`` and
+    ``units`` (``"1"`` when dimensionless, as CF writes it) and any further attributes
+    (``flag_values``, ``confidence`` ...). The data are taken as given (no conversion)."""
+    return xr.Variable(dims, data, {"long_name": long_name, "units": units, **attrs})
+
+
 def check_cf(ds: xr.Dataset) -> None:
     """Raise ValueError if a data variable or coordinate lacks ``long_name``/``units``."""
     for name, var in {**ds.data_vars, **ds.coords}.items():
