@@ -101,3 +101,9 @@ def test_figure_labels_write_powers_with_a_caret() -> None:
     assert unit_text("kN/mm3") == "kN/mm^3" and unit_text("1/um") == "1/um"
     assert axis_label("Kn/An", "kN/mm3") == "Kn/An (kN/mm^3)"
     assert axis_label("f", "1") == "f" and axis_label("a/c", None) == "a/c"
+
+
+def test_a_unit_for_every_column_of_numbers() -> None:
+    table = pd.DataFrame({"problem": ["line"], "a": [0.5], "b": [1.2], "N": [64]})
+    table.attrs["units"] = {"N": "1"}
+    assert list(with_units(table, "1").columns) == ["problem", "a [1]", "b [1]", "N [1]"]

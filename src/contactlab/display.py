@@ -115,6 +115,7 @@ def significant(value: Any, digits: int = 4) -> str:
         return str(value)
     if number == 0:
         return "0"
+    digits = max(digits, 1)
     exponent = math.floor(math.log10(abs(number)))
     if exponent >= 6 or exponent < -4:
         mantissa = f"{number:.{digits - 1}e}"
@@ -181,11 +182,17 @@ def is_text(column: pd.Series) -> bool:
     return any(isinstance(value, str | bool) for value in column.dropna())
 
 
-def with_units(table: pd.DataFrame, units: Mapping[str, str] | None = None) -> pd.DataFrame:
+def with_units(table: pd.DataFrame, units: Mapping[str, str] | str | None = None
+               ) -> pd.DataFrame:
     """``table`` with each column of numbers headed :func:`header` (its unit from
-    ``units``, else from ``table.attrs["units"]``); columns of text and flags, and those
-    without a unit, keep their names."""
-    given = {**table.attrs.get("units", {}), **(units or {})}
+    ``units``, else from ``table.attrs["units"]``; a text ``units`` is the unit of every
+    column of numbers without one, ``"1"`` for a table of ratios); columns of text and
+    flags, and those without a unit, keep their names."""
+    given = dict(table.attrs.get("units", {}))
+    if isinstance(units, str):
+        given = {str(c): given.get(str(c), units) for c in table.columns}
+    else:
+        given.update(units or {})
     return table.rename(columns={
         c: c if is_text(table[c]) else header(str(c), given.get(str(c)))
         for c in table.columns})

@@ -208,7 +208,7 @@ def write_text(text: str, path: str | os.PathLike[str]) -> Path:
 
 
 def write_table(table: pd.DataFrame, csv_path: str | os.PathLike[str], digits: int = 4, *,
-                units: Mapping[str, str] | None = None,
+                units: Mapping[str, str] | str | None = None,
                 margins: Mapping[str, str] | None = None) -> None:
     """Write ``table`` as CSV at ``csv_path`` and as Markdown beside it (``.md``).
 

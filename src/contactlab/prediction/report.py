@@ -29,7 +29,7 @@ def comparison_table(summary: xr.Dataset) -> pd.DataFrame:
     rows = []
     for test in summary["test"].values:
         s = summary.sel(test=test)
-        base = {"test": str(test), "Str": float(s["Str_composite"]), "Seq_um": float(s["Seq"])}
+        base = {"test": str(test), "Str": float(s["Str_composite"]), "Seq": float(s["Seq"])}
         for v in summary["variant"].values:
             p = s.sel(variant=v)
             rows.append({**base, "model": f"predicted, {v}",
@@ -57,7 +57,14 @@ def comparison_table(summary: xr.Dataset) -> pd.DataFrame:
                          "f": float(m["measured_f"]), "Cc_consistent": np.nan,
                          "f_consistent": np.nan, "contact_fraction": np.nan,
                          "converged": True})
-    return pd.DataFrame(rows)
+    table = pd.DataFrame(rows)
+    table.attrs["units"] = {
+        "Str": "1", "Seq": summary["Seq"].attrs["units"],
+        **{c: summary[f"predicted_{c}"].attrs["units"] for c in (
+            "Kn_An", "beta_n", "beta_n_Seq", "Kt0_An_stuck", "Kt0_An_slip", "Cc_stuck",
+            "Cc_slip", "Cc_consistent", "f_consistent", "contact_fraction")},
+        "f": summary["f_used"].attrs["units"]}
+    return table
 
 
 def _stiffness_figure(predictions: list[xr.Dataset], summary: xr.Dataset) -> plt.Figure:

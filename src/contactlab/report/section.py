@@ -91,7 +91,7 @@ class Section:
 
     def table(
         self, table: pd.DataFrame, caption: str, csv_path: str | os.PathLike[str],
-        digits: int = 4, units: Mapping[str, str] | None = None,
+        digits: int = 4, units: Mapping[str, str] | str | None = None,
         margins: Mapping[str, str] | None = None,
     ) -> None:
         """Write ``table`` to CSV/Markdown and show it with a caption and a download link:
@@ -250,7 +250,7 @@ class ReportSection:
         self.page.image(path, caption)
 
     def table(self, table: pd.DataFrame, stem: str, /, digits: int = 4,
-              units: Mapping[str, str] | None = None,
+              units: Mapping[str, str] | str | None = None,
               margins: Mapping[str, str] | None = None, **values: Any) -> None:
         """Write ``table`` as the declared table ``stem`` (CSV, Markdown) and show it with
         its caption (units and digits: :meth:`Section.table`)."""
@@ -258,7 +258,7 @@ class ReportSection:
         self.page.table(table, caption, path, digits, units, margins)
 
     def table_file(self, table: pd.DataFrame, stem: str, /, digits: int = 4,
-                   units: Mapping[str, str] | None = None,
+                   units: Mapping[str, str] | str | None = None,
                    margins: Mapping[str, str] | None = None, **values: Any) -> None:
         """Write ``table`` as the declared table ``stem`` (CSV, Markdown) without showing
         it on the page; its caption goes to Snakemake's report only."""

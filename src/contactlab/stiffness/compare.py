@@ -19,6 +19,7 @@ import pandas as pd
 from contactlab.io import read_table
 from contactlab.published import PUBLISHED_DIR, read_published
 from contactlab.stiffness.errors import stiffness_at
+from contactlab.stiffness.tables import UNITS
 
 __all__ = [
     "COMPARED_TABLES",
@@ -224,9 +225,11 @@ def summary_within_margins(ours: dict[str, pd.DataFrame],
             rows = merged.dropna(subset=[q, f"{q}_moe"])
             parts.append(pd.DataFrame({
                 "table": table, "test": rows["test"], "key": rows[key], "quantity": q,
-                "published": rows[q], "moe": rows[f"{q}_moe"], "ours": rows[f"{q}_ours"],
+                "unit": UNITS.get(q, "1"), "published": rows[q], "moe": rows[f"{q}_moe"],
+                "ours": rows[f"{q}_ours"],
                 "within": (rows[f"{q}_ours"] - rows[q]).abs() <= rows[f"{q}_moe"]}))
-    columns = ["table", "test", "key", "quantity", "published", "moe", "ours", "within"]
+    columns = ["table", "test", "key", "quantity", "unit", "published", "moe", "ours",
+               "within"]
     return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=columns)
 
 
@@ -234,10 +237,13 @@ def within_by_quantity(cells: pd.DataFrame) -> pd.DataFrame:
     """Of :func:`summary_within_margins`: per quantity, the values within the published
     margins and the values compared."""
     if not len(cells):
-        return pd.DataFrame(columns=["quantity", "within", "cells"])
-    grouped = cells.groupby("quantity", sort=False)["within"]
-    return pd.DataFrame({"within": grouped.sum().astype(int),
-                         "cells": grouped.count()}).reset_index()
+        table = pd.DataFrame(columns=["quantity", "within", "cells"])
+    else:
+        grouped = cells.groupby("quantity", sort=False)["within"]
+        table = pd.DataFrame({"within": grouped.sum().astype(int),
+                              "cells": grouped.count()}).reset_index()
+    table.attrs["units"] = {"within": "1", "cells": "1"}
+    return table
 
 
 def within_totals(cells: pd.DataFrame) -> dict[str, int]:
@@ -293,9 +299,10 @@ def margins_with_covariance(tables_dir: Path) -> pd.DataFrame:
         part = ours.loc[:, ["test", key, col, f"{col}_moe", f"{col}_moe_cov"]].rename(
             columns={key: "row", col: "value", f"{col}_moe": "moe_neglected",
                      f"{col}_moe_cov": "moe_with_covariance"})
+        part.insert(0, "unit", UNITS.get(col, "1"))
         part.insert(0, "quantity", col)
         part.insert(0, "table", table)
         parts.append(part.dropna(subset=["value"]))
-    columns = ["table", "quantity", "test", "row", "value", "moe_neglected",
+    columns = ["table", "quantity", "unit", "test", "row", "value", "moe_neglected",
                "moe_with_covariance"]
     return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=columns)

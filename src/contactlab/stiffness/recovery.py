@@ -12,6 +12,8 @@ from pathlib import Path
 import pandas as pd
 import xarray as xr
 
+from contactlab.stiffness.tables import UNITS
+
 __all__ = ["recovery_table"]
 
 
@@ -57,7 +59,10 @@ def recovery_table(results: list[Path], published_dir: Path | None = None) -> pd
                     inside = inside and ok
                 row["within_margins"] = inside
                 rows.append(row)
-    return pd.DataFrame(rows)
+    table = pd.DataFrame(rows)
+    table.attrs["units"] = {c: UNITS.get(c.removesuffix("_published").removesuffix("_moe"),
+                                         "1") for c in table.columns}
+    return table
 
 
 def recovery_by_test(recovery: pd.DataFrame) -> pd.DataFrame:
@@ -65,12 +70,16 @@ def recovery_by_test(recovery: pd.DataFrame) -> pd.DataFrame:
     parameters all lie within the published margins, and their fraction."""
     columns = ["test", "fraction_within", "steps_within", "steps"]
     if not len(recovery):
-        return pd.DataFrame(columns=columns)
+        empty = pd.DataFrame(columns=columns)
+        empty.attrs["units"] = dict.fromkeys(columns[1:], "1")
+        return empty
     grouped = recovery.groupby("test", sort=False)["within_margins"]
     out = pd.DataFrame({"steps_within": grouped.sum().astype(int),
                         "steps": grouped.count()}).reset_index()
     out["fraction_within"] = out["steps_within"] / out["steps"]
-    return out[columns]
+    out = out[columns]
+    out.attrs["units"] = dict.fromkeys(columns[1:], "1")
+    return out
 
 
 def recovery_totals(recovery: pd.DataFrame) -> dict[str, float]:

@@ -186,7 +186,7 @@ def build_section(summary_path: Path, tables_dir: Path, report_dir: Path, out: P
                                                     .sum()),
                        "thesis discrepancy": int(cmp["status"].str.startswith("thesis").sum())})
         section.table(cmp, "compare_{table}_from_published_steps", digits=4, table=table)
-    section.table(pd.DataFrame(counts), "compare_counts_from_published_steps", digits=0)
+    section.table(pd.DataFrame(counts), "compare_counts_from_published_steps", units="1")
 
     ground = [t for t in ("RU1", "RU2", "RU3", "SU1", "SU2", "SU3") if t in ds["test"].values]
     structured = [t for t in ("S1", "S2", "S3") if t in ds["test"].values]
