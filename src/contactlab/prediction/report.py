@@ -180,6 +180,8 @@ def write_section(summary: xr.Dataset, predictions: list[xr.Dataset], report_dir
     section.paragraph("deviations", deviations=", ".join(deviations))
     section.table(validation_table(summary), "prediction_validation", digits=4,
                   cells=float(summary["validation_cells_per_radius"]))
+    if summary.attrs.get("tests_without_prediction"):
+        section.note("without_surfaces", tests=summary.attrs["tests_without_prediction"])
     table = comparison_table(summary)
     section.table(table, "prediction")
     flagged = [str(t) for t, ok in zip(table["test"], table["converged"], strict=True) if not ok]

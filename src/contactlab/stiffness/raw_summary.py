@@ -26,7 +26,7 @@ from contactlab.stiffness.errors import ErrorModel
 from contactlab.stiffness.process import step_tables
 from contactlab.stiffness.summary import published_inputs, read_seq, summary_dataset
 from contactlab.stiffness.tables import build_tables, units, write_tables
-from contactlab.testsheet import read_test_sheet
+from contactlab.testsheet import read_test_sheet, tests_without_surfaces
 
 __all__ = ["raw_tables", "summarize_raw", "table_files", "tests_of"]
 
@@ -80,7 +80,8 @@ def raw_tables(results: list[xr.Dataset], sheet: pd.DataFrame,
     normal.loc[~normal["converged"].astype(bool), ["alpha_n_moe", "beta_n_moe", "P0_moe"]] = \
         np.nan
     tables = build_tables(steps, normal, tests_of(results, sheet), seq, error_model,
-                          threshold=threshold, texture_wavelength=texture_wavelength)
+                          threshold=threshold, texture_wavelength=texture_wavelength,
+                          without_surfaces=tests_without_surfaces(sheet))
     tables["mean_row"] = parts["mean_row"]
     return tables
 

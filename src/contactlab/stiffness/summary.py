@@ -27,7 +27,7 @@ from contactlab.io import stamp, write_netcdf
 from contactlab.published import mean_row_stiffness, per_step_fits, read_published
 from contactlab.stiffness.errors import ErrorModel
 from contactlab.stiffness.tables import build_tables, write_tables
-from contactlab.testsheet import read_test_sheet
+from contactlab.testsheet import read_test_sheet, tests_without_surfaces
 
 __all__ = ["published_inputs", "summarize_published", "summary_dataset"]
 
@@ -209,6 +209,7 @@ def summarize_published(tests_path: str | Path, out: str | Path, *,
         raise ValueError(f"{tests_path}: no test id matches the published tables")
     seq = read_seq(seq_path) if seq_path is not None else None
     tables = build_tables(steps, normal, sheet, seq, model, threshold=threshold,
+                          without_surfaces=tests_without_surfaces(sheet),
                           texture_wavelength=inputs["texture_wavelength"]["texture_wavelength"])
     if tables_dir is not None:
         write_tables(tables, tables_dir, suffix=suffix)

@@ -22,7 +22,7 @@ Ground tests (test-sheet ``group`` "ground") go to 2.1-2.4, structured ones to 2
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping
+from collections.abc import Collection, Iterable, Mapping
 from pathlib import Path
 
 import pandas as pd
@@ -75,14 +75,15 @@ def units(columns: Iterable[str]) -> dict[str, str]:
 def build_tables(steps: pd.DataFrame, normal: pd.DataFrame, tests: pd.DataFrame,
                  seq: Mapping[str, float] | pd.Series | pd.DataFrame | None = None,
                  model: ErrorModel | None = None, *, threshold: float = 0.5,
-                 texture_wavelength: Mapping[str, float] | None = None
-                 ) -> dict[str, pd.DataFrame]:
+                 texture_wavelength: Mapping[str, float] | None = None,
+                 without_surfaces: Collection[str] = ()) -> dict[str, pd.DataFrame]:
     """All aggregated tables: keys ``steps`` (per-step quantities), ``normal``, ``means``,
     ``coupling``, ``seq`` (all tests) and the thesis numbers ``"2.1"`` ... ``"2.10"``.
 
     ``steps``/``normal``/``tests``/``seq`` follow the interface of
     :mod:`contactlab.stiffness.aggregate`; ``texture_wavelength`` (um per structured test)
-    fills the column of Tables 2.7-2.9 (NaN when not given).
+    fills the column of Tables 2.7-2.9 (NaN when not given); the tests of
+    ``without_surfaces`` have no Seq and are left out of Tables 2.3 and 2.10.
     """
     quantities = aggregate.step_quantities(steps, tests, model, threshold=threshold)
     kn = aggregate.normal_stiffness(normal, tests, model)
@@ -90,7 +91,7 @@ def build_tables(steps: pd.DataFrame, normal: pd.DataFrame, tests: pd.DataFrame,
     cc = aggregate.coupling(means, kn)
     if "Cc_moe_cov" not in cc.columns:
         cc["Cc_moe_cov"] = float("nan")
-    beta_seq = (aggregate.beta_n_seq(kn, seq) if seq is not None
+    beta_seq = (aggregate.beta_n_seq(kn, seq, without=without_surfaces) if seq is not None
                 else pd.DataFrame(columns=_SEQ))
     out = {"steps": quantities, "normal": kn, "means": means, "coupling": cc, "seq": beta_seq}
     out.update(split_by_group({"normal": kn, "means": means, "coupling": cc,

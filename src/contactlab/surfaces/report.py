@@ -113,6 +113,7 @@ def build_section(seq_path: Path, report_dir: Path, published_dir: Path | None,
     (``contactlab/report/sections/10_surfaces.yaml``)."""
     with xr.open_dataset(seq_path) as seq:
         table = seq_comparison(seq.load(), published_seq(published_dir))
+        without = seq.attrs.get("tests_without_surfaces", "")
     section = ReportSection("10_surfaces", report_dir)
     if texture_path is not None:
         with xr.open_dataset(texture_path) as texture:
@@ -150,6 +151,8 @@ def build_section(seq_path: Path, report_dir: Path, published_dir: Path | None,
             section.figure(_profiles_figure(datasets), "surfaces_profiles")
             section.figure(_spectra_figure(datasets), "surfaces_spectra")
     section.paragraph("seq")
+    if without:
+        section.note("without_surfaces", tests=without)
     section.table(table, "seq")
     fig, ax = plt.subplots(figsize=(6, 3.2))
     x = np.arange(len(table))
