@@ -160,16 +160,20 @@ def shown(table: pd.DataFrame, digits: int = 4,
              if f"{column}_moe" in table.columns}
     pairs.update(margins or {})
     out = pd.DataFrame(index=table.index)
+    for column, margin in pairs.items():  # a value and its margin to the same decimal
+        shown_pairs = [with_margin(v, m) for v, m in zip(table[column].tolist(),
+                                                          table[margin].tolist(), strict=True)]
+        out[column] = [v for v, _ in shown_pairs]
+        out[margin] = [m for _, m in shown_pairs]
     for column in table.columns:
+        if column in out.columns:
+            continue
         values = table[column].tolist()
-        if column in pairs:
-            spread = table[pairs[column]].tolist()
-            out[column] = [with_margin(v, m)[0] for v, m in zip(values, spread, strict=True)]
-        elif column in pairs.values() or margin_of(column, table.columns):
+        if margin_of(column, table.columns):
             out[column] = [significant(v, MARGIN_DIGITS) for v in values]
         else:
             out[column] = [significant(v, digits) for v in values]
-    return out
+    return out[list(table.columns)]
 
 
 def is_text(column: pd.Series) -> bool:

@@ -130,7 +130,6 @@ def findings(summary: xr.Dataset) -> dict[str, dict[str, Any]]:
     out["verdict"] = {"closest": closest, "ratio": ratio,
                       "explained": bool(abs(np.log(ratio)) < np.log(EXPLAINS)
                                         and closest != "stuck"),
-                      "lowering": [name for name, lowers in (
-                          ("plastic_cap", plastic_lowers),
-                          ("the_anisotropy", anisotropy_lowers)) if lowers]}
+                      "plastic_lowers": plastic_lowers,
+                      "anisotropy_lowers": bool(anisotropy_lowers)}
     return out

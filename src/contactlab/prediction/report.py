@@ -152,7 +152,9 @@ def paragraphs(section: ReportSection, summary: xr.Dataset) -> list[str]:
                                    "isotropic_agrees" if iso["agrees"]
                                    else "isotropic_differs")))
     verdict = found["verdict"]
-    lowering = [section.say(name) for name in verdict["lowering"]]
+    lowering = [section.say(name) for name, lowers in (
+        ("plastic_cap", verdict["plastic_lowers"]),
+        ("the_anisotropy", verdict["anisotropy_lowers"])) if lowers]
     text = (section.say("only_lowers", causes=" and ".join(lowering)) if lowering
             else section.say("neither_lowers"))
     out.append(section.say("verdict", verdict=text,

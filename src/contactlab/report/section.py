@@ -127,6 +127,14 @@ class Section:
             f"(<a href='{pdf}'>PDF</a>)</figcaption></figure>"
         )
 
+    def links(self, items: list[tuple[str, str]], cls: str = "links") -> None:
+        """Add a list of links: (text, target) pairs, each target a page of the report
+        relative to ``report_dir`` (``tests/RU1.html``, ``index.html#stiffness-tests``),
+        rebased with the page's other links."""
+        entries = "".join(f"<li><a href='{html.escape(target)}'>{html.escape(text)}</a></li>"
+                          for text, target in items)
+        self.blocks.append(f"<ul class='{html.escape(cls)}'>{entries}</ul>")
+
     def heading(self, text: str) -> None:
         """Start a sub-section (``<h3>``, listed in the page's contents)."""
         slug = re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-")
@@ -182,10 +190,14 @@ class ReportSection:
     (``<stem>.rst``: the caption, the section's title and its caveats).
     """
 
-    def __init__(self, name: str, report_dir: str | os.PathLike[str]) -> None:
+    def __init__(self, name: str, report_dir: str | os.PathLike[str], *,
+                 title: str | None = None, anchor: str | None = None) -> None:
+        """The section ``name``; ``title`` and ``anchor`` replace the declared ones for a
+        page of its own the section builds (one per test)."""
         self.declaration: Declaration = load(name)
         self.report_dir = Path(report_dir)
-        self.page = Section(self.declaration.title, self.declaration.anchor, self.report_dir)
+        self.page = Section(title or self.declaration.title, anchor or self.declaration.anchor,
+                            self.report_dir)
         self.captions: dict[Path, str] = {}
         self.caveats: list[str] = []
 
@@ -220,6 +232,10 @@ class ReportSection:
         """Start a sub-section headed by the declared text ``key``."""
         self.page.heading(self.say(key, **values))
 
+    def links(self, items: list[tuple[str, str]]) -> None:
+        """Add a list of links to pages of the report (:meth:`Section.links`)."""
+        self.page.links(items)
+
     def keys(self, prefix: str) -> list[str]:
         """The declared text keys ``<prefix><n>``, in the order declared."""
         return [key for key in self.declaration.text if key.startswith(prefix)
@@ -248,6 +264,13 @@ class ReportSection:
         """Show the declared figure ``stem``, already saved, with its caption."""
         path, caption = self._file("figure", stem, values)
         self.page.image(path, caption)
+
+    def image_of(self, section: str, stem: str, /, **values: Any) -> None:
+        """Show a figure another section declares and saves (``section``'s figure ``stem``
+        with its caption there), e.g. a test's fits on the test's own page."""
+        other = load(section)
+        self.page.image(other.file("figure", stem, self.report_dir, values),
+                        other.caption("figure", stem, values))
 
     def table(self, table: pd.DataFrame, stem: str, /, digits: int = 4,
               units: Mapping[str, str] | str | None = None,

@@ -1,6 +1,7 @@
 """``contactlab stiffness ...``: contact stiffness from raw data and from published steps.
 
-The raw-data commands (``demo``, ``process``, ``summarize``, ``figures``, ``report-raw``)
+The raw-data commands (``demo``, ``process``, ``summarize``, ``figures``, ``report-raw``,
+``report-tests``)
 and those on the published per-step values (``summarize-published``,
 ``report-published``). Options fed from the config (``stiffness.raw``,
 ``stiffness.errors``, ``stiffness.published_steps``) take the schema's defaults when not
@@ -85,6 +86,13 @@ def _report_raw(args: argparse.Namespace) -> None:
 
     build_section(args.results, args.summary, args.report_dir, args.out,
                   published_dir=args.published_dir)
+
+
+def _report_tests(args: argparse.Namespace) -> None:
+    from contactlab.stiffness.report_tests import build_section
+
+    build_section(args.results, args.summary, args.tests, args.report_dir, args.out,
+                  quality_path=args.quality)
 
 
 def _model_from_args(args: argparse.Namespace) -> ErrorModel:
@@ -230,6 +238,21 @@ COMMANDS = (
                  published_dir_option(),
                  *section_outputs()),
         run=_report_raw),
+    Command(
+        NAME, "report-tests", "report section and one page per test",
+        description="Report section 23: one page per test (results/report/tests/<test>.html) "
+                    "with its fitted values and margins from the summary, its fits (section "
+                    "21's figures) and for a test from camera frames the correlation's quality "
+                    "(section 22's table and map); the section lists the tests and links "
+                    "their pages.",
+        options=(results_option(),
+                 Option("--summary", "results/stiffness/summary.nc", input_file),
+                 Option("--tests", "test sheet (config/tests.csv)", input_file),
+                 Option("--quality", "section 22's table of the correlation quality "
+                        "(results/report/tables/dic_quality.csv), for tests from camera frames",
+                        input_file, default=None),
+                 *section_outputs()),
+        run=_report_tests),
     Command(
         NAME, "summarize-published",
         "summary netCDF and Tables 2.1-2.4, 2.7-2.10 from the published per-step values",
