@@ -107,3 +107,12 @@ def test_a_unit_for_every_column_of_numbers() -> None:
     table = pd.DataFrame({"problem": ["line"], "a": [0.5], "b": [1.2], "N": [64]})
     table.attrs["units"] = {"N": "1"}
     assert list(with_units(table, "1").columns) == ["problem", "a [1]", "b [1]", "N [1]"]
+
+
+def test_part_iii_lengths_are_named_in_units_of_c() -> None:
+    from contactlab.display import symbol
+
+    assert symbol("a", "end of the central stick zone a/c") == "a/c"
+    assert symbol("w_hat", "patch half-width w/c") == "w/c"
+    assert symbol("K_T", "remote slope of the layer") == "K_T"
+    assert symbol("w_onset", "w/c above which separation occurs") == "w_onset"

@@ -64,6 +64,14 @@ def units_of(ds: xr.Dataset | xr.DataArray, names: Any = None) -> dict[str, str]
             if "units" in variables[n].attrs}
 
 
+def symbol(name: str, long_name: object = None) -> str:
+    """How a quantity is named to a reader: a length of Part III in units of the layer
+    thickness c by its ratio (``a/c``, ``w/c``) when its ``long_name`` ends with it,
+    anything else by ``name``."""
+    match = re.search(r"(\S+/c)\s*$", str(long_name or ""))
+    return match.group(1) if match else name
+
+
 def unit_text(unit: str) -> str:
     """A unit as a figure shows it: powers with a caret (``kN/mm3`` -> ``kN/mm^3``)."""
     return re.sub(r"(?<=[A-Za-z])(-?\d+)", r"^\1", unit)

@@ -116,6 +116,17 @@ class Section:
         save_figure(fig, png_path)
         self.image(png_path, caption)
 
+    def figure_row(self, figures: list[tuple[plt.Figure, str, str | os.PathLike[str]]]
+                   ) -> None:
+        """Save each (figure, caption, PNG path) as :meth:`figure` does and show them side
+        by side (a row that wraps on a narrow page)."""
+        start = len(self.blocks)
+        for fig, caption, png_path in figures:
+            self.figure(fig, caption, png_path)
+        row = "".join(self.blocks[start:])
+        del self.blocks[start:]
+        self.blocks.append(f"<div class='figure-row'>{row}</div>")
+
     def image(self, png_path: str | os.PathLike[str], caption: str) -> None:
         """Show a figure already saved by :func:`save_figure` (PNG, PDF beside) with a
         caption; its id (``fig-<file name>``) lets the page's contents link it."""

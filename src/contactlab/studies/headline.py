@@ -35,6 +35,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from contactlab.display import symbol
+
 
 @dataclass(frozen=True)
 class Quantity:
@@ -131,14 +133,16 @@ def label(coords: Mapping[str, Any]) -> str:
 
 
 def points(data) -> list[tuple[str, float]]:
-    """The values of a quantity's DataArray at each coordinate point, as (label, value);
-    non-numeric values are left out."""
+    """The values of a quantity's DataArray at each coordinate point, as (label, value),
+    each coordinate named as a reader reads it (``w/c=2.5`` for ``w_hat``,
+    :func:`contactlab.display.symbol`); non-numeric values are left out."""
     if data.dtype.kind not in "fiub":
         return []
     if data.ndim == 0:
         return [("", float(data.values))]
     series = data.astype(float).to_series()
-    names = list(series.index.names)
+    names = [symbol(str(n), data[n].attrs.get("long_name") if n in data.coords else None)
+             for n in series.index.names]
     return [(label(dict(zip(names, key if isinstance(key, tuple) else (key,), strict=True))),
              float(value)) for key, value in series.items()]
 
