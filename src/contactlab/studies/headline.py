@@ -147,6 +147,14 @@ def points(data) -> list[tuple[str, float]]:
              float(value)) for key, value in series.items()]
 
 
+def units(q: Quantity, data) -> str:
+    """The units of a quantity as a reader reads them: its variable's, or ``units of c``
+    for a length of Part III given as its ratio to the layer thickness (``a/c``)."""
+    if symbol(q.variable, data.attrs.get("long_name")).endswith("/c"):
+        return "units of c"
+    return str(data.attrs.get("units", ""))
+
+
 def headline(results: str | os.PathLike[str], quantities: Sequence[Quantity] = QUANTITIES
              ) -> dict[str, dict[str, Any]]:
     """Every quantity of one study: id -> {label, units, points: {at: value}}; quantities
@@ -156,6 +164,5 @@ def headline(results: str | os.PathLike[str], quantities: Sequence[Quantity] = Q
         data = read_quantity(results, q)
         if data is None:
             continue
-        out[q.id] = {"label": q.label, "units": str(data.attrs.get("units", "")),
-                     "points": dict(points(data))}
+        out[q.id] = {"label": q.label, "units": units(q, data), "points": dict(points(data))}
     return out
