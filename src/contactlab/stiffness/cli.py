@@ -39,7 +39,8 @@ EXAMPLES = """\
       --out results/stiffness/RU1.nc
   contactlab stiffness summarize results/stiffness/*.nc --tests config/tests.csv \\
       --seq results/surfaces/seq.nc --out results/stiffness/summary.nc
-  contactlab stiffness figures results/stiffness/RU1.nc --out-dir /tmp/figures
+  contactlab stiffness figures results/stiffness/RU1.nc --summary results/stiffness/summary.nc \\
+      --out-dir /tmp/figures
   contactlab stiffness summarize-published --tests config/tests.csv \\
       --out results/stiffness/summary_from_published_steps.nc
 Loads kN, displacements um, areas mm^2, stiffness per area kN/mm^3, beta 1/um. Options
