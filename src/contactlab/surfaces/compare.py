@@ -10,6 +10,7 @@ number stands beside the one it is compared with.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -61,6 +62,16 @@ def seq_comparison(seq: xr.Dataset, published: pd.DataFrame | pd.Series) -> pd.D
     return table
 
 
+def _matched(texture: xr.Dataset, published: pd.DataFrame, column: str
+             ) -> Iterator[tuple[str, pd.Series, pd.Series]]:
+    """(surface, ours, published) of each surface of a published table (indexed by surface)
+    that the texture summary evaluated (``column`` finite)."""
+    ours = texture.to_dataframe()
+    for surface in published.index:
+        if surface in ours.index and np.isfinite(ours.loc[surface, column]):
+            yield surface, ours.loc[surface], published.loc[surface]
+
+
 def _percent_difference(ours_nm: float, published_nm: float) -> float:
     return 100.0 * (ours_nm / published_nm - 1.0)
 
@@ -69,13 +80,8 @@ def areal_comparison(texture: xr.Dataset, directory: Path | None = None) -> pd.D
     """Tables A.1/A.27: Sa, Sq (nm), Sp (um), Str, fractal dimension D, ours beside
     published, and Sq's difference in percent of the published."""
     published = pd.concat([read_published(t, directory) for t in ("A.1", "A.27")])
-    published = published.set_index("surface")
-    ours = texture.to_dataframe()
     rows = []
-    for surface in published.index:
-        if surface not in ours.index or not np.isfinite(ours.loc[surface, "Sq"]):
-            continue
-        o, p = ours.loc[surface], published.loc[surface]
+    for surface, o, p in _matched(texture, published.set_index("surface"), "Sq"):
         rows.append({
             "surface": surface,
             "Sa": NM_PER_UM * o["Sa"], "Sa_published": p["Sa"],
@@ -97,12 +103,8 @@ def profile_comparison(texture: xr.Dataset, directory: Path | None = None) -> pd
     and Rq's difference in percent of the published."""
     published = pd.concat([read_published(t, directory) for t in ("A.1", "A.26")])
     published = published.drop_duplicates("surface").set_index("surface")
-    ours = texture.to_dataframe()
     rows = []
-    for surface in published.index:
-        if surface not in ours.index or not np.isfinite(ours.loc[surface, "Rq"]):
-            continue
-        o, p = ours.loc[surface], published.loc[surface]
+    for surface, o, p in _matched(texture, published, "Rq"):
         rows.append({
             "surface": surface, "direction": o["profile_direction"],
             "length": o["profile_length"],
