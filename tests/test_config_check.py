@@ -22,7 +22,7 @@ from contactlab.study import coerce
 
 
 def _schema(repo: Path) -> dict[str, Any]:
-    return parse_yaml((repo / "workflow/schemas/config.schema.yaml").read_text())
+    return parse_yaml((repo / "src/contactlab/schemas/config.schema.yaml").read_text())
 
 
 def _problems(repo: Path, e2e_text: str, overrides: dict[str, Any] | None = None) -> str:
@@ -116,7 +116,7 @@ def test_every_walked_parameter_returns_from_the_command_line_with_its_type(
     from snakemake.utils import validate
 
     config = parse_yaml((repo / "tests" / "e2e_config.yaml").read_text())
-    validate(config, str(repo / "workflow/schemas/config.schema.yaml"))  # + defaults
+    validate(config, str(repo / "src/contactlab/schemas/config.schema.yaml"))  # + defaults
     schema = _schema(repo)
     cases = list(walk(config, schema))
     assert len(cases) > 80

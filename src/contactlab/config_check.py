@@ -1,6 +1,6 @@
 """Start-up checks of the study configuration, each problem as one line naming its source.
 
-The schema (``workflow/schemas/config.schema.yaml``) says what each key may hold; these
+The schema (``src/contactlab/schemas/config.schema.yaml``) says what each key may hold; these
 functions turn its findings into ``<source>: <key.path>: <value> - <what is allowed>`` lines,
 where the source is the config file or ``--config`` that set the key, and add the checks a
 JSON schema cannot express (empty sweep ranges, mesh levels that do not exist, files the
