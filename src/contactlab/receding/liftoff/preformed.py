@@ -50,10 +50,11 @@ adaptive principal-value quadrature (scipy ``quad`` with the Cauchy weight) at m
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property, lru_cache
+from functools import cached_property
 
 import numpy as np
 
+from contactlab.receding.core.quadrature import gauss_legendre
 from contactlab.receding.liftoff.loading import Load
 
 #: geometric panels per finite segment and Gauss points per panel
@@ -75,14 +76,9 @@ def printed_cubic_coefficients(b: float, e: float, k2: float, kl: float) -> tupl
     return r1, r2
 
 
-@lru_cache(maxsize=4)
-def _gauss(m: int) -> tuple[np.ndarray, np.ndarray]:
-    return np.polynomial.legendre.leggauss(m)
-
-
 def _graded(lo: np.ndarray, hi: np.ndarray, towards_hi: bool) -> tuple[np.ndarray, np.ndarray]:
     """Nodes/weights (m, P*G) on [lo, hi] per row, panels halving towards one end."""
-    u, wu = _gauss(_GAUSS)
+    u, wu = gauss_legendre(_GAUSS)
     frac = np.concatenate([[0.0], 1.0 - 0.5 ** np.arange(1, _LEVELS), [1.0]])  # 0 .. 1
     if not towards_hi:
         frac = 1.0 - frac[::-1]
@@ -97,7 +93,7 @@ def _graded(lo: np.ndarray, hi: np.ndarray, towards_hi: bool) -> tuple[np.ndarra
 
 
 def _tail(start: np.ndarray, scale: float = 2.0) -> tuple[np.ndarray, np.ndarray]:
-    u, wu = _gauss(_TAIL)
+    u, wu = gauss_legendre(_TAIL)
     x = start[:, None] + scale * ((1.0 + u) / (1.0 - u))[None, :]
     w = np.broadcast_to(wu * 2.0 * scale / (1.0 - u) ** 2, x.shape)
     return x, w
