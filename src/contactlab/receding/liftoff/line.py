@@ -37,7 +37,12 @@ import numpy as np
 
 from contactlab.receding.core.interface import SMOOTH, Interface
 from contactlab.receding.core.solution import check_friction
-from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT, solve_no_stick, try_limit
+from contactlab.receding.liftoff.limit import (
+    STICK_ZONE_LIMIT,
+    below_resolution,
+    solve_no_stick,
+    try_limit,
+)
 from contactlab.receding.liftoff.loading import make_load
 from contactlab.receding.liftoff.solver import (
     COARSE_N,
@@ -99,6 +104,10 @@ def solve_line(f: float, n: int, lam: float, e: float,
         guess = None
     seeds = [guess] if guess is not None else []
     a0, b0 = line_guess(f)
+    lim = below_resolution(load, f, n, lam, lam, e, problem, preformed, a0, b0,
+                           stick_zone_limit)
+    if lim is not None:
+        return lim
     # the Chaise model separates a little further out (b about 6 % larger)
     seeds.append((a0, b0) if preformed else (a0, 1.06 * b0))
     sol = None

@@ -21,7 +21,12 @@ import numpy as np
 
 from contactlab.receding.core.interface import SMOOTH, Interface
 from contactlab.receding.core.solution import check_friction
-from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT, solve_no_stick, try_limit
+from contactlab.receding.liftoff.limit import (
+    STICK_ZONE_LIMIT,
+    below_resolution,
+    solve_no_stick,
+    try_limit,
+)
 from contactlab.receding.liftoff.line import fallbacks, line_guess
 from contactlab.receding.liftoff.loading import Load, make_load
 from contactlab.receding.liftoff.seeds import patch_seeds
@@ -128,8 +133,12 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
         if lim.converged and lim.log10_a < np.log10(stick_zone_limit):
             return lim
         guess = None
-    if guess is None:
-        guess = patch_guess(load.law, f, load.w)
+    guess = patch_guess(load.law, f, load.w) if guess is None else guess
+    # the line load's stick zone screens (the patch table's offsets stop at its lowest f)
+    lim = below_resolution(load, f, n, lam_a, lam_b, e, load.law, preformed,
+                           line_guess(f)[0], guess[1], stick_zone_limit)
+    if lim is not None:
+        return lim
     sol = solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, load.law,
                         continuous=False)
     seed = guess
