@@ -127,8 +127,11 @@ def cauchy_matrix(t: np.ndarray, n: int) -> np.ndarray:
     """
     rule = bounded_rule(n)
     t = np.asarray(t, dtype=float).ravel()
-    if t.size == n + 1 and np.allclose(t, rule.t, rtol=0.0, atol=1e-12):
-        return _collocation_cauchy(n).copy()
+    if t.size >= n + 1 and np.allclose(t[:n + 1], rule.t, rtol=0.0, atol=1e-12):
+        # the collocation points (and points after them, e.g. a zone's end)
+        if t.size == n + 1:
+            return _collocation_cauchy(n).copy()
+        return np.concatenate([_collocation_cauchy(n), cauchy_matrix(t[n + 1:], n)])
     g = np.empty_like(t)
     inside = np.abs(t) <= 1.0
     g[inside] = np.cos((n + 1) * np.arccos(t[inside]))

@@ -121,7 +121,8 @@ def assemble_limit(load: Load, f: float, n: int, b: float, lam_a: float, lam_b: 
     if interface.normal:
         pre = Preformed(load, b, e) if preformed else None
         geom = geometry(interface, 0.0, b, n)
-        system = extend(system, geom, lambda x: base_tractions(load, glide, climb, pre, x),
+        system = extend(system, geom,
+                        lambda x, shear: base_tractions(load, glide, climb, pre, x, shear),
                         normal_rows=slice(0, m), normal_points=xb, shear_rows=slice(m, 2 * m),
                         shear_points=xa, friction=h, state=state)
         system.matrix[2 * m, -geom.size:] = f * geom.normal_matrix(zero)[0]

@@ -78,6 +78,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -191,6 +192,20 @@ class LiftoffSolution:
             cs, cn = self.compliant.tractions(x)
             s, n = s + cs, n + cn
         return s, n
+
+    def normal_traction(self, x: np.ndarray) -> np.ndarray:
+        """N(x) / T: the normal part of ``tractions`` without evaluating any shear kernel."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        n = self.load.bilateral(x)[1]
+        pre = self.preformed
+        if pre is not None:
+            n = n + pre.normal_stress(x) @ np.array([1.0, self._k])
+        for interval, phi in ((self.glide, self.phi_x), (self.climb, self.phi_y)):
+            if interval is not None and phi.size:
+                n = n + interval.normal_influence(x) @ phi
+        if self.compliant is not None:
+            n = n + self.compliant.geometry.normal_matrix(x) @ self.compliant.values
+        return n
 
     def glide_density(self, x: np.ndarray) -> np.ndarray:
         """B_x (even), times 2 mu / ((kappa + 1) T)."""
@@ -358,7 +373,7 @@ class LiftoffSolution:
         total = 0.0
         for lo, hi in ([(0.0, a), (a, self.b)] if 0 < a < self.b else [(0.0, self.b)]):
             xs, ws = legendre(points, lo, hi)
-            total += float(ws @ self.tractions(xs)[1])
+            total += float(ws @ self.normal_traction(xs))
         s_ab, n_ab = self.tractions(np.array([a, self.b]))
         out.update(equilibrium_error=abs(2.0 * total + 1.0), end_traction=abs(n_ab[1]),
                    end_gap=abs(float(self.separation(np.array([self.b]))[0])))
@@ -438,27 +453,34 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
         return system, glide, climb
     pre = Preformed(load, b, e) if preformed else None
     system = extend(system, geometry(interface, a, b, n),
-                    lambda x: base_tractions(load, glide, climb, pre, x),
+                    lambda x, shear: base_tractions(load, glide, climb, pre, x, shear),
                     normal_rows=slice(0, m), normal_points=xb, shear_rows=slice(m, 2 * m),
                     shear_points=xa, friction=h, state=state)
     return system, glide, climb
 
 
 def base_tractions(load: Load, glide, climb: DensityInterval, pre: Preformed | None,
-                   x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                   x: np.ndarray, shear: bool = True) -> tuple[Any, np.ndarray, Any, np.ndarray]:
     """(S, N, s_known, n_known) at x: the traction matrices of the columns [phi_x, phi_y,
     K] (K with the preformed density) and the tractions of the load and of the preformed
-    density's load part (units of T)."""
+    density's load part (units of T); S and s_known None unless ``shear``."""
+    s0, n0 = load.bilateral(x)
+    if not shear:
+        normal = [glide.normal_influence(x), climb.normal_influence(x)]
+        if pre is not None:
+            pn = pre.normal_stress(x)
+            normal.append(pn[:, 1:2])
+            n0 = n0 + pn[:, 0]
+        return None, np.hstack(normal), None, n0
     gs, gn = glide.influence(x)
     cs, cn = climb.influence(x)
-    s0, n0 = load.bilateral(x)
-    shear, normal = [gs, cs], [gn, cn]
+    shears, normal = [gs, cs], [gn, cn]
     if pre is not None:
         ps, pn = pre.stresses(x)
-        shear.append(ps[:, 1:2])
+        shears.append(ps[:, 1:2])
         normal.append(pn[:, 1:2])
         s0, n0 = s0 + ps[:, 0], n0 + pn[:, 0]
-    return np.hstack(shear), np.hstack(normal), s0, n0
+    return np.hstack(shears), np.hstack(normal), s0, n0
 
 
 def _params(p: np.ndarray) -> tuple[float, float]:
