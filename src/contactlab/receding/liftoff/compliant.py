@@ -63,6 +63,9 @@ from contactlab.receding.core.solve import LinearSystem
 #: bridge width as a fraction of the zone it sits in (results hardly depend on it:
 #: b within 2e-6 for 0.05-0.5, line load, f = 0.5, C = 1, N = 100-400)
 BRIDGE_WIDTH = 0.2
+#: a stick zone counts as resolved where it spans this many node spacings of the slip
+#: zone's glide density (a is then within about 10 % of its limit in N, FINDINGS)
+RESOLVED_NODES = 8
 #: Newton steps of the measured law at fixed transition points, and their tolerance on P
 NEWTON_STEPS = 40
 NEWTON_TOL = 1e-12
@@ -70,6 +73,18 @@ NEWTON_TOL = 1e-12
 #: (x, shear) -> (S, N, s_known, n_known): the tractions of the base unknowns at points x
 #: (S and s_known None where ``shear`` is False: the normal traction alone)
 BaseTractions = Callable[[np.ndarray, bool], tuple[Any, np.ndarray, Any, np.ndarray]]
+
+
+def a_resolution(n: int, lam: float) -> float:
+    """Distance (units of c) of the first node of the slip zone's glide density beyond a:
+    lam log(2 / (1 - s_N)) of the map of sec. 6.4, about 2.5 lam / (N + 1)^2."""
+    s = float(bounded_rule(n).s.min())
+    return float(lam * np.log(2.0 / (1.0 - s)))
+
+
+def resolved_stick_zone(a: float, n: int, lam: float, nodes: float = RESOLVED_NODES) -> bool:
+    """Whether a stick zone of half-width a spans ``nodes`` node spacings at N, lam."""
+    return bool(a >= nodes * a_resolution(n, lam))
 
 
 @dataclass(frozen=True)

@@ -99,11 +99,14 @@ from contactlab.receding.core.solve import (
     find_transitions,
 )
 from contactlab.receding.liftoff.compliant import (
+    RESOLVED_NODES,
     CompliantPart,
     Linearisation,
+    a_resolution,
     compliant_checks,
     extend,
     geometry,
+    resolved_stick_zone,
 )
 from contactlab.receding.liftoff.loading import Load
 from contactlab.receding.liftoff.preformed import Preformed
@@ -154,6 +157,9 @@ class LiftoffSolution:
     compliant: CompliantPart | None = None
     #: residual certificates beyond the contact checks (equilibrium, end conditions)
     certificates: dict[str, float] = field(default_factory=dict)
+    #: why the solver refused the point (empty where it did not): a stick zone that the
+    #: discretisation does not resolve on a compliant interface (``solve_compliant``)
+    refusal: str = ""
 
     # ---- convenience for the FE branch and the CLI
     @property
@@ -662,11 +668,30 @@ def compliance_seed(load: Load, f: float, lam_a: float, lam_b: float, e: float,
 def solve_compliant(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
                     preformed: bool, problem: str, interface: Interface,
                     guess: tuple[float, float] | None,
-                    smooth: Callable[[], LiftoffSolution]) -> LiftoffSolution:
+                    smooth: Callable[[], LiftoffSolution],
+                    first_guess: tuple[float, float] | None = None) -> LiftoffSolution:
     """A lifting-off problem at f > 0 on a compliant ``interface``: from ``guess`` (a
-    neighbour's a, b) or, without one, from ``smooth()`` (the smooth problem at a coarse N,
-    with its fallbacks) through ``compliance_seed``; the H-switched slip rule first, then
-    the continuous one (flag ``continuous_slip_rule``)."""
+    neighbour's a, b) or, without one, from ``first_guess`` (a seed table's, e.g.
+    ``line.compliant_guess``) where that reaches an admissible solution, else from
+    ``smooth()`` (the smooth problem at a coarse N, with its fallbacks) through
+    ``compliance_seed``; the H-switched slip rule first, then the continuous one (flag
+    ``continuous_slip_rule``). A root found from ``first_guess`` that misses a contact
+    check is returned as it is (the continuation finds the same root). A point whose
+    tabulated stick zone the discretisation does not resolve
+    (``compliant.resolved_stick_zone``) is searched from ``first_guess`` with the
+    H-switched rule only, and refused (``refuse``) where that finds no admissible
+    solution."""
+    if (guess is None or not guess[1] > guess[0] > 0) and first_guess is not None:
+        resolved = resolved_stick_zone(first_guess[0], n, lam_a)
+        sol = solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, first_guess, problem,
+                            seed_only=True, interface=interface,
+                            continuous=None if resolved else False)
+        if sol.converged and sol.admissible:
+            return sol
+        if not resolved:
+            return refuse(sol, first_guess[0], lam_a)
+        if sol.converged:  # a root the checks find fault with: no other search helps
+            return sol
     if guess is None or not guess[1] > guess[0] > 0:
         first = smooth()
         start = (max(first.a, 1e-3), first.b) if first.converged else None
@@ -674,6 +699,26 @@ def solve_compliant(load: Load, f: float, n: int, lam_a: float, lam_b: float, e:
             if start is not None else None
     return solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, problem,
                          seed_only=guess is not None, interface=interface)
+
+
+def refuse(sol: LiftoffSolution, a: float, lam_a: float) -> LiftoffSolution:
+    """``sol`` marked as refused (not converged, regime ``failed``, ``refusal`` saying why):
+    its stick zone, about ``a`` by the seed tables, spans fewer than RESOLVED_NODES node
+    spacings of the slip zone's glide density at its N, and the search from the tables'
+    seed found no admissible solution. The N from which it spans RESOLVED_NODES spacings is
+    named (the spacing falls like 1/(N + 1)^2)."""
+    spacing = a_resolution(sol.n, lam_a)
+    needed = int(np.ceil((sol.n + 1) * np.sqrt(RESOLVED_NODES * spacing / max(a, 1e-300))))
+    needed += needed % 2
+    sol.refusal = (f"stick zone not resolved: about {a:.2g} c at f = {sol.f:g} (seed "
+                   f"table), under {RESOLVED_NODES} node spacings of the slip zone's glide "
+                   f"density at N = {sol.n} (first node {spacing:.2g} c beyond a); it spans "
+                   f"{RESOLVED_NODES} from about N = {needed}")
+    sol.message += f"; {sol.refusal}"
+    sol.converged = False
+    sol.regime = "failed"
+    sol.checks = {}
+    return sol
 
 
 def coarse_failure(coarse: LiftoffSolution) -> RootResult:
