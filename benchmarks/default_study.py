@@ -78,6 +78,24 @@ def cpu_by_command(log: Path) -> dict[str, list[float]]:
     return out
 
 
+def timed_run(work: Path, args: list[str], env: dict[str, str]) -> tuple[float, float, str]:
+    """CPU seconds of every child process (user + system), wall seconds and the job count
+    of one Snakemake run in ``work`` with the default profile; exits naming the run if it
+    fails."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    start = time.perf_counter()
+    run = subprocess.run([sys.executable, "-m", "snakemake", "--workflow-profile",
+                          "workflow/profiles/default", *args], cwd=work, env=env,
+                         capture_output=True, text=True, check=False)
+    wall = time.perf_counter() - start
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    if run.returncode != 0:
+        sys.exit(f"snakemake {' '.join(args)} failed in {work}:\n{run.stderr[-3000:]}")
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    jobs = re.search(r"(\d+) of (\d+) steps \(100%\) done", run.stderr)
+    return cpu, wall, jobs.group(2) if jobs else "0"
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--jobs", type=int, default=2, help="snakemake -j (default 2)")
@@ -90,20 +108,9 @@ def main() -> None:
     log = work / ".bench-bin" / "cpu.jsonl"
     env = dict(os.environ, CONTACTLAB_CPU_LOG=str(log), PATH=os.pathsep.join(
         [str(work / ".bench-bin"), str(Path(sys.executable).parent), os.environ["PATH"]]))
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    start = time.perf_counter()
-    run = subprocess.run([sys.executable, "-m", "snakemake", "--workflow-profile",
-                          "workflow/profiles/default", f"-j{args.jobs}", "all"],
-                         cwd=work, env=env, capture_output=True, text=True, check=False)
-    wall = time.perf_counter() - start
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if run.returncode != 0:
-        sys.exit(f"the default study failed in {work}:\n{run.stderr[-3000:]}")
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    jobs = re.search(r"(\d+) of (\d+) steps \(100%\) done", run.stderr)
+    cpu, wall, jobs = timed_run(work, [f"-j{args.jobs}", "all"], env)
     print(f"default study, -j{args.jobs}, {os.cpu_count()} cores: wall {wall:.0f} s, "
-          f"CPU {cpu:.0f} s, {jobs.group(2) if jobs else '?'} jobs, load now "
-          f"{os.getloadavg()[0]:.1f}")
+          f"CPU {cpu:.0f} s, {jobs} jobs, load now {os.getloadavg()[0]:.1f}")
     split = cpu_by_command(log)
     print(f"{'contactlab command':32s} {'jobs':>5s} {'CPU s':>8s} {'max s':>7s}")
     for command, times in sorted(split.items(), key=lambda kv: -sum(kv[1])):

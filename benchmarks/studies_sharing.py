@@ -15,32 +15,12 @@ from __future__ import annotations
 
 import argparse
 import os
-import re
-import resource
 import shutil
-import subprocess
 import sys
 import tempfile
-import time
 from pathlib import Path
 
-from default_study import ROOT, copy_workflow
-
-
-def run(work: Path, args: list[str], env: dict[str, str]) -> tuple[float, float, str]:
-    """CPU seconds, wall seconds and job count of one Snakemake run in ``work``."""
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    start = time.perf_counter()
-    done = subprocess.run([sys.executable, "-m", "snakemake", "--workflow-profile",
-                           "workflow/profiles/default", *args], cwd=work, env=env,
-                          capture_output=True, text=True, check=False)
-    wall = time.perf_counter() - start
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    if done.returncode != 0:
-        sys.exit(f"snakemake {' '.join(args)} failed in {work}:\n{done.stderr[-3000:]}")
-    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    jobs = re.search(r"(\d+) of (\d+) steps \(100%\) done", done.stderr)
-    return cpu, wall, jobs.group(2) if jobs else "0"
+from default_study import ROOT, copy_workflow, timed_run
 
 
 def main() -> None:
@@ -53,22 +33,26 @@ def main() -> None:
     work = args.keep or Path(tempfile.mkdtemp(prefix="contactlab-sharing-"))
     work.mkdir(parents=True, exist_ok=True)
     copy_workflow(work)
-    extra = []
+    files = []
     if args.config:
         shutil.copy2(ROOT / args.config, work / "config" / "bench.yaml")
-        extra = ["--configfile", "config/bench.yaml"]
+        files = ["config/bench.yaml"]
     study = f"config/studies/{args.study}.yaml"
     alone = work / "config" / "studies" / f"{args.study}_alone.yaml"
     alone.write_text((work / study).read_text().replace(
         f"study: {args.study}", f"study: {args.study}_alone"))
     env = dict(os.environ, PATH=os.pathsep.join([str(Path(sys.executable).parent),
                                                  os.environ["PATH"]]))
+
+    def snakemake(*configfiles: str) -> list[str]:
+        chosen = [*files, *configfiles]
+        return [*(["--configfile", *chosen] if chosen else []), f"-j{args.jobs}", "all"]
+
     runs = {
-        "default study": run(work, [*extra, f"-j{args.jobs}", "all"], env),
-        f"{args.study} (shared)": run(work, [*extra, study, f"-j{args.jobs}", "all"], env),
-        f"{args.study} alone": run(work, [*extra, str(alone.relative_to(work)),
-                                         f"-j{args.jobs}", "all"],
-                                   {**env, "CONTACTLAB_NO_REUSE": "1"}),
+        "default study": timed_run(work, snakemake(), env),
+        f"{args.study} (shared)": timed_run(work, snakemake(study), env),
+        f"{args.study} alone": timed_run(work, snakemake(str(alone.relative_to(work))),
+                                         {**env, "CONTACTLAB_NO_REUSE": "1"}),
     }
     print(f"{os.cpu_count()} cores, -j{args.jobs}, config {args.config or 'default'}, "
           f"load now {os.getloadavg()[0]:.1f}")

@@ -138,6 +138,9 @@ def _copy_of(e2e_run: Path, tmp_path: Path) -> tuple[Path, dict[str, str]]:
     work = tmp_path / "run"
     shutil.copytree(e2e_run, work, symlinks=True,
                     ignore=shutil.ignore_patterns(".snakemake", "logs"))
+    # the study's record (its log folder's study.json): studies show and export read it
+    (work / "logs").mkdir()
+    shutil.copy2(e2e_run / "logs" / "study.json", work / "logs" / "study.json")
     path = f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"
     return work, {**os.environ, "PATH": path}
 

@@ -129,6 +129,15 @@ def test_study_through_slurm_equals_the_local_run(
         xr.testing.assert_allclose(a, b, rtol=1e-12, atol=0)
         assert _attrs(a) == _attrs(b), target
 
+    # the run's main process kept every finished job's files under its key, so a study
+    # beside it shares them as after a local run (contactlab.studies.reuse)
+    from contactlab.studies.origin import result_origin
+
+    for target in ("results/receding/line.nc", "results/stiffness/RU1.nc"):
+        origin = result_origin(cluster / target, cluster)
+        assert origin["key"] and origin["made_by"] == "default", origin
+        assert origin["command"].startswith("contactlab "), origin
+
 
 
 @pytest.mark.slow

@@ -72,6 +72,9 @@ def _coerce_scalar(value: str, types: list[str]) -> Any:
         if kind == "integer" and re.fullmatch(r"[+-]?\d+", value.strip()):
             return int(value)
         if kind == "number":
+            # an integer stays one, as YAML reads it (a rule's words then read the same)
+            if re.fullmatch(r"[+-]?\d+", value.strip()):
+                return int(value)
             try:
                 return float(value)
             except ValueError:

@@ -65,8 +65,9 @@ class LogHandler(LogHandlerBase):
     def __post_init__(self) -> None:
         from snakemake.logging import ColorizingTextHandler
 
-        self._text = ColorizingTextHandler(nocolor=self.common_settings.nocolor,
-                                           stream=sys.stderr)
+        # where Snakemake's own text goes: stdout for a dry run's plan, else stderr
+        stream = sys.stdout if self.common_settings.stdout else sys.stderr
+        self._text = ColorizingTextHandler(nocolor=self.common_settings.nocolor, stream=stream)
         self._start = time.monotonic()
         self._failed: list[tuple[str, str, list[str]]] = []
 

@@ -86,7 +86,13 @@ def test_list_diff_and_compare_studies_made_here(e2e_copy: Path, snakemake_many,
     assert "receding.line.lambda" in (folder / "tables" / "parameters.csv").read_text()
     missing = snakemake(work, "-j1", "results/compare/u/index.html")
     assert missing.returncode != 0
-    assert "compares studies with none of the results it shows: nowhere" in missing.stderr
+    assert "config/compare/u.yaml: studies: no study 'nowhere'" in missing.stderr
+    # a compare file that cannot be read stops only a run that asks for its page
+    (compare / "broken.yaml").write_text("studies: [t_a\n")
+    assert snakemake(work, "-n", "results/studies/t_a/receding/line.nc",
+                     "--configfile", files["t_a"]).returncode == 0
+    broken = snakemake(work, "-j1", "results/compare/broken/index.html")
+    assert broken.returncode != 0 and "config/compare/broken.yaml" in broken.stderr
 
 
 @pytest.mark.slow

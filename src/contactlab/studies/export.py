@@ -29,11 +29,10 @@ from contactlab.studies import store
 from contactlab.studies.catalog import discover
 from contactlab.studies.manifest import result_reads
 
-#: The profiles the crate conforms to.
+#: The profiles the crate conforms to (the rocrate package adds Workflow RO-Crate's).
 PROFILES = ("https://w3id.org/ro/wfrun/process/0.5",
             "https://w3id.org/ro/wfrun/workflow/0.5",
-            "https://w3id.org/ro/wfrun/provenance/0.5",
-            "https://w3id.org/workflowhub/workflow-ro-crate/1.0")
+            "https://w3id.org/ro/wfrun/provenance/0.5")
 #: Media types of the files a study holds.
 MEDIA = {".nc": "application/x-netcdf", ".csv": "text/csv", ".md": "text/markdown",
          ".html": "text/html", ".png": "image/png", ".pdf": "application/pdf",
@@ -76,7 +75,7 @@ def export_study(name: str, out: str | os.PathLike[str], root: str | os.PathLike
     crate.description = (f"The results of the contactlab study {name!r} (parameter study of "
                          "the contactlab workflow), with the workflow, its configuration and "
                          "the provenance of every result.")
-    crate.root_dataset["conformsTo"] = [{"@id": p} for p in PROFILES]
+    crate.root_dataset["conformsTo"] = [{"@id": p} for p in PROFILES]  # before the workflow
     crate.root_dataset["license"] = "https://spdx.org/licenses/MIT"
     commit = manifest.get("git_commit", "unknown")
     workflow = crate.add_workflow(root / "Snakefile", "Snakefile", main=True, lang="snakemake",
