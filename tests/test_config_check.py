@@ -150,6 +150,21 @@ def test_a_tested_pair_naming_no_test_of_the_sheet_is_found_at_start_up(repo: Pa
         "data in config/tests.csv (the stiffness summary's tests: SU3, S3, RU3, SU1, SU2, "
         "S1, S2, RU1, ... (10 in all))")
 
+    # the schema's default pairs beside a user's own sheet: left out, not refused
+    from contactlab.config_check import default_pairs_without_tests
+
+    defaults = {"receding": {"rough": {"pairs": {"tests": {
+        "SU3": {"from_test": "SU3"}, "RU1": {"from_test": "RU1"}}}}}}
+    own = [("config/config.yaml", {}), ("my_study.yaml", {"tests": "config/my_tests.csv"})]
+    assert default_pairs_without_tests(defaults, own, ["U1", "RU1"]) == ["SU3"]
+    check_files(defaults, own, tests=["U1", "RU1"], sheet="config/my_tests.csv")
+    # a pair a file names is the user's: refused as above
+    named = [*own, ("pairs.yaml", {"receding": {"rough": {"pairs": {"tests": {
+        "SU3": {"from_test": "SU3"}}}}}})]
+    assert default_pairs_without_tests(defaults, named, ["U1", "RU1"]) == []
+    with pytest.raises(ConfigError, match=r"pairs\.yaml: receding\.rough\.pairs\.tests\.SU3"):
+        check_files(defaults, named, tests=["U1", "RU1"], sheet="config/my_tests.csv")
+
 
 def test_a_plainly_valid_scalar_is_what_jsonschema_accepts() -> None:
     """The one-value check without jsonschema (``plainly_valid``) accepts a value only where

@@ -135,7 +135,7 @@ def test_a_sweep_through_the_cli_logs_progress_and_a_summary(tmp_path: Path) -> 
     lines = run.stderr.splitlines()
     assert lines and all(LINE.match(line) for line in lines), lines
     text = "\n".join(lines)
-    assert "contactlab.receding.gap.sweep: gap sweep N = 40: solving: 6 points to do" in text
+    assert "contactlab.receding.core.sweep: gap sweep N = 40: solving: 6 points to do" in text
     assert re.search(r"solving: 3/6 points \(50%\), \d+\.\d s elapsed, about \d+\.\d s left",
                      text)
     assert "gap sweep N = 40: solving: done, 6/6 points in " in text

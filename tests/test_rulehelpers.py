@@ -16,7 +16,8 @@ def test_a_section_rule_declares_what_its_declaration_lists() -> None:
     """Figures with their PDFs, tables with their Markdown copies, every one with its
     caption file; a stem with a field once per value, a conditional file only when its
     condition holds."""
-    files = section_files("52_receding_rough", "r/", problem=["line", "hertz"], fe=False)
+    files = section_files("52_receding_rough", "r/", problem=["line", "hertz"], pairs=True,
+                          fe=False)
     assert files.section == "r/report/sections/52_receding_rough.html"
     assert files.category == "Receding contacts"
     assert [f.path for f in files.figures] == [
@@ -28,8 +29,10 @@ def test_a_section_rule_declares_what_its_declaration_lists() -> None:
     assert "r/report/tables/receding_rough_fe.md" in files.markdown
     assert files.captions[0] == "r/report/figures/receding_rough_line.rst"
     assert "r/report/tables/receding_rough_pairs.rst" in files.captions  # beside the table
-    with_fe = section_files("52_receding_rough", "r/", problem=["line"], fe=True)
+    with_fe = section_files("52_receding_rough", "r/", problem=["line"], pairs=True, fe=True)
     assert with_fe.figures[-1].path == "r/report/figures/receding_rough_fe.png"
+    no_pairs = section_files("52_receding_rough", "r/", problem=["line"], pairs=False, fe=False)
+    assert not any("pairs" in f for f in no_pairs.captions + no_pairs.markdown)
     per_test = section_files("22_dic", "r/", test=["RU1i", "X"])
     assert [(f.stem, f.subcategory) for f in per_test.figures] == [
         ("dic_RU1i_quality", "RU1i"), ("dic_X_quality", "X")]
@@ -39,9 +42,9 @@ def test_a_section_rule_declares_what_its_declaration_lists() -> None:
 def test_a_section_rule_gives_every_value_its_declaration_needs_and_no_other() -> None:
     with pytest.raises(ValueError, match=r"52_receding_rough.yaml: figures: "
                                          r"receding_rough_\{problem\} needs problem"):
-        section_files("52_receding_rough", "r/", fe=True)
+        section_files("52_receding_rough", "r/", pairs=True, fe=True)
     with pytest.raises(ValueError, match="receding_rough_fe needs fe"):
-        section_files("52_receding_rough", "r/", problem=["line"])
+        section_files("52_receding_rough", "r/", problem=["line"], pairs=True)
     with pytest.raises(ValueError, match="no figure or table uses test"):
         section_files("50_receding_gap", "r/", test=["RU1"])
 
@@ -87,8 +90,9 @@ def test_rough_interface_runs_take_one_c_t_for_both_sides() -> None:
     assert rough_profile_point(names[0]) == {"problem": "line", "f": 0.5, "C": 1.0}
     with pytest.raises(ValueError, match="a uniform patch needs w"):
         rough_profile_name({"problem": "uniform", "f": 0.3, "C": 1.0})
-    assert rough_pairs_summary(rough, "r/") == ["r/stiffness/summary.nc"]
-    assert rough_pairs_summary({"pairs": {"tests": {"X": {"beta_n_per_um": 1}}}}) == []
+    assert rough_pairs_summary(rough["pairs"]["tests"], "r/") == ["r/stiffness/summary.nc"]
+    assert rough_pairs_summary({"X": {"beta_n_per_um": 1}}) == []
+    assert rough_pairs_summary({}) == []
 
 
 def test_an_image_test_reads_the_fields_its_correlation_writes(tmp_path) -> None:

@@ -176,14 +176,17 @@ def check_every_file_is_declared(work: Path, snakemake) -> None:
     assert not undeclared, sorted(undeclared)
 
 
-def _checksums(root: Path, skip: str) -> dict[str, str]:
+def _checksums(root: Path, *skip: str) -> dict[str, str]:
     return {str(p.relative_to(root)): hashlib.sha256(p.read_bytes()).hexdigest()
-            for p in sorted(root.rglob("*")) if p.is_file() and skip not in p.parts}
+            for p in sorted(root.rglob("*"))
+            if p.is_file() and not set(skip) & set(p.relative_to(root).parts)}
 
 
 def check_named_study_beside_default(work: Path, snakemake) -> None:
-    """A named study writes under results/studies/<name>/ and leaves the default untouched."""
-    before = {**_checksums(work / "results", "studies"), **_checksums(work / "logs", "-")}
+    """A named study writes under results/studies/<name>/ (its own jobs kept in the shared
+    store, results/store/) and leaves the default untouched."""
+    before = {**_checksums(work / "results", "studies", "store"),
+              **_checksums(work / "logs", "-")}
     (work / "config" / "study.yaml").write_text(
         "study: e2e_study\nreceding:\n  line: {lambda: 4.0}\n  patches:\n    tables:\n"
         "      ramp: {x: [0, 1], p: [1, 0.5]}\n")
@@ -194,7 +197,8 @@ def check_named_study_beside_default(work: Path, snakemake) -> None:
                f"{study}report/sections/51_receding_line_patch.html"]
     run = snakemake(work, "config/study.yaml", "-j2", "--", *targets)
     assert run.returncode == 0, run.stderr[-3000:]
-    after = {**_checksums(work / "results", "studies"), **_checksums(work / "logs", "-")}
+    after = {**_checksums(work / "results", "studies", "store"),
+             **_checksums(work / "logs", "-")}
     assert after == before  # nothing of the default study rewritten, nothing added
     assert (work / study / "logs" / "receding").is_dir()
     with xr.open_dataset(work / study / "receding" / "line.nc") as line:

@@ -320,19 +320,44 @@ def missing_table_problems(config: Mapping[str, Any], sources: Sequence[Source],
     return []
 
 
+PAIRS_KEYS = ("receding", "rough", "pairs", "tests")
+
+
+def _tested_pairs(config: Mapping[str, Any]) -> Mapping[str, Any]:
+    node: Any = config
+    for key in PAIRS_KEYS:
+        node = node.get(key, {}) if isinstance(node, Mapping) else {}
+    return node or {}
+
+
+def default_pairs_without_tests(config: Mapping[str, Any], sources: Sequence[Source],
+                                tests: Sequence[str]) -> list[str]:
+    """The tested pairs (``receding.rough.pairs.tests``) that only the schema's default
+    brings (no config file or ``--config`` sets them) and whose ``from_test`` is no test of
+    ``tests``: the thesis's pairs beside a user's own test sheet, left out rather than
+    refused (a pair a file names is checked by :func:`unknown_test_problems`)."""
+    return [name for name, spec in _tested_pairs(config).items()
+            if isinstance(spec, Mapping) and spec.get("from_test") is not None
+            and str(spec["from_test"]) not in tests
+            and not any(data and _lookup(data, [*PAIRS_KEYS, name]) for _, data in sources)]
+
+
 def unknown_test_problems(config: Mapping[str, Any], sources: Sequence[Source],
                           tests: Sequence[str], sheet: str) -> list[str]:
     """The tested pairs (``receding.rough.pairs.tests``) whose ``from_test`` names no test of
     the stiffness summary (``tests``: the tests of the test sheet ``sheet`` with raw data),
     one line each with the tests there are, nearest first: found at start-up, not after
-    the whole stiffness chain."""
-    pairs = config.get("receding", {}).get("rough", {}).get("pairs", {}).get("tests", {})
+    the whole stiffness chain. The schema's default pairs are left out instead
+    (:func:`default_pairs_without_tests`)."""
     lines = []
-    for name, spec in (pairs or {}).items():
+    left_out = default_pairs_without_tests(config, sources, tests)
+    for name, spec in _tested_pairs(config).items():
+        if name in left_out:
+            continue
         test = spec.get("from_test") if isinstance(spec, Mapping) else None
         if test is None or str(test) in tests:
             continue
-        keys = ["receding", "rough", "pairs", "tests", name, "from_test"]
+        keys = [*PAIRS_KEYS, name, "from_test"]
         lines.append(f"{source_of(keys, sources)}: {_dotted(keys)}: {_short(test)} is no test "
                      f"with raw data in {sheet} (the stiffness summary's tests: "
                      f"{nearest_first(str(test), tests)})")

@@ -367,10 +367,11 @@ def rough_profile_point(name: str) -> dict[str, Any]:
     return values
 
 
-def rough_pairs_summary(rough: Mapping[str, Any], results: str = "results/") -> list[str]:
-    """The stiffness summary ``receding rough-pairs`` reads, when a pair is ``from_test``."""
-    tests = rough["pairs"]["tests"].values()
-    return [f"{results}stiffness/summary.nc"] if any("from_test" in t for t in tests) else []
+def rough_pairs_summary(pairs: Mapping[str, Any], results: str = "results/") -> list[str]:
+    """The stiffness summary ``receding rough-pairs`` reads, when one of the tested ``pairs``
+    (name -> law, ``receding.rough.pairs.tests``) is ``from_test``."""
+    return [f"{results}stiffness/summary.nc"] if any("from_test" in t
+                                                     for t in pairs.values()) else []
 
 
 def rough_fe_runs(config: Mapping[str, Any], results: str = "results/") -> list[str]:

@@ -172,7 +172,7 @@ def _name_problem(sheet_path: str | Path, line: object, test: str, role: str, na
                 f"in {where}; {role} {name!r} has {has}")
     side_text = f" with side {side!r}" if side else ""
     return (f"{head}, column '{role}': {name!r}{side_text} (surface {own!r}) is not in "
-            f"{where}{did_you_mean(name, sides)}; the names there, nearest first: "
+            f"{where}; the names there, nearest first: "
             f"{nearest_first(name, sides)}")
 
 

@@ -8,6 +8,7 @@ import json
 import os
 import re
 import shutil
+import subprocess
 import sys
 from pathlib import Path
 
@@ -24,11 +25,15 @@ NOT_RECEDING = ("dic_", "stiffness_", "prediction_", "asperity_", "surfaces_")
 
 
 def _copy(e2e_run: Path, tmp_path: Path) -> Path:
-    """A copy of the finished end-to-end run (its store included), without other studies."""
+    """A copy of the finished end-to-end run (its store included), without other studies;
+    ``cp -a`` keeps the store's hard links to the results, as a user's copy would."""
     work = tmp_path / "run"
-    shutil.copytree(e2e_run, work, symlinks=True,
-                    ignore=shutil.ignore_patterns("locks", "incomplete", "*.zip"))
-    shutil.rmtree(work / "results" / "studies", ignore_errors=True)
+    subprocess.run(["cp", "-a", str(e2e_run), str(work)], check=True)
+    for leftover in [work / "results" / "studies", *work.glob(".snakemake/locks"),
+                     *work.glob(".snakemake/incomplete")]:
+        shutil.rmtree(leftover, ignore_errors=True)
+    for archive in work.rglob("*.zip"):
+        archive.unlink()
     return work
 
 
@@ -110,13 +115,15 @@ def test_a_study_built_with_sharing_equals_the_study_built_alone(
 
 
 @pytest.mark.slow
-def test_a_study_exports_as_a_workflow_run_crate(e2e_run: Path, tmp_path: Path) -> None:
+def test_a_study_exports_as_a_workflow_run_crate(e2e_run: Path, tmp_path: Path,
+                                                 repo: Path) -> None:
     from rocrate.rocrate import ROCrate
 
     from contactlab.studies.export import PROFILES, export_study
     from contactlab.studies.manifest import read_manifest
 
     work = _copy(e2e_run, tmp_path)
+    shutil.copy2(repo / "environment.lock", work)  # a checkout has it; the run's copy not
     out = export_study("default", tmp_path / "crate.zip", work, as_zip=True)
     crate = ROCrate(out)
     assert crate.mainEntity.id == "Snakefile"

@@ -79,10 +79,13 @@ def test_list_diff_and_compare_studies_made_here(e2e_copy: Path, snakemake_many,
     page = snakemake(work, "-j1", "results/compare/t/index.html")
     assert page.returncode == 0, page.stderr[-3000:]
     folder = work / "results" / "compare" / "t"
+    # per quantity the overlay and the differences from the reference
     assert sorted(p.name for p in (folder / "figures").glob("line_*")) == sorted(
-        f"line_{q}.{ext}" for q in ("a", "b", "K_T") for ext in ("png", "pdf"))
+        f"line_{q}{kind}.{ext}" for q in ("a", "b", "K_T") for kind in ("", "_change")
+        for ext in ("png", "pdf"))
     text = (folder / "index.html").read_text()
-    assert all(f"figures/line_{q}.png" in text for q in ("a", "b", "K_T"))
+    assert all(f"figures/line_{q}{kind}.png" in text for q in ("a", "b", "K_T")
+               for kind in ("", "_change"))
     assert "receding.line.lambda" in (folder / "tables" / "parameters.csv").read_text()
     missing = snakemake(work, "-j1", "results/compare/u/index.html")
     assert missing.returncode != 0
@@ -164,7 +167,7 @@ def test_a_small_family_built_end_to_end(e2e_copy: Path, snakemake) -> None:
             hashes.add(line.attrs["config_sha256"])
     assert len(hashes) == 4
     page = work / "results/studies/lam/compare"
-    assert len(list((page / "figures").glob("*.png"))) == 3
+    assert len(list((page / "figures").glob("*.png"))) == 3 * 2  # overlays, differences
     assert "lam/lambda4.0_n40" in (page / "index.html").read_text()
 
     # a variant computes what the same values give as a study of its own, built alone

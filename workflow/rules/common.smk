@@ -7,12 +7,14 @@
 
 from pathlib import Path
 
+from snakemake.logging import logger
 from snakemake.utils import update_config, validate
 
 from contactlab.config_check import (
     ConfigError,
     check_config,
     check_files,
+    default_pairs_without_tests,
     load_yaml_file,
     parse_yaml,
     refuse,
@@ -140,6 +142,17 @@ try:
 except (TestSheetError, ValueError, FileNotFoundError) as exc:
     refuse(str(exc))
 
+# the tested pairs of a rough interface name tests of the stiffness summary; the schema's
+# default pairs (thesis tests) are left out beside a sheet without their tests
+_LEFT_OUT_PAIRS = default_pairs_without_tests(config, _SOURCES, raw_tests(TESTS))
+for _pair in _LEFT_OUT_PAIRS:
+    logger.info(f"receding.rough.pairs.tests.{_pair} (a default) left out: its test is not in "
+                f"{config['tests']}")
+try:
+    check_files(config, _SOURCES, tests=raw_tests(TESTS), sheet=config["tests"])
+except ConfigError as exc:
+    refuse(str(exc))
+
 # from here on every value a rule reads from the config is noted for the rule, the job or
 # the study (contactlab.studies.reads): a study's record says which results a change reaches
 reads.install()
@@ -147,11 +160,14 @@ READS = reads.Recorder()
 config = reads.traced(config, READS)
 
 TEST_IDS = list(TESTS["id"])
-# the tested pairs of a rough interface name tests of the stiffness summary
-try:
-    check_files(config, _SOURCES, tests=raw_tests(TESTS), sheet=config["tests"])
-except ConfigError as exc:
-    raise WorkflowError(str(exc)) from None
+
+
+def tested_pairs():
+    """The tested pairs of the rough interface (receding.rough.pairs.tests) the run solves:
+    the config's, less the default ones whose tests the sheet lacks."""
+    pairs = config["receding"]["rough"]["pairs"]["tests"]
+    return {name: pairs[name] for name in pairs if name not in _LEFT_OUT_PAIRS}
+
 PUBLISHED = Path(config["published_dir"])
 
 ALL_TARGETS = []

@@ -385,11 +385,11 @@ rule receding_rough_profile:
 rule receding_rough_pairs:
     """The tested pairs' measured and linearised laws under a layer of thickness c."""
     input:
-        summary=rough_pairs_summary(ROUGH, RESULTS),
+        summary=rough_pairs_summary(tested_pairs(), RESULTS),
     output:
         result("receding/rough/pairs.nc"),
     params:
-        args=lambda wc: command_args("receding rough-pairs", config),
+        args=lambda wc: command_args("receding rough-pairs", config, pairs=tested_pairs()),
         summary=lambda wc, input: ["--summary", *input.summary] if input.summary else [],
     log:
         logs("receding/rough_pairs.log"),
@@ -406,12 +406,14 @@ rule receding_report_rough:
         sweeps=expand(result("receding/rough/{problem}.nc"), problem=ROUGH["problems"]),
         profiles=expand(result("receding/rough/profiles/{p}.nc"),
                         p=[rough_profile_name(p) for p in ROUGH["profiles"]]),
-        pairs=result("receding/rough/pairs.nc"),
+        pairs=[result("receding/rough/pairs.nc")] if tested_pairs() else [],
         fe=[result("fe/rough_compare.nc")] if rough_fe_runs(config, RESULTS) else [],
     output:
         **report_section("52_receding_rough", problem=ROUGH["problems"],
+                         pairs=bool(tested_pairs()),
                          fe=bool(rough_fe_runs(config, RESULTS))),
     params:
+        pairs=lambda wc, input: ["--pairs", *input.pairs] if input.pairs else [],
         fe=lambda wc, input: ["--fe", *input.fe] if input.fe else [],
         report_dir=lambda wildcards, output: Path(output.section).parent.parent,
     log:
@@ -420,7 +422,7 @@ rule receding_report_rough:
         logs("benchmarks/receding_report_rough.tsv"),
     shell:
         "contactlab receding report-rough --sweeps {input.sweeps:q}"
-        " --profiles {input.profiles:q} --pairs {input.pairs:q} {params.fe:q}"
+        " --profiles {input.profiles:q} {params.pairs:q} {params.fe:q}"
         " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
 
 
@@ -429,7 +431,7 @@ ALL_TARGETS.extend(
         *expand(result("receding/rough/{problem}.nc"), problem=ROUGH["problems"]),
         *expand(result("receding/rough/profiles/{p}.nc"),
                 p=[rough_profile_name(p) for p in ROUGH["profiles"]]),
-        result("receding/rough/pairs.nc"),
+        *([result("receding/rough/pairs.nc")] if tested_pairs() else []),
     ]
 )
 REPORT_SECTIONS.append(report_page("52_receding_rough"))

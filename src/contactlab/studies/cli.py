@@ -140,7 +140,8 @@ GROUP = Group(
                             "run and each job's command line, key and inputs.",
                 options=(Option("study", "the study's name (default: the default study)",
                                 metavar="STUDY"),
-                         Option("--out", "a new folder, or a .zip file", Path), _root()),
+                         Option("--out", "a new folder, or a .zip file", Path, role="output"),
+                         _root()),
                 run=_export),
         Command(NAME, "compare", "the comparison page of a compare file",
                 description="results/compare/<name>/index.html from config/compare/<name>."

@@ -421,7 +421,8 @@ COMMANDS = (
         options=(Option("--sweeps", "rough-gather outputs (results/receding/rough/"
                         "<problem>.nc)", input_file, nargs="+"),
                  Option("--profiles", "rough-profile outputs", input_file, nargs="+"),
-                 Option("--pairs", "rough-pairs output", input_file),
+                 Option("--pairs", "rough-pairs output (none: no tested pairs)", input_file,
+                        default=None),
                  Option("--fe", "fe rough-compare output (none: an empty FE table)",
                         input_file, default=None),
                  *section_outputs()),

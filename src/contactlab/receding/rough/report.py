@@ -236,27 +236,29 @@ def fe_figure(fe: xr.Dataset) -> plt.Figure:
     return fig
 
 
-def _diagnostics(section: ReportSection, sweeps: Sequence[xr.Dataset], pairs: xr.Dataset
-                 ) -> str:
+def _diagnostics(section: ReportSection, sweeps: Sequence[xr.Dataset],
+                 pairs: xr.Dataset | None) -> str:
     parts, left = [], []
     for ds in sweeps:
         counts = sweep_counts(ds)
         parts.append(section.say("sweep_diagnostics", problem=ds.attrs["problem"], **counts))
         left += [f"{ds.attrs['problem']}: {line}" for line in unsolved_points(ds)]
-    bad = int(((pairs["converged"] == 0) & np.isfinite(pairs["C"])).sum())
-    return " ".join([section.say("diagnostics", sweeps="; ".join(parts)),
-                     section.say("left", points="; ".join(left)) if left
-                     else section.say("none_left"),
-                     section.say("pairs_diagnostics", count=bad)])
+    said = [section.say("diagnostics", sweeps="; ".join(parts)),
+            section.say("left", points="; ".join(left)) if left else section.say("none_left")]
+    if pairs is not None:
+        bad = int(((pairs["converged"] == 0) & np.isfinite(pairs["C"])).sum())
+        said.append(section.say("pairs_diagnostics", count=bad))
+    return " ".join(said)
 
 
 def build_section(sweep_paths: Sequence[Path], profile_paths: Sequence[Path],
-                  pairs_path: Path, fe_path: Path | None, report_dir: Path, out: Path) -> None:
-    """Write section 52: the rough interface's sweeps, pairs, profiles and FE comparison
-    (``contactlab/report/sections/52_receding_rough.yaml``)."""
+                  pairs_path: Path | None, fe_path: Path | None, report_dir: Path, out: Path
+                  ) -> None:
+    """Write section 52: the rough interface's sweeps, pairs (none: a note), profiles and
+    FE comparison (``contactlab/report/sections/52_receding_rough.yaml``)."""
     sweeps = [_open(p) for p in sweep_paths]
     profiles = [_open(p) for p in profile_paths]
-    pairs = _open(pairs_path)
+    pairs = _open(pairs_path) if pairs_path is not None else None
     fe = _open(fe_path) if fe_path is not None else None
     section = ReportSection("52_receding_rough", report_dir)
     section.paragraph("problem")
@@ -270,13 +272,16 @@ def build_section(sweep_paths: Sequence[Path], profile_paths: Sequence[Path],
     section.table(summary_table(sweeps), "receding_rough_summary", units="1")
     section.table(sweep_table(sweeps), "receding_rough_sweep", digits=5, units="1")
     section.heading("heading_pairs")
-    problem = registry()[pairs.attrs["problem"]]
-    load = section.say("pairs_patch" if problem.widths else "pairs_line",
-                       problem=problem.name, w_hat=pairs.attrs["w_hat"])
-    section.paragraph("pairs", load=load, E=pairs.attrs["E_kN_mm2"], nu=pairs.attrs["nu"])
-    section.figure(pairs_figure(pairs), "receding_rough_pairs")
-    section.table(pairs_table(pairs), "receding_rough_pairs", digits=4,
-                  units=units_of(pairs))
+    if pairs is None:
+        section.paragraph("no_pairs")
+    else:
+        problem = registry()[pairs.attrs["problem"]]
+        load = section.say("pairs_patch" if problem.widths else "pairs_line",
+                           problem=problem.name, w_hat=pairs.attrs["w_hat"])
+        section.paragraph("pairs", load=load, E=pairs.attrs["E_kN_mm2"], nu=pairs.attrs["nu"])
+        section.figure(pairs_figure(pairs), "receding_rough_pairs")
+        section.table(pairs_table(pairs), "receding_rough_pairs", digits=4,
+                      units=units_of(pairs))
     section.heading("heading_profiles")
     section.figure(profiles_figure(profiles, "tractions"), "receding_rough_tractions")
     section.figure(profiles_figure(profiles, "displacements"), "receding_rough_displacements")
