@@ -245,6 +245,9 @@ MINIMAL: dict[str, list[str]] = {
         "'{{\"S3\": {{\"from_test\": \"S3\"}}}}' --c 1 --out {tmp}/rough_pairs.nc",
         "report-rough --sweeps {tmp}/rough_line.nc --profiles {tmp}/rough_profile.nc "
         "--pairs {tmp}/rough_pairs.nc --report-dir {tmp}/report --out {tmp}/report/rough.html",
+        # a run without tested pairs (a sheet without the pairs' tests)
+        "report-rough --sweeps {tmp}/rough_line.nc --profiles {tmp}/rough_profile.nc "
+        "--report-dir {tmp}/report_no_pairs --out {tmp}/report_no_pairs/rough.html",
     ],
     "surfaces": [
         "demo-scans --sheet config/e2e_surfaces.csv --out-dir {tmp}/scans",
