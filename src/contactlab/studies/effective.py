@@ -101,6 +101,19 @@ def merged_config(config_files: Sequence[str | Path], overrides: Mapping[str, An
     return merge(config, overrides or {})
 
 
+def set_dotted(config: dict[str, Any], key: str, value: Any) -> dict[str, Any]:
+    """Set the dotted ``key`` (``a.b.c``) of ``config`` to ``value`` in place; return it."""
+    node = config
+    *parents, leaf = key.split(".")
+    for part in parents:
+        child = node.get(part)
+        if not isinstance(child, dict):
+            child = node[part] = {}
+        node = child
+    node[leaf] = copy.deepcopy(value)
+    return config
+
+
 def finish(config: Mapping[str, Any], schema: Mapping[str, Any]) -> dict[str, Any]:
     """A merged config as a run uses it: coerced to the schema's types, defaults filled in."""
     return fill_defaults(coerce(dict(config), schema), schema)
@@ -116,7 +129,6 @@ def finish_variant(finished: Mapping[str, Any], values: Mapping[str, Any], study
     Raises ConfigError naming the key if a value does not fit the schema.
     """
     from contactlab.schema import schema_node
-    from contactlab.studies.family import set_dotted
 
     out = copy.deepcopy(dict(finished))
     for key, value in values.items():

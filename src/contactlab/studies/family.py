@@ -36,7 +36,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
-from contactlab.studies.effective import merge
+from contactlab.studies.effective import merge, set_dotted
 from contactlab.study import STUDY_NAME, VARIANT_NAME, check_study_name
 
 #: The keys a family file adds to a config file (``compare``: the headline quantities of
@@ -81,19 +81,6 @@ class Variant:
         for key, value in self.values.items():
             set_dotted(out, key, value)
         return out
-
-
-def set_dotted(config: dict[str, Any], key: str, value: Any) -> dict[str, Any]:
-    """Set the dotted ``key`` (``a.b.c``) of ``config`` to ``value`` in place; return it."""
-    node = config
-    *parents, leaf = key.split(".")
-    for part in parents:
-        child = node.get(part)
-        if not isinstance(child, dict):
-            child = node[part] = {}
-        node = child
-    node[leaf] = copy.deepcopy(value)
-    return config
 
 
 def format_value(value: Any) -> str:

@@ -42,7 +42,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
-from contactlab.atomic import atomic_path
+from contactlab.atomic import write_json
 
 #: File name of the record inside a study's log folder.
 MANIFEST = "study.json"
@@ -154,14 +154,6 @@ def value_id(value: Any) -> str:
     by it, once for all the results that read it."""
     text = json.dumps(value, sort_keys=True, separators=(",", ":"), default=str)
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
-
-
-def write_json(data: Mapping[str, Any], path: str | os.PathLike[str]) -> Path:
-    """Write ``data`` as JSON to ``path``, whole or not at all
-    (:func:`contactlab.atomic.atomic_path`)."""
-    with atomic_path(path) as tmp:
-        tmp.write_text(json.dumps(data, indent=1, sort_keys=True) + "\n", encoding="utf-8")
-    return Path(path)
 
 
 def record_run(logs: str, *, study: str, config_sha256: str, git_commit: str,

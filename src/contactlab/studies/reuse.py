@@ -35,9 +35,9 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
+from contactlab.atomic import write_json
 from contactlab.studies import store
 from contactlab.studies.jobkeys import Folders, JobKeys, StudyFolders
-from contactlab.studies.manifest import write_json
 
 #: Environment variable that switches reuse off for a run.
 OFF_ENV = "CONTACTLAB_NO_REUSE"
