@@ -58,6 +58,7 @@ def _model(args: argparse.Namespace) -> tuple:
     model = RecedingModel(
         problem=args.problem, w=args.w_hat, f=args.f, young=args.young, poisson=args.poisson,
         edges=args.edges, increments=args.increments,
+        young_half_plane=args.young_half_plane, poisson_half_plane=args.poisson_half_plane,
         **({"farfield_passes": args.farfield_passes} if args.farfield_passes else {}),
     )
     geom = StripBlockGeometry(
@@ -148,6 +149,7 @@ def _compare(args: argparse.Namespace) -> None:
 
     from contactlab.fe.compare import agreement
     from contactlab.fe.ddt import reference
+    from contactlab.fe.study import run_materials
     from contactlab.io import stamp, write_netcdf
 
     with xr.open_dataset(args.run) as fe:
@@ -157,9 +159,10 @@ def _compare(args: argparse.Namespace) -> None:
         raise ValueError(f"{args.run}: a run of the {problem} problem, not --problem "
                          f"{args.problem}")
     w = float(fe.attrs.get("w_hat", 0.0))
+    body = run_materials(fe)
     ref = reference(problem, float(fe.attrs["f"]), w, args.ddt_n, fe["x"].values,
                     args.ddt_file, lam=args.lam, e=args.e, lam_b=args.lam_b,
-                    e_minus_w=args.e_minus_w)
+                    e_minus_w=args.e_minus_w, **({} if body.same else {"materials": body}))
     ds = agreement(fe, ref)
     stamp(
         ds,
@@ -307,9 +310,13 @@ def _model_options() -> tuple[Option, ...]:
         Option("--edges", "block far edge free on rollers (Fig. 8.1), encastre, or "
                "displaced as the half-plane under the net load (farfield; line, uniform)",
                choices=("roller", "encastre", "farfield"), key=_by_problem("edges")),
-        Option("--young", "Young's modulus E (results are normalised)", float,
-               unit="N/mm^2", key=_by_problem("young")),
+        Option("--young", "Young's modulus E of the strip (the layer; results are "
+               "normalised)", float, unit="N/mm^2", key=_by_problem("young")),
         Option("--poisson", "Poisson's ratio", float, default=0.3),
+        Option("--young-half-plane", "Young's modulus of the block (the half-plane; "
+               "absent: --young, one material)", float, unit="N/mm^2", default=None),
+        Option("--poisson-half-plane", "Poisson's ratio of the block (absent: --poisson)",
+               float, default=None),
         Option("--layer-rows", "element rows through the strip (default: about 0.4 c/h, "
                ">= 8)", int, default=None),
         Option("--growth", "element growth ratio away from the fine mesh", float,

@@ -13,7 +13,15 @@ import argparse
 from contactlab.command import Command, Group, Option
 from contactlab.receding.gap import cli as gap_cli
 from contactlab.receding.liftoff import cli as liftoff_cli
-from contactlab.receding.options import GAP, LINE, NAME, PATCHES, line_options, patch_options
+from contactlab.receding.options import (
+    GAP,
+    LINE,
+    NAME,
+    PATCHES,
+    line_options,
+    material_options,
+    patch_options,
+)
 from contactlab.receding.rough import cli as rough_cli
 
 EXAMPLES = """\
@@ -28,6 +36,8 @@ EXAMPLES = """\
   contactlab receding patch-sweep --problem uniform --f 0.3 --w-hat 1 --out x.nc
   contactlab receding patch-profile --problem uniform --f 0.3 --w-hat 1 --out p.nc
   contactlab receding solve --problem line --f 0.5 --interface-compliance 1 --json
+  contactlab receding solve --problem line --f 0.5 --young-layer 210 --nu-layer 0.29
+  contactlab receding beta-sweep --problem line --f 0.5 --beta -0.2 0 0.2 --out beta.nc
   contactlab receding rough-sweep --problem line --f 0.5 --C 0 0.1 1 --out rough.nc
   contactlab receding rough-profile --problem uniform --w-hat 1 --f 0.3 --C 1 --out rp.nc
   contactlab receding rough-pairs --summary results/stiffness/summary.nc --out pairs.nc
@@ -81,6 +91,7 @@ SOLVE = Command(
         Option("--nu", "Poisson's ratio of Mindlin's m (C_T when not given)", float,
                key=dict.fromkeys(liftoff_cli.PROBLEMS, "receding.rough.nu"),
                only=liftoff_cli.PROBLEMS),
+        *material_options(),
         Option("--json", "print one JSON object", kind="flag", default=False),
     ),
     run=_solve, select="problem")

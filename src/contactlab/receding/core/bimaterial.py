@@ -285,6 +285,13 @@ class InterfaceKernels:
     def _remainder(self, name: str) -> FourierTable:
         return _table(self.alpha, self.beta, name)
 
+    def remainder(self, name: str, d: np.ndarray) -> np.ndarray:
+        """R_g (``glide``: H_xxy), R_c (``climb``: H_yyy) or R_e (``even``: H_yxy =
+        -H_xyy) at d (module docstring); zero for one material."""
+        if self.one_material:
+            return np.zeros_like(np.asarray(d, dtype=float))
+        return self._remainder(name)(d)
+
     def regular_pair(self, kind: Kind, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(shear, normal) bounded parts for one kind at offsets d (App. B.1's
         ``regular_pair`` plus the remainders; no Cauchy or delta part)."""

@@ -136,6 +136,16 @@ class Materials:
         """(kappa2 + 1)/(4 mu2) / C* = (1 + alpha)/2: the half-plane's part of C*."""
         return 0.5 * (1.0 + self.alpha)
 
+    def toward(self, t: float) -> Materials:
+        """The body a fraction t of the way from one material (the half-plane's, t = 0) to
+        this one (t = 1): the layer's E1 = E2 (E1/E2)^t and nu1 = nu2 + t (nu1 - nu2), for
+        a continuation in the contrast."""
+        if t >= 1.0:
+            return self
+        return Materials(self.young_half_plane * (self.young_layer / self.young_half_plane) ** t,
+                         self.nu_half_plane + t * (self.nu_layer - self.nu_half_plane),
+                         self.young_half_plane, self.nu_half_plane, self.plane)
+
     def describe(self) -> str:
         """One line for logs and printed answers."""
         return (f"layer E = {self.young_layer:g}, nu = {self.nu_layer:g} on half-plane "

@@ -55,15 +55,24 @@ def run_solve(args: argparse.Namespace) -> None:
     """``receding solve --problem gap``: one solution, printed or as JSON."""
     check_memory("--n", args.n, gap_memory(args.n))
     from contactlab.receding.gap.solver import solve_gap
+    from contactlab.receding.liftoff.cli import materials_summary
+    from contactlab.receding.options import materials_of
 
+    materials = materials_of(args)
     start = time.perf_counter()
-    sol = solve_gap(args.w_hat, args.f, args.n, stick_zone_limit=args.stick_zone_limit)
+    sol = solve_gap(args.w_hat, args.f, args.n, stick_zone_limit=args.stick_zone_limit,
+                    materials=materials)
     summary = solution_summary(sol, time.perf_counter() - start, args.problem)
+    two = not sol.materials.same
+    if two:
+        summary.update(materials_summary(sol.materials))
     if args.json:
         print(json.dumps(summary))
         return
     lines = [f"gap problem, gap half-width w/c = {sol.w:g}, f = {sol.f:g}, N = {sol.n}: "
              f"{sol.regime}"]
+    if two:
+        lines.append(f"  {sol.materials.describe()}")
     lines += [f"  {ZONE_WORDS[k]:<38} {k}/c = {summary[k]:.6g}"
               for k in ZONE_WORDS if summary[k] is not None]
     lines.append(f"  largest residual {sol.residual:.1e}, converged {sol.converged}, "

@@ -50,7 +50,8 @@ def solve_problem(problem: str, f: float, w_hat: float | None, n: int, *,
                   lam: float | None = None, e: float | None = None,
                   lam_b: float | None = None, e_minus_w: float | None = None,
                   chaise: bool = False, stick_zone_limit: float,
-                  refine_max_n: int | None = None, interface: Any = None) -> Any:
+                  refine_max_n: int | None = None, interface: Any = None,
+                  materials: Any = None) -> Any:
     """One solution of a named problem.
 
     The line load needs ``lam`` and ``e`` (sec. 6.4), a patch ``w_hat``, ``lam_b`` and
@@ -58,11 +59,14 @@ def solve_problem(problem: str, f: float, w_hat: float | None, n: int, *,
     bounded-bounded-only model of Chaise et al. instead of the preformed one.
     ``refine_max_n``: raise N up to it while the solution fails the contact checks.
     ``interface``: a rough interface (:mod:`contactlab.receding.core.interface`; None:
-    smooth).
+    smooth). ``materials``: the layer's and the half-plane's
+    (:mod:`contactlab.receding.core.materials`; None: one material).
     """
     if problem not in PROBLEMS:
         raise ValueError(f"unknown problem {problem!r}; use one of {', '.join(PROBLEMS)}")
     rough = {} if interface is None else {"interface": interface}
+    if materials is not None:
+        rough["materials"] = materials
     scale = 1.0 if interface is None else 4.0  # the compliant densities and bridges
     check_memory("--n", n, scale * liftoff_memory(n))
     if refine_max_n is not None and refine_max_n > n:
@@ -91,7 +95,7 @@ def solve_problem(problem: str, f: float, w_hat: float | None, n: int, *,
 
 
 def _solve_args(args: argparse.Namespace, problem: str, chaise: bool = False,
-                interface: Any = None) -> Any:
+                interface: Any = None, materials: Any = None) -> Any:
     """:func:`solve_problem` with the command's options."""
     return solve_problem(problem, args.f, getattr(args, "w_hat", None), args.n,
                          lam=getattr(args, "lam", None), e=getattr(args, "e", None),
@@ -99,7 +103,7 @@ def _solve_args(args: argparse.Namespace, problem: str, chaise: bool = False,
                          e_minus_w=getattr(args, "e_minus_w", None), chaise=chaise,
                          stick_zone_limit=args.stick_zone_limit,
                          refine_max_n=getattr(args, "refine_max_n", None),
-                         interface=interface)
+                         interface=interface, materials=materials)
 
 
 def interface_of(args: argparse.Namespace) -> Any:
@@ -135,6 +139,11 @@ def summary(sol: Any, seconds: float) -> dict:
     })
 
 
+def materials_summary(materials: Any) -> dict:
+    """The two materials' constants and Dundurs' parameters beside :func:`summary`."""
+    return {**materials.attrs(), "compliance_per_E": materials.compliance}
+
+
 def rough_summary(sol: Any) -> dict:
     """The rough interface's numbers and certificates beside :func:`summary` (NaN -> null)."""
     from contactlab.receding.core.solution import json_ready
@@ -149,21 +158,29 @@ def run_solve(args: argparse.Namespace) -> None:
     """``receding solve`` of a line or patch problem: one solution, printed or as JSON."""
     if args.f < 0:
         raise ValueError(f"--f {args.f:g}: the friction coefficient must be >= 0")
+    from contactlab.receding.options import materials_of
+
     interface = interface_of(args)
+    materials = materials_of(args)
     start = time.perf_counter()
-    sol = _solve_args(args, args.problem, interface=interface)
+    sol = _solve_args(args, args.problem, interface=interface, materials=materials)
     out = summary(sol, time.perf_counter() - start)
     if interface is not None:
         out.update(rough_summary(sol))
+    two = not sol.materials.same
+    if two:
+        out.update(materials_summary(sol.materials))
     if args.json:
         print(json.dumps(out))
         return
     where = "line load" if args.problem == "line" else \
         f"{args.problem} pressure patch, half-width w/c = {sol.load.w:g}"
+    scale = "k_l / (C* T), C* of the two materials" if two else "k_l 2 mu/((kappa + 1) T)"
     print(f"{where}, f = {sol.f:g}, N = {sol.n}: {sol.regime}\n"
-          f"  stick-slip point      a/c = {sol.a:.6g}\n"
+          + (f"  {sol.materials.describe()}\n" if two else "")
+          + f"  stick-slip point      a/c = {sol.a:.6g}\n"
           f"  separation point      b/c = {sol.b:.6g}\n"
-          f"  remote slope          K_T = {sol.K_T:.6g}  (k_l 2 mu/((kappa + 1) T), "
+          f"  remote slope          K_T = {sol.K_T:.6g}  ({scale}, "
           f"T = load per thickness)\n"
           f"  largest residual {sol.residual:.1e} (units of T), remote slip error "
           f"{sol.remote_slip_record()['remote_slip_error']:.1e}, converged {sol.converged}, "
