@@ -3,6 +3,7 @@
 # map, interface profiles and the report section. Small dense solves: one BLAS thread per
 # job, Snakemake runs the jobs in parallel.
 
+from contactlab import rulehelpers
 from contactlab.rulehelpers import (
     chunk_values,
     command_args,
@@ -437,6 +438,55 @@ ALL_TARGETS.extend(
     ]
 )
 REPORT_SECTIONS.append(report_page("52_receding_rough"))
+
+
+# ---- Two materials (a layer on a dissimilar half-plane): a lift-off problem over Dundurs'
+# beta at fixed alpha and f, and report section 53 (with the FE pairs of fe.smk,
+# results/fe/materials_compare.nc, when they run).
+MATERIALS_SWEEP = config["receding"]["materials"]["sweep"]
+MATERIALS_FE = (
+    [result("fe/materials_compare.nc")] if rulehelpers.materials_fe_runs(config["fe"]) else []
+)
+
+if MATERIALS_SWEEP["enabled"]:
+
+    rule receding_beta_sweep:
+        """results/receding/materials/beta_sweep.nc: a, b, K_T and profiles over beta."""
+        output:
+            result("receding/materials/beta_sweep.nc"),
+        params:
+            args=lambda wc: command_args(
+                "receding beta-sweep", config, problem=MATERIALS_SWEEP["problem"]
+            ),
+        log:
+            logs("receding/beta_sweep.log"),
+        benchmark:
+            logs("benchmarks/receding_beta_sweep.tsv"),
+        shell:
+            "contactlab receding beta-sweep {params.args:q} --out {output:q} 2> {log:q}"
+
+    rule receding_report_materials:
+        """Report section 53: the coupling over beta and the FE pairs of materials."""
+        input:
+            sweep=result("receding/materials/beta_sweep.nc"),
+            fe=MATERIALS_FE,
+        output:
+            **report_section("53_receding_materials"),
+        params:
+            fe=lambda wc, input: ["--fe", *input.fe] if input.fe else [],
+            report_dir=lambda wildcards, output: Path(output.section).parent.parent,
+        log:
+            logs("report/receding_materials.log"),
+        benchmark:
+            logs("benchmarks/receding_report_materials.tsv"),
+        shell:
+            "contactlab receding report-materials --sweep {input.sweep:q} {params.fe:q}"
+            " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
+
+    ALL_TARGETS.append(result("receding/materials/beta_sweep.nc"))
+    REPORT_SECTIONS.append(report_page("53_receding_materials"))
+    localrules:
+        receding_report_materials,
 
 
 # Seconds-long gathers, light solves and reports: on a cluster they run in the

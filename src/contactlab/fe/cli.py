@@ -21,6 +21,7 @@ EXAMPLES = """\
   contactlab fe compare --problem uniform --run run.nc --ddt-n 50 --out uniform.nc
   contactlab fe convergence gap_coarse.nc gap_medium.nc --out convergence_gap.nc
   contactlab fe study --problem line line_*.nc --out study_line.nc
+  contactlab fe materials-compare pair_*.nc --out materials_compare.nc
   contactlab fe rough --problem line --compliance 1 --compliance-t 1.2143 --h 0.05 --out r.nc
   contactlab fe rough-compare r.nc --out rough_compare.nc
   contactlab fe asperity --yield-stress 3000 --out results/fe/asperity/sy3000.nc
@@ -210,6 +211,23 @@ def _study(args: argparse.Namespace) -> None:
         history=args.history,
         inputs=runs,
     )
+    write_netcdf(out, args.out)
+
+
+def _materials_compare(args: argparse.Namespace) -> None:
+    from contactlab.fe.materials import pair_table
+    from contactlab.io import load_datasets, stamp, write_netcdf
+
+    runs = load_datasets(args.runs, "FE run")
+    problems = sorted({str(r.attrs.get("problem")) for r in runs})
+    if problems != ["line"]:
+        raise ValueError(f"fe materials-compare: runs of the {', '.join(problems)} problem; "
+                         "the pairs of materials are compared on the line load")
+    out = pair_table(runs, args.ddt_n, lam=args.lam, e=args.e)
+    stamp(out, title="Two materials: FE (CalculiX) against the distributed dislocations, "
+                     "a, b and K_T per pair",
+          source="contactlab fe receding runs with --young-half-plane; DDT "
+                 "contactlab.receding.core.bimaterial", history=args.history, inputs=runs)
     write_netcdf(out, args.out)
 
 
@@ -411,6 +429,20 @@ COMMANDS = (
                         key="fe.study.ddt_n"),
                  *_reference(), out_option()),
         run=_study, select="problem"),
+    Command(
+        NAME, "materials-compare", "pairs of materials: FE against the DDT",
+        description="b, a and K_T of line-load runs with two materials (`fe receding "
+                    "--young-half-plane ...`), grouped by pair and extrapolated to h -> 0 "
+                    "over their meshes, beside the distributed-dislocation solution of the "
+                    "pair's Dundurs parameters.",
+        options=(Option("runs", "outputs of `fe receding` (line load)", input_file,
+                        nargs="+"),
+                 Option("--ddt-n", "DDT Gauss-Chebyshev points N (the largest is the "
+                        "reference, the spread over the others its uncertainty)", int,
+                        nargs="+", key="fe.materials.ddt_n"),
+                 *(Option(o.flag, f"DDT: {o.help}", o.type, key=o.key) for o in line_options()),
+                 out_option()),
+        run=_materials_compare),
     Command(
         NAME, "asperity", "elastic-plastic stuck asperity (sec. 3.2.2)",
         description="3D half model of a sphere on a block (C3D10), elastic-perfectly "

@@ -13,6 +13,7 @@ import argparse
 from contactlab.command import Command, Group, Option
 from contactlab.receding.gap import cli as gap_cli
 from contactlab.receding.liftoff import cli as liftoff_cli
+from contactlab.receding.materials import cli as materials_cli
 from contactlab.receding.options import (
     GAP,
     LINE,
@@ -37,7 +38,7 @@ EXAMPLES = """\
   contactlab receding patch-profile --problem uniform --f 0.3 --w-hat 1 --out p.nc
   contactlab receding solve --problem line --f 0.5 --interface-compliance 1 --json
   contactlab receding solve --problem line --f 0.5 --young-layer 210 --nu-layer 0.29
-  contactlab receding beta-sweep --problem line --f 0.5 --beta -0.2 0 0.2 --out beta.nc
+  contactlab receding beta-sweep --problem line --f 0.5 --alpha -0.5 --beta -0.2 0 --out b.nc
   contactlab receding rough-sweep --problem line --f 0.5 --C 0 0.1 1 --out rough.nc
   contactlab receding rough-profile --problem uniform --w-hat 1 --f 0.3 --C 1 --out rp.nc
   contactlab receding rough-pairs --summary results/stiffness/summary.nc --out pairs.nc
@@ -102,4 +103,4 @@ GROUP = Group(
                 "distributed dislocations (thesis chs 4-7): the gap problem (ch. 5), the "
                 "line load (ch. 6) and pressure patches (ch. 7).",
     examples=EXAMPLES, commands=(SOLVE, *gap_cli.COMMANDS, *liftoff_cli.COMMANDS,
-                                          *rough_cli.COMMANDS))
+                                          *rough_cli.COMMANDS, *materials_cli.COMMANDS))

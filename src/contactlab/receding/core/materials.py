@@ -164,6 +164,36 @@ class Materials:
 ONE_MATERIAL = Materials()
 
 
+def from_dundurs(alpha: float, beta: float, nu_half_plane: float = 0.3,
+                 plane: str = "strain") -> Materials:
+    """A layer on a half-plane (E2 = 1, nu2 given) with Dundurs' ``alpha`` and ``beta``:
+    with A = Gamma (kappa2 + 1), B = kappa1 + 1 and r = B/A = (1 - alpha)/(1 + alpha), the
+    definitions give A (r + beta (1 + r) - (kappa2 - 1)/(kappa2 + 1)) = 2; then kappa1 =
+    B - 1 and Gamma = A/(kappa2 + 1). ValueError where no Poisson's ratio of the layer in
+    (-1, 0.5) (plane strain; 1 plane stress) gives the pair (outside the parallelogram
+    |alpha| <= 1, |alpha - 4 beta| <= 1 or too near its edges)."""
+    if not (abs(alpha) < 1.0 and np.isfinite(beta)):
+        raise ValueError(f"Dundurs' alpha must lie in (-1, 1), got {alpha}")
+    k2 = kolosov(nu_half_plane, plane)
+    r = (1.0 - alpha) / (1.0 + alpha)
+    factor = r + beta * (1.0 + r) - (k2 - 1.0) / (k2 + 1.0)
+    if not factor > 0:
+        raise ValueError(f"no layer gives alpha = {alpha}, beta = {beta} on a half-plane with "
+                         f"nu = {nu_half_plane}")
+    a = 2.0 / factor
+    k1 = a * r - 1.0
+    # invert kappa1: plane strain 3 - 4 nu, plane stress (3 - nu)/(1 + nu)
+    nu1 = (3.0 - k1) / 4.0 if plane == "strain" else (3.0 - k1) / (1.0 + k1)
+    gamma = a / (k2 + 1.0)
+    mu2 = 1.0 / (2.0 * (1.0 + nu_half_plane))
+    try:
+        return Materials(gamma * mu2 * 2.0 * (1.0 + nu1), nu1, 1.0, nu_half_plane, plane)
+    except ValueError:
+        raise ValueError(f"no layer gives alpha = {alpha}, beta = {beta} on a half-plane with "
+                         f"nu = {nu_half_plane}: its Poisson's ratio would be {nu1:.4g}"
+                         ) from None
+
+
 def pair_for_beta(beta: float, ratio_nu: tuple[float, float] = (0.3, 0.3),
                   plane: str = "strain") -> Materials:
     """A layer on a half-plane with Dundurs' ``beta`` and the given Poisson's ratios

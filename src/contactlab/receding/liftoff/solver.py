@@ -666,6 +666,7 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
         sol.record(root, root.system, *_intervals(a, b, n, lam_a, lam_b, materials),
                    checks=checks)
         sol.seconds = time.perf_counter() - start
+        _reject_sinking(sol)
         return sol, root.jacobian
     try:
         with single_thread():
@@ -680,7 +681,18 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
         return sol, None
     sol.record(root, sysm, glide, climb, checks=checks)
     sol.seconds = time.perf_counter() - start
+    _reject_sinking(sol)
     return sol, None
+
+
+def _reject_sinking(sol: LiftoffSolution) -> None:
+    """With two materials a root with K_T <= 0 (the layer's ends would sink into the
+    half-plane) is not a solution: the discrete equations of a strong contrast have such
+    roots (``coarse_points``), which the contact checks on [0, b + 8] do not always see."""
+    if sol.converged and sol.preformed_used and not sol.materials.same and not sol.K_T > 0:
+        sol.converged = False
+        sol.regime = "failed"
+        sol.message += f"; rejected: K_T = {sol.K_T:.3g} <= 0 (a sinking layer)"
 
 
 #: compliance numbers (the larger of C, C_T) the cold solve of a compliant interface
