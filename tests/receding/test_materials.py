@@ -132,7 +132,7 @@ def test_preformed_stresses_with_two_materials_match_quadrature() -> None:
                                     float(point))
                 want += _kernel_quad(kernels, "climb", component, density, 5.0, 400.0,
                                      float(point))
-                want += sum(quad(lambda xi: image(xi, component), lo, hi, limit=200)[0]
+                want += sum(quad(image, lo, hi, args=(component,), limit=200)[0]
                             for lo, hi in ((1.6, 5.0), (5.0, 400.0))) / np.pi
                 # the load part's tail beyond 400 c is ~1e-6; the K part (-1) is not
                 # truncated in the graded rule, so compare it to 2e-3 of its size
