@@ -233,9 +233,6 @@ class Command:
         once; the caller reports them.
         """
         selected = getattr(args, self.select) if self.select else None
-        if self.select and selected is None:  # a config-fed select option left out
-            key = next(o for o in self.options if o.dest == self.select).key_for(None)
-            selected = schema_default(key) if key is not None else None
         problems: list[str] = []
         filled: list[str] = []
         for opt in self.options:

@@ -207,7 +207,7 @@ rule fe_rough_compare:
 FE_MATERIALS_RUNS = rulehelpers.materials_fe_runs(FE, RESULTS)
 
 
-rule fe_materials_run:
+rule fe_receding_materials:
     """One pair of materials (fe.materials.pairs) on one mesh: the line load, far field."""
     output:
         result("fe/materials/{pair}_h{h}.nc"),

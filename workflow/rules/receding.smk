@@ -448,45 +448,62 @@ MATERIALS_FE = (
     [result("fe/materials_compare.nc")] if rulehelpers.materials_fe_runs(config["fe"]) else []
 )
 
-if MATERIALS_SWEEP["enabled"]:
 
-    rule receding_beta_sweep:
-        """results/receding/materials/beta_sweep.nc: a, b, K_T and profiles over beta."""
-        output:
-            result("receding/materials/beta_sweep.nc"),
-        params:
-            args=lambda wc: command_args(
-                "receding beta-sweep", config, problem=MATERIALS_SWEEP["problem"]
-            ),
-        log:
-            logs("receding/beta_sweep.log"),
-        benchmark:
-            logs("benchmarks/receding_beta_sweep.tsv"),
-        shell:
-            "contactlab receding beta-sweep {params.args:q} --out {output:q} 2> {log:q}"
+rule receding_beta_sweep:
+    """results/receding/materials/beta_sweep.nc: a, b, K_T and profiles over beta."""
+    output:
+        result("receding/materials/beta_sweep.nc"),
+    params:
+        args=lambda wc: command_args(
+            "receding beta-sweep", config, problem=MATERIALS_SWEEP["problem"]
+        ),
+    log:
+        logs("receding/beta_sweep.log"),
+    benchmark:
+        logs("benchmarks/receding_beta_sweep.tsv"),
+    shell:
+        "contactlab receding beta-sweep {params.args:q} --out {output:q} 2> {log:q}"
 
-    rule receding_report_materials:
-        """Report section 53: the coupling over beta and the FE pairs of materials."""
-        input:
-            sweep=result("receding/materials/beta_sweep.nc"),
-            fe=MATERIALS_FE,
-        output:
-            **report_section("53_receding_materials"),
-        params:
-            fe=lambda wc, input: ["--fe", *input.fe] if input.fe else [],
-            report_dir=lambda wildcards, output: Path(output.section).parent.parent,
-        log:
-            logs("report/receding_materials.log"),
-        benchmark:
-            logs("benchmarks/receding_report_materials.tsv"),
-        shell:
-            "contactlab receding report-materials --sweep {input.sweep:q} {params.fe:q}"
-            " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
 
-    ALL_TARGETS.append(result("receding/materials/beta_sweep.nc"))
-    REPORT_SECTIONS.append(report_page("53_receding_materials"))
-    localrules:
-        receding_report_materials,
+rule receding_materials_pair:
+    """results/receding/materials/pair.nc: the configured pair beside one material."""
+    output:
+        result("receding/materials/pair.nc"),
+    params:
+        args=lambda wc: command_args("receding materials-pair", config),
+    log:
+        logs("receding/materials_pair.log"),
+    benchmark:
+        logs("benchmarks/receding_materials_pair.tsv"),
+    shell:
+        "contactlab receding materials-pair {params.args:q} --out {output:q} 2> {log:q}"
+
+
+rule receding_report_materials:
+    """Report section 53: the pair, the coupling over beta and the FE pairs."""
+    input:
+        sweep=result("receding/materials/beta_sweep.nc"),
+        pair=result("receding/materials/pair.nc"),
+        fe=MATERIALS_FE,
+    output:
+        **report_section("53_receding_materials"),
+    params:
+        fe=lambda wc, input: ["--fe", *input.fe] if input.fe else [],
+        report_dir=lambda wildcards, output: Path(output.section).parent.parent,
+    log:
+        logs("report/receding_materials.log"),
+    benchmark:
+        logs("benchmarks/receding_report_materials.tsv"),
+    shell:
+        "contactlab receding report-materials --sweep {input.sweep:q}"
+        " --pair {input.pair:q} {params.fe:q}"
+        " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
+
+
+ALL_TARGETS.extend(
+    [result("receding/materials/beta_sweep.nc"), result("receding/materials/pair.nc")]
+)
+REPORT_SECTIONS.append(report_page("53_receding_materials"))
 
 
 # Seconds-long gathers, light solves and reports: on a cluster they run in the
@@ -505,3 +522,4 @@ localrules:
     receding_rough_gather,
     receding_rough_profile,
     receding_report_rough,
+    receding_report_materials,

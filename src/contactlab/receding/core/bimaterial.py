@@ -77,14 +77,16 @@ function analytic in the strip |Im d| < c gives ~1e-15) from a Gauss-Legendre ru
 stiff layer puts structure on the scale (1 - alpha)/4), interpolated by a piecewise
 polynomial; beyond 40 c the remainder is interpolated in u = 40 c / |d| on [0, 1]
 (4 panels of 12 points) from adaptive Fourier quadrature (QUADPACK's QAWF through
-scipy.integrate.quad), so the algebraic tails are exact in form. Against direct
-adaptive quadrature the tables agree to 1e-11 for |alpha| <= 0.9 (1e-7 at alpha = 0.99,
+scipy.integrate.quad), so the algebraic tails are exact in form. On |d| <= 40 c the tables
+agree with panel-wise quadrature of the integrals to 1e-15 and with QAWF to 1e-10; out to
+|d| = 900 c with QAWF to 6e-10, about QAWF's own error there (1e-7 at alpha = 0.99,
 |d| ~ 1e4 c, a rigid-like layer whose shear lag spreads over (1 - alpha)^-1 c). A table
-costs ~0.3 s of CPU to build (cached per (alpha, beta) and function in the process) and
-its evaluation ~0.08 s per 10^6 points, about the cost of App. B.1's rational functions
-(measured, benchmarks/receding_bimaterial.py). Tabulating once and interpolating beats
-quad per matrix entry by ~5 orders of magnitude, which decides it: the solvers evaluate
-the kernels at 10^4-10^6 points per assembly and assemble tens of times per root.
+costs 0.2-0.4 s of CPU to build (cached per (alpha, beta) and function in the process);
+the bounded parts of one kind on 10^6 offsets cost 0.16 s with the remainders against
+0.017 s for App. B.1's rational functions, and a line-load solve at N = 200 four times
+one material's (benchmarks/receding_bimaterial.py). Adaptive quadrature per matrix entry
+(~5 ms each) would cost hours per assembly: the solvers evaluate the kernels at 10^4-10^6
+offsets per assembly and assemble tens of times per root, which decides for the tables.
 """
 
 from __future__ import annotations

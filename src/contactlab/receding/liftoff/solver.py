@@ -135,8 +135,9 @@ def contrast_seed(first: Callable[[], LiftoffSolution],
     """(a, b) of a problem in the body of ``materials`` by continuation in the contrast:
     ``first()`` solves it for one material, then ``step(m, seed)`` for the bodies
     ``materials.toward(t)`` from the last (a, b), t rising to 1 in steps of
-    CONTRAST_STEP, halved where a step finds no root with a lifting layer (K_T > 0) and
-    grown by half after a success; None below CONTRAST_MIN_STEP. A cold solve with two
+    CONTRAST_STEP, halved where a step finds no root with a lifting layer (K_T > 0) on the
+    same branch (``_continues``) and grown by half after a success (to CONTRAST_STEP at
+    most); None below CONTRAST_MIN_STEP. A cold solve with two
     materials starts here: from the one-material guesses the discrete equations of a
     strong contrast have other roots (``coarse_points``), which this path avoids (a soft
     layer's uniform patch, alpha = -0.83, w/c = 2.5, f = 0.3: a moves from 1.10 to 1.94;
@@ -144,17 +145,25 @@ def contrast_seed(first: Callable[[], LiftoffSolution],
     sol = first()
     if not (sol.converged and sol.a > 0):
         return None
-    seed, t, dt = (sol.a, sol.b), 0.0, CONTRAST_STEP
+    seed, slope, t, dt = (sol.a, sol.b), sol.K_T, 0.0, CONTRAST_STEP
     while t < 1.0:
         trial = min(1.0, t + dt)
         sol = step(materials.toward(trial), seed)
-        if sol.converged and sol.a > 0 and sol.K_T > 0:
-            seed, t, dt = (sol.a, sol.b), trial, 1.5 * dt
+        if sol.converged and sol.a > 0 and sol.K_T > 0 and _continues(sol, seed, slope):
+            seed, slope, t = (sol.a, sol.b), sol.K_T, trial
+            dt = min(1.5 * dt, CONTRAST_STEP)
         elif dt / 2.0 < CONTRAST_MIN_STEP:
             return None
         else:
             dt /= 2.0
     return seed
+
+
+def _continues(sol: LiftoffSolution, seed: tuple[float, float], slope: float) -> bool:
+    """A step of the contrast continuation stays on its branch: b within 25 % and K_T within
+    50 % of the last step's (a spurious root jumps: a soft layer's uniform patch, w/c = 1,
+    f = 0.5, reached b = 5.5 and K_T = 0.004 from b = 2.04, K_T = 0.047 in one step)."""
+    return abs(sol.b - seed[1]) <= 0.25 * seed[1] and abs(sol.K_T - slope) <= 0.5 * slope
 
 
 @dataclass

@@ -1,10 +1,11 @@
 """Commands of a layer and a half-plane of different materials.
 
 Declared here, grouped by :mod:`contactlab.receding.cli`: ``beta-sweep`` (a lift-off
-problem over Dundurs' beta at fixed alpha and f) and ``report-materials`` (report section
-53). ``receding solve`` takes the two materials itself (``receding.options``). Options fed
-from the config take the schema's defaults (``receding.materials.sweep``; the patches'
-maps from ``receding.patches``).
+problem over Dundurs' beta at fixed alpha and f), ``materials-pair`` (the configured pair
+of materials, ``receding.materials``, beside one material) and ``report-materials``
+(report section 53). ``receding solve`` takes the two materials itself
+(``receding.options``). Options fed from the config take the schema's defaults
+(``receding.materials``; the patches' maps from ``receding.patches``).
 """
 
 from __future__ import annotations
@@ -14,7 +15,14 @@ import time
 
 from contactlab.cliutil import check_memory, input_file, out_option, section_outputs
 from contactlab.command import Command, Option
-from contactlab.receding.options import MATERIALS, NAME, PATCHES, patch_options
+from contactlab.receding.options import (
+    MATERIALS,
+    NAME,
+    PATCHES,
+    material_options,
+    materials_of,
+    patch_options,
+)
 
 SWEEP = f"{MATERIALS}.sweep"
 PROBLEMS = ("line", "uniform", "hertz", "punch")
@@ -45,10 +53,27 @@ def _sweep(args: argparse.Namespace) -> None:
     write_netcdf(ds, args.out)
 
 
+def _pair(args: argparse.Namespace) -> None:
+    from contactlab.receding.liftoff.cli import liftoff_memory
+
+    check_memory("--n", args.n, liftoff_memory(max(args.n, args.refine_max_n)))
+    from contactlab.io import stamp, write_netcdf
+    from contactlab.receding.materials.sweep import pair_points
+
+    materials = materials_of(args)
+    ds = pair_points(materials, args.f, args.w_hat, args.n, lam=args.lam, e=args.e,
+                     lam_b=args.lam_b, e_minus_w=args.e_minus_w,
+                     refine_max_n=args.refine_max_n)
+    stamp(ds, title=f"The configured pair of materials ({materials.describe()}) beside one "
+                    "material: a, b, K_T of the lift-off problems",
+          source=SOURCE, history=args.history)
+    write_netcdf(ds, args.out)
+
+
 def _report(args: argparse.Namespace) -> None:
     from contactlab.receding.materials.report import build_section
 
-    build_section(args.sweep, args.fe, args.report_dir, args.out)
+    build_section(args.sweep, args.pair, args.fe, args.report_dir, args.out)
 
 
 COMMANDS = (
@@ -59,8 +84,8 @@ COMMANDS = (
                     "and Poisson's ratio --nu-half-plane), with profiles at the extreme "
                     "betas and beta = 0, and each point re-solved at --n-check.",
         options=(
-            Option("--problem", "line load (ch. 6) or pressure patch (ch. 7)",
-                   choices=PROBLEMS, key=f"{SWEEP}.problem"),
+            Option("--problem", "line load (ch. 6) or pressure patch (ch. 7) (the workflow: "
+                   "receding.materials.sweep.problem)", choices=PROBLEMS),
             Option("--f", "friction coefficient f", float, key=f"{SWEEP}.f"),
             Option("--alpha", "Dundurs' alpha, held fixed", float, key=f"{SWEEP}.alpha"),
             Option("--beta", "Dundurs' beta values (0 is added)", float, nargs="+",
@@ -85,11 +110,29 @@ COMMANDS = (
             out_option()),
         run=_sweep, select="problem"),
     Command(
+        NAME, "materials-pair", "the lift-off problems for a pair of materials",
+        description="a, b and K_T of the line load and the uniform, Hertzian and punch "
+                    "patches in the body of the given layer and half-plane, beside one "
+                    "material (the thesis's).",
+        options=(
+            Option("--f", "friction coefficient f", float, key=f"{SWEEP}.f"),
+            Option("--w-hat", "patch half-width w/c", float, key=f"{SWEEP}.w"),
+            Option("--n", "Gauss-Chebyshev points N (even)", int, key=f"{SWEEP}.n"),
+            Option("--refine-max-n", "largest N of a point failing the contact checks", int,
+                   key=f"{SWEEP}.refine_max_n"),
+            Option("--lam", "map scale lambda of the line load (sec. 6.4)", float,
+                   key="receding.line.lambda"),
+            Option("--e", "end e/c of the cubic part of A_y (eq. 6.9)", float,
+                   key="receding.line.e"),
+            *patch_options(PATCHES), *material_options(), out_option()),
+        run=_pair),
+    Command(
         NAME, "report-materials", "report section of two materials",
         description="HTML report section: a, b and K_T over Dundurs' beta, the interface "
                     "profiles and, when the FE runs exist, CalculiX against the distributed "
                     "dislocations for pairs of materials.",
         options=(Option("--sweep", "beta-sweep output", input_file),
+                 Option("--pair", "materials-pair output", input_file),
                  Option("--fe", "fe materials-compare output (none: an empty FE table)",
                         input_file, default=None),
                  *section_outputs()),

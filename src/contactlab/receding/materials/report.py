@@ -1,8 +1,9 @@
 """Report section 53: a layer and a half-plane of different materials.
 
-From results files only: the sweep over Dundurs' beta (``receding beta-sweep``,
-``results/receding/materials/beta_sweep.nc``) and, when the FE branch ran its pairs,
-``results/fe/materials_compare.nc`` (``fe materials-compare``).
+From results files only: the configured pair beside one material (``receding
+materials-pair``, ``results/receding/materials/pair.nc``), the sweep over Dundurs' beta
+(``receding beta-sweep``, ``results/receding/materials/beta_sweep.nc``) and, when the FE
+branch ran its pairs, ``results/fe/materials_compare.nc`` (``fe materials-compare``).
 """
 
 from __future__ import annotations
@@ -77,6 +78,13 @@ def beta_table(ds: xr.Dataset) -> pd.DataFrame:
     return ds[names].to_dataframe().reset_index()
 
 
+def pair_table(pair: xr.Dataset) -> pd.DataFrame:
+    """a, b, K_T per problem for one material and the pair, side by side."""
+    frame = pair[["a", "b", "K_T", "converged", "admissible"]].to_dataframe().unstack("body")
+    frame.columns = [f"{name} ({body})" for name, body in frame.columns]
+    return frame.reset_index()
+
+
 def fe_table(fe: xr.Dataset | None) -> pd.DataFrame:
     if fe is None:
         return pd.DataFrame(columns=FE_COLUMNS)
@@ -110,12 +118,22 @@ def _convergence(ds: xr.Dataset) -> dict:
             "points": int(ds.sizes["beta"])}
 
 
-def build_section(sweep_path: Path, fe_path: Path | None, report_dir: Path, out: Path) -> None:
+def build_section(sweep_path: Path, pair_path: Path, fe_path: Path | None, report_dir: Path,
+                  out: Path) -> None:
     """Write section 53 (``contactlab/report/sections/53_receding_materials.yaml``)."""
     ds = _open(sweep_path)
+    pair = _open(pair_path)
     fe = _open(fe_path) if fe_path is not None else None
     section = ReportSection("53_receding_materials", report_dir)
     section.paragraph("problem")
+    section.heading("heading_pair")
+    name = (f"layer E1 = {pair.attrs['young_layer']:g}, nu1 = {pair.attrs['nu_layer']:g} on "
+            f"half-plane E2 = {pair.attrs['young_half_plane']:g}, nu2 = "
+            f"{pair.attrs['nu_half_plane']:g}")
+    section.paragraph("pair", pair=name, alpha=float(pair.attrs["dundurs_alpha"]),
+                      beta=float(pair.attrs["dundurs_beta"]), f=float(pair.attrs["f"]),
+                      w_hat=float(pair.attrs["w_hat"]))
+    section.table(pair_table(pair), "receding_materials_pair", digits=5)
     section.heading("heading_sweep")
     section.paragraph("sweep", **_facts(ds))
     section.note("convergence", **_convergence(ds))

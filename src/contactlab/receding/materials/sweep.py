@@ -193,3 +193,34 @@ def _dataset(problem: str, f: float, alpha: float, betas: np.ndarray,
                                   "compliance C* = (kappa1 + 1)/(4 mu1) + (kappa2 + 1)/"
                                   "(4 mu2) of each body")
     return ds
+
+
+def pair_points(materials: Materials, f: float, w_hat: float, n: int, *, lam: float,
+                e: float, lam_b: float, e_minus_w: float,
+                problems: Sequence[str] = PROBLEMS,
+                refine_max_n: int | None = None) -> xr.Dataset:
+    """a, b and K_T of each lift-off problem (the patches at half-width ``w_hat``) in the
+    body of ``materials`` and, beside it, for one material: what the pair changes."""
+    bodies = {"one material": None, "pair": materials}
+    shape = (len(problems), len(bodies))
+    values = {name: np.full(shape, np.nan) for name in ("a", "b", "K_T")}
+    flags = {name: np.zeros(shape, dtype=np.int8) for name in ("converged", "admissible")}
+    for i, problem in enumerate(problems):
+        for j, body in enumerate(bodies.values()):
+            sol = solve_point(problem, f, body if body is not None else Materials(), n,
+                              lam=lam, e=e, w_hat=None if problem == "line" else w_hat,
+                              lam_b=lam_b, e_minus_w=e_minus_w, refine_max_n=refine_max_n)
+            for name in values:
+                values[name][i, j] = getattr(sol, name)
+            flags["converged"][i, j] = sol.converged
+            flags["admissible"][i, j] = sol.admissible
+    names = {"a": "end of the stick zone a/c", "b": "end of contact b/c",
+             "K_T": "remote slope K_T = k_l / (C* T)", "converged": "root finder converged",
+             "admissible": "contact checks hold within CHECK_TOL"}
+    ds = xr.Dataset(
+        {k: (("problem", "body"), v, {"long_name": names[k], "units": ONE})
+         for k, v in {**values, **flags}.items()},
+        coords={"problem": ("problem", list(problems)),
+                "body": ("body", list(bodies), {"long_name": "one material or the pair"})})
+    ds.attrs.update(materials.attrs(), f=f, w_hat=w_hat, N=n)
+    return ds

@@ -199,8 +199,8 @@ def test_solve_refuses_a_bad_material_in_one_line(capsys) -> None:
 
 def test_beta_sweep_and_its_report(tmp_path) -> None:
     out = tmp_path / "beta.nc"
-    assert main(["receding", "beta-sweep", "--beta", "-0.2", "--n", "64", "--n-check", "80",
-                 "--refine-max-n", "64", "--out", str(out)]) == 0
+    assert main(["receding", "beta-sweep", "--problem", "line", "--beta", "-0.2", "--n", "64",
+                 "--n-check", "80", "--refine-max-n", "64", "--out", str(out)]) == 0
     import xarray as xr
 
     with xr.open_dataset(out) as ds:
@@ -209,7 +209,16 @@ def test_beta_sweep_and_its_report(tmp_path) -> None:
         # the coupling enlarges the stick zone of a soft layer with beta < 0
         assert float(ds["a"].sel(beta=-0.2)) > 1.5 * float(ds["a"].sel(beta=0.0))
         assert float(ds["a_change"].sel(beta=0.0)) == 0.0
+    pair = tmp_path / "pair.nc"
+    assert main(["receding", "materials-pair", "--young-layer", "210", "--nu-layer", "0.3",
+                 "--n", "64", "--refine-max-n", "64", "--out", str(pair)]) == 0
+    with xr.open_dataset(pair) as ds:
+        # steel on Ti-6Al-4V: a stiffer layer's contact is longer than one material's
+        line = ds.sel(problem="line")
+        assert float(line["b"].sel(body="pair")) > float(line["b"].sel(body="one material"))
+        assert int(ds["converged"].sum()) == 8
     section = tmp_path / "report" / "sections" / "53_receding_materials.html"
-    assert main(["receding", "report-materials", "--sweep", str(out), "--report-dir",
-                 str(tmp_path / "report"), "--out", str(section)]) == 0
-    assert "receding_materials_beta.png" in section.read_text()
+    assert main(["receding", "report-materials", "--sweep", str(out), "--pair", str(pair),
+                 "--report-dir", str(tmp_path / "report"), "--out", str(section)]) == 0
+    text = section.read_text()
+    assert "receding_materials_beta.png" in text and "receding_materials_pair" in text
