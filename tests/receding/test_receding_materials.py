@@ -222,3 +222,17 @@ def test_beta_sweep_and_its_report(tmp_path) -> None:
                  "--report-dir", str(tmp_path / "report"), "--out", str(section)]) == 0
     text = section.read_text()
     assert "receding_materials_beta.png" in text and "receding_materials_pair" in text
+
+
+def test_a_rough_interface_between_two_materials() -> None:
+    """A compliant interface (C = 1, C_T = 1.2) under Ti-6Al-4V on steel: converged,
+    admissible, in equilibrium, and apart from the one-material solution (C in C*)."""
+    from contactlab.receding.core.interface import linear_interface
+
+    law = linear_interface(1.0, 1.2)
+    one = solve_line(0.5, 64, 3.5, 5.0, interface=law)
+    two = solve_line(0.5, 64, 3.5, 5.0, interface=law, materials=TI_ON_STEEL)
+    assert two.converged and two.admissible and two.materials == TI_ON_STEEL
+    certificates = two.certify()
+    assert certificates["equilibrium_error"] < 1e-4 and certificates["end_gap"] < 1e-3
+    assert two.b < one.b - 0.1
