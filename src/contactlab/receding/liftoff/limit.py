@@ -194,6 +194,10 @@ def try_limit(sol: LiftoffSolution, lam_a: float, lam_b: float, stick_zone_limit
     the stick zone to at least about C_T c."""
     if not (0 < sol.f < LIMIT_FRICTION and stick_zone_limit > 0):
         return None
+    if not sol.materials.same:
+        sol.message += ("; stick-zone limit not used: its log-singular densities are "
+                        "derived for one material (App. B.1)")
+        return None
     if sol.interface.C_T >= stick_zone_limit:
         sol.message += (f"; stick-zone limit not used: C_T = {sol.interface.C_T:g} >= "
                         f"stick_zone_limit {stick_zone_limit:g}")

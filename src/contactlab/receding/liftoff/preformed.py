@@ -45,6 +45,15 @@ is smooth (A is C^1 with breaks of A'' only at b and e, which are panel ends). T
 smooth integrals use composite Gauss-Legendre panels graded geometrically towards x on
 [b, e] and [e, max(x, e)], and a mapped rule on the tail. Checked against an independent
 adaptive principal-value quadrature (scipy ``quad`` with the Cauchy weight) at many points.
+
+Two materials (``materials``): far from the contact the layer is free and straight while
+the half-plane's surface sinks like Flamant's -(kappa2 + 1) P ln|x| / (4 pi mu2) under the
+load it carries, so the separation's slope tends to k_l + (kappa2 + 1) P / (4 pi mu2 x):
+in the normalisation of C* (``core.materials``) the load part of the remote form is
+(1 + alpha) g(x), twice the half-plane's share of C* times g (for one material
+(kappa + 1)/(4 mu) / ((kappa + 1)/(2 mu)) = 1/2, i.e. g itself, eqs 6.4, 7.14). The
+kernels are those of ``core.bimaterial``: the Cauchy parts times c0, App. B.1's bounded
+parts plus the remainders, and the delta part of H_yxy, the local shear c_beta A_y(x).
 """
 
 from __future__ import annotations
@@ -54,6 +63,8 @@ from functools import cached_property, lru_cache
 
 import numpy as np
 
+from contactlab.receding.core.bimaterial import interface_kernels
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.liftoff.loading import Load
 
 #: geometric panels per finite segment and Gauss points per panel
@@ -110,6 +121,7 @@ class Preformed:
     load: Load
     b: float
     e: float
+    materials: Materials = ONE_MATERIAL
 
     def __post_init__(self) -> None:
         if not (0.0 <= self.b < self.e):
@@ -117,11 +129,21 @@ class Preformed:
         if self.e <= self.load.w:
             raise ValueError(f"e = {self.e} must lie beyond the load (w = {self.load.w})")
 
+    @property
+    def share(self) -> float:
+        """The factor of the load part of the remote form: 1 + alpha (module docstring)."""
+        return 1.0 if self.materials.same else 2.0 * self.materials.half_plane_share
+
+    def remote_g(self, x: np.ndarray) -> np.ndarray:
+        """The load part of the remote climb form at |x| > w: g(x) times ``share``."""
+        g = self.load.remote_g(x)
+        return g if self.materials.same else self.share * g
+
     @cached_property
     def coefficients(self) -> np.ndarray:
         """[[R1, R2] of the load part, [R1, R2] of the K part] (2, 2)."""
-        g = float(self.load.remote_g(np.array([self.e]))[0])
-        dg = float(self.load.remote_g_prime(np.array([self.e]))[0])
+        g = float(self.remote_g(np.array([self.e]))[0])
+        dg = self.share * float(self.load.remote_g_prime(np.array([self.e]))[0])
         return np.array([cubic_coefficients(self.b, self.e, g, dg),
                          cubic_coefficients(self.b, self.e, -1.0, 0.0)])
 
@@ -135,7 +157,7 @@ class Preformed:
         out[mid] = (h * h)[:, None] * r[:, 0][None, :] + (h**3)[:, None] * r[:, 1][None, :]
         far = x > self.e
         if far.any():
-            out[far, 0] = self.load.remote_g(x[far])
+            out[far, 0] = self.remote_g(x[far])
             out[far, 1] = -1.0
         return out
 
@@ -153,7 +175,7 @@ class Preformed:
         out = (h**3 / 3.0)[:, None] * r[:, 0][None, :] + (h**4 / 4.0)[:, None] * r[:, 1][None, :]
         far = x > self.e
         if far.any():
-            out[far, 0] += self.load.remote_g_integral(self.e, x[far])
+            out[far, 0] += self.share * self.load.remote_g_integral(self.e, x[far])
             out[far, 1] += -(x[far] - self.e)
         return out
 
@@ -230,7 +252,7 @@ class Preformed:
                 a0[:, block] = r[0, 0] * h2 + r[0, 1] * h3
                 a1[:, block] = r[1, 0] * h2 + r[1, 1] * h3
             else:
-                a0[:, block] = self.load.remote_g(nodes.ravel()).reshape(nodes.shape)
+                a0[:, block] = self.remote_g(nodes.ravel()).reshape(nodes.shape)
                 a1[:, block] = -1.0
         # kernels with the powers of 1/(4 + d^2) shared (kernels.py, App. B.1)
         d = ax[:, None] - xi
@@ -243,8 +265,17 @@ class Preformed:
         # (H_yyy - C)(d) - H_yyy(d + 2 xi)
         smooth_n = d * iq * iq * (-4.0 - 64.0 * iq) - (1.0 / dp - dp * ip * (
             1.0 + ip * (4.0 + 64.0 * ip)))
+        kernels = interface_kernels(self.materials)
+        c0 = kernels.cauchy
+        if not kernels.one_material:
+            # H_yyy = c0 C + c0 d/(d^2 + 4) + (App. B.1's bounded part) + R_c, at d and at
+            # d + 2 xi (the image)
+            smooth_n += (c0 - 1.0) * (d * iq - 1.0 / dp) + kernels.remainder(
+                "climb", d) - kernels.remainder("climb", dp)
         # the Cauchy part against A(xi) - A(x): sum C A(xi) - A(x) sum C
         w_c = om * cp
+        if c0 != 1.0:
+            w_c *= c0
         cauchy_total = w_c.sum(axis=1)
         w_t = w_c + om * smooth_n
         normal = np.stack([np.einsum("mk,mk->m", w_t, a0),
@@ -253,11 +284,15 @@ class Preformed:
         if shear:
             # H_yxy(d) - H_yxy(d + 2 xi), H_yxy = 8 (3/q^2 - 16/q^3)
             w_s = om * 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
+            if not kernels.one_material:
+                w_s += om * (kernels.remainder("even", d) - kernels.remainder("even", dp))
             out = np.stack([np.einsum("mk,mk->m", w_s, a0),
                             np.einsum("mk,mk->m", w_s, a1)], axis=1)
+            if kernels.coupling:  # the delta part of H_yxy: pi c_beta A(x), in units of pi
+                out += np.pi * kernels.coupling * a_x
         normal -= a_x * cauchy_total[:, None]
         gap = ax - self.b
         with np.errstate(divide="ignore"):
             log_term = np.where(gap != 0.0, 0.5 * np.log(gap * gap / (gap * gap + 4.0)), 0.0)
-        normal += a_x * log_term[:, None]
+        normal += c0 * a_x * log_term[:, None]
         return normal, out
