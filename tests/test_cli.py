@@ -266,9 +266,11 @@ MINIMAL: dict[str, list[str]] = {
         "--out {tmp}/RU1.nc",
         "summarize results/stiffness/RU1.nc results/stiffness/SU2.nc results/stiffness/S3.nc "
         "--tests config/e2e_tests.csv --tables-dir {tmp}/tables --out {tmp}/summary.nc",
-        "figures {tmp}/RU1.nc --out-dir {tmp}/figures",
+        "figures {tmp}/RU1.nc --summary {tmp}/summary.nc --out-dir {tmp}/figures",
         "report-raw results/stiffness/RU1.nc results/stiffness/SU2.nc results/stiffness/S3.nc "
         "--summary {tmp}/summary.nc --report-dir {tmp}/report --out {tmp}/report/raw.html",
+        "report-tests results/stiffness/RU1.nc --summary {tmp}/summary.nc --tests "
+        "config/e2e_tests.csv --report-dir {tmp}/report --out {tmp}/report/tests.html",
         "summarize-published --tests config/e2e_tests.csv --tables-dir {tmp}/tables "
         "--out {tmp}/published.nc",
         "report-published --summary {tmp}/published.nc --tables-dir {tmp}/tables "

@@ -80,9 +80,40 @@ def test_every_config_key_has_its_default_in_the_schema(repo: Path) -> None:
     missing = {key for key, node in schema_leaves(_schema(repo)) if "default" not in node}
     assert missing == NO_DEFAULT
 
-def test_config_readme_is_generated_from_the_schema(repo: Path) -> None:
-    from contactlab.config_docs import render
+def test_config_readme_is_generated_from_the_schemas(repo: Path) -> None:
+    from contactlab.config_docs import page as generated
 
     page = (repo / "config" / "README.md").read_text()
-    assert page == render(_schema(repo)), "regenerate: python -m contactlab.config_docs"
+    assert page == generated(repo), "regenerate: python -m contactlab.config_docs"
     assert "`stiffness.errors.piston_area_cm2` | number | `6.5` |" in page
+    # both sheets: every column with its type, unit, allowed values, and example rows
+    assert "| `max_normal_load_kN` | number | kN | yes | > 0 |" in page
+    assert "| `group` | string |  | yes | `ground`, `structured` |" in page
+    assert "| `objective` | string |  | yes | `20x`, `100x`, `other` |" in page
+    assert "| `lambda_c_um` | number | um | yes | > 0 |" in page
+    assert page.count("```csv") == 2
+
+
+def test_the_sheets_examples_are_read_as_the_workflow_reads_them(repo: Path,
+                                                                tmp_path: Path) -> None:
+    """Each schema's example rows are valid rows: written as a sheet, the readers and the
+    start-up checks take them."""
+    import csv
+
+    from contactlab.surfaces.sheet import read_surface_sheet
+    from contactlab.testsheet import check_rows, check_surface_pairs, read_test_sheet
+
+    for name, reader in (("tests", read_test_sheet), ("surfaces", read_surface_sheet)):
+        schema = yaml.safe_load((repo / f"workflow/schemas/{name}.schema.yaml").read_text())
+        path = tmp_path / f"{name}.csv"
+        with path.open("w", newline="") as handle:
+            writer = csv.DictWriter(handle, fieldnames=list(schema["properties"]))
+            writer.writeheader()
+            writer.writerows(schema["examples"])
+        read = reader(path)
+        if name == "tests":
+            check_rows(read, path, schema)
+            check_surface_pairs(read, path)
+            assert list(read.index) == [row["id"] for row in schema["examples"]]
+        else:
+            assert [spec.surface for spec in read] == [r["surface"] for r in schema["examples"]]

@@ -3,9 +3,10 @@
 The map (also in docs/CONVENTIONS.md, "Layers"), lowest first; a module may import modules
 of its own layer and of the layers below it, never above:
 
-0. ground floor: ``contactlab`` itself, ``io``, ``schema``, ``study``, ``published``, ``testsheet``,
-   ``csvlines``, ``config_check``, ``config_docs``, ``setup_check``, ``progress``, ``blas``
-   -- files, provenance, the thesis's transcribed tables, the test sheet, the set-up's
+0. ground floor: ``contactlab`` itself, ``io``, ``display``, ``schema``, ``study``,
+   ``published``, ``testsheet``, ``csvlines``, ``config_check``, ``config_docs``,
+   ``setup_check``, ``progress``, ``blas`` -- files, how tables show numbers and units,
+   provenance, the thesis's transcribed tables, the test sheet, the set-up's
    system packages, the log format and progress reports, one BLAS thread;
 1. science: every module of a branch package (``surfaces``, ``stiffness``, ``dic``,
    ``asperity``, ``receding``, ``fe``, ``prediction`` and their sub-packages) that is not a
@@ -38,7 +39,7 @@ GROUND = {"contactlab", "contactlab.__init__", "contactlab.atomic", "contactlab.
           "contactlab.study",
           "contactlab.published", "contactlab.testsheet", "contactlab.csvlines",
           "contactlab.config_check", "contactlab.config_docs", "contactlab.setup_check",
-          "contactlab.progress", "contactlab.blas"}
+          "contactlab.progress", "contactlab.blas", "contactlab.display"}
 BRANCHES = ("surfaces", "stiffness", "dic", "asperity", "receding", "fe", "prediction")
 LAYERS = ("ground floor", "science", "report toolkit", "report builder", "command line",
           "workflow")

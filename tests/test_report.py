@@ -159,3 +159,45 @@ def test_the_report_page_lists_the_comparison_pages(tmp_path: Path) -> None:
     assert "<a href='../compare/friction/index.html'>Friction: a finer gap grid</a>" in page
     assert main(["report", "index", str(section), "--comparisons", '[["only a title"]]',
                  "--out", str(out)]) == 2
+
+
+@pytest.mark.slow
+def test_every_report_table_heads_its_numbers_with_their_units(e2e_run: Path) -> None:
+    """Every column of numbers of every table the run writes (the report's, the thesis
+    tables from raw data) is headed ``name [unit]`` (docs/usage.md, "Units"), or the table
+    gives its units per row in a ``unit`` column; its Markdown copy has the same headers."""
+    from contactlab.display import numbers_without_units
+
+    tables = sorted((e2e_run / "results" / "report" / "tables").glob("*.csv"))
+    assert len(tables) > 60
+    missing = {}
+    for path in tables:
+        # table ids such as 2.10 are text (read as numbers they would be 2.1)
+        table = pd.read_csv(path, dtype={"table": str})
+        if numbers_without_units(table):
+            missing[path.name] = numbers_without_units(table)
+        header = path.with_suffix(".md").read_text().splitlines()[0]
+        assert all(str(c) in header for c in table.columns), path.name
+    assert not missing, missing
+    assert "Kn_An [kN/mm3]" in (tables[0].parent / "table_2.1.csv").read_text().splitlines()[0]
+
+
+@pytest.mark.slow
+def test_each_test_has_a_page_linked_from_the_report(e2e_run: Path) -> None:
+    """One page per test (section 23): its values with margins, its fits and, for a test
+    from camera frames, the correlation's quality; the report's index links each."""
+    report = e2e_run / "results" / "report"
+    index = (report / "index.html").read_text()
+    for test in ("RU1", "SU2", "S3", "RU1i"):
+        assert f"href='tests/{test}.html'" in index
+        page = (report / "tests" / f"{test}.html").read_text()
+        assert "href='../index.html#stiffness-tests'" in page
+        assert f"src='../figures/stiffness_raw_{test}_normal.png'" in page
+        values = pd.read_csv(report / "tables" / f"stiffness_test_{test}.csv")
+        assert {"Kn_An", "beta_n", "P0", "f", "Kt0_An", "Cc"} <= set(values["quantity"])
+        assert list(values.columns) == ["quantity", "direction", "value", "margin", "unit"]
+        assert values.set_index(["quantity", "direction"]).loc[("Kn_An", "mean"), "unit"] \
+            == "kN/mm3"
+    image = (report / "tests" / "RU1i.html").read_text()
+    assert "Correlation of the camera frames" in image and "dic_RU1i_quality.png" in image
+    assert "Correlation of the camera frames" not in (report / "tests" / "RU1.html").read_text()

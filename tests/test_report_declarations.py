@@ -69,7 +69,12 @@ def _keys_in(path: Path) -> tuple[set[str], set[str], set[str], list[str]]:
                 prefixes.add(node.args[0].value)
             elif method in KEY_ARGUMENT and len(node.args) > KEY_ARGUMENT[method]:
                 used |= _literals(node.args[KEY_ARGUMENT[method]])
-    return constants, prefixes, used, [n for n in names() if n in constants]
+    built = {node.args[0].value for node in ast.walk(tree) if isinstance(node, ast.Call)
+             and getattr(node.func, "id", getattr(node.func, "attr", "")) == "ReportSection"
+             and node.args and isinstance(node.args[0], ast.Constant)}
+    # the sections it builds: those it makes a ReportSection of (it may show another's
+    # figures by name), else every section it names
+    return constants, prefixes, used, [n for n in names() if n in (built or constants)]
 
 
 @pytest.mark.parametrize("builder", BUILDERS, ids=lambda p: str(p.relative_to(SRC)))

@@ -161,3 +161,48 @@ def test_bad_sheet_is_named_with_line_test_and_column(repo: Path, tmp_path: Path
     for word in words:
         assert word in message, (word, message)
     assert "\n" not in message
+
+
+def test_a_test_without_surfaces_is_left_out_of_seq_and_the_prediction(tmp_path: Path) -> None:
+    """Surfaces are optional: a test from camera frames only names none; it is checked
+    against no surface, has no Seq (seq.nc names it), no row in Tables 2.3/2.10 and no
+    prediction job."""
+    import pandas as pd
+
+    from contactlab.stiffness.aggregate import beta_n_seq
+    from contactlab.surfaces.seq import seq_dataset
+    from contactlab.testsheet import (
+        check_surface_names,
+        tests_with_surfaces,
+        tests_without_surfaces,
+    )
+
+    path = tmp_path / "tests.csv"
+    path.write_text(HEADER + "A,ground,s,B,p,B,4,20,\nT,ground,,,,,6,20,\n")
+    sheet = read_test_sheet(path)
+    check_surface_names(sheet, path, ["s_B", "p_B"], "surfaces.csv")
+    assert tests_with_surfaces(sheet) == ["A"] and tests_without_surfaces(sheet) == ["T"]
+    roughness = pd.DataFrame({"Sq": [300.0, 400.0]}, index=["s_B", "p_B"])
+    roughness.attrs["units"] = {"Sq": "nm"}
+    seq = seq_dataset(sheet, roughness)
+    assert list(seq["test"].values) == ["A"] and seq.attrs["tests_without_surfaces"] == "T"
+    assert float(seq["Seq"].sel(test="A")) == pytest.approx(0.5)
+    normal = pd.DataFrame({"test": ["A", "T"], "direction": ["loading"] * 2,
+                           "beta_n": [0.5, 0.4]})
+    table = beta_n_seq(normal, seq["Seq"].to_series(), without=["T"])
+    assert list(table["test"]) == ["A"] and table["beta_n_Seq"].iloc[0] == pytest.approx(0.25)
+    with pytest.raises(ValueError, match=r"no value for test\(s\) \['T'\]"):
+        beta_n_seq(normal, seq["Seq"].to_series())  # any other missing Seq is an error
+
+
+@pytest.mark.parametrize(("row", "column"), [("T,ground,s,B,,,6,20,", "pad"),
+                                             ("T,ground,,,p,B,6,20,", "specimen"),
+                                             ("T,ground,,B,,,6,20,", "specimen")])
+def test_a_test_names_both_surfaces_or_neither(tmp_path: Path, row: str, column: str) -> None:
+    from contactlab.testsheet import check_surface_names
+
+    path = tmp_path / "tests.csv"
+    path.write_text(HEADER + row + "\n")
+    with pytest.raises(TestSheetError, match=rf"line 2 \(test T\), column '{column}': empty, "
+                                             r"but the row gives .*name both surfaces"):
+        check_surface_names(read_test_sheet(path), path, ["s_B", "p_B"], "surfaces.csv")

@@ -128,9 +128,11 @@ def test_an_edited_published_table_reruns_the_reports_that_compare_with_it(
     edited = work / "resources" / "published" / "table_2.3.csv"
     edited.write_text(edited.read_text() + "\n")
     touched = snakemake(work, "-n", "all")
-    # Table 2.3 is also compared in the stiffness-from-published-steps section
+    # Table 2.3 is also compared in the stiffness-from-published-steps section; the pages of
+    # the tests show the raw section's figures, so they follow it
     assert planned_rules(touched) == {"surfaces_report", "stiffness_report_published",
-                                      "stiffness_report_raw", "report_index", "all"}
+                                      "stiffness_report_raw", "stiffness_report_tests",
+                                      "report_index", "all"}
 
 
 def _text(markup: str) -> str:
@@ -300,3 +302,18 @@ def test_rough_interface_section_plans_its_jobs(workflow_copy: Path, snakemake) 
     assert off.returncode == 0, off.stderr[-3000:]
     assert not {r for r in planned_rules(off) if r.startswith("fe_")}
     assert "receding_rough_fe.png" not in off.stdout and "--fe " not in off.stdout
+
+
+def test_a_test_without_surfaces_plans_its_stiffness_and_page_but_no_prediction(
+        workflow_copy: Path, snakemake) -> None:
+    """Surfaces are optional for a test (config/README.md, the test sheet): a row without
+    them (here RU1's demo data under another id) gets its stiffness jobs and its report page,
+    and no prediction job; the start-up checks pass."""
+    sheet = workflow_copy / "config" / "tests.csv"
+    sheet.write_text(sheet.read_text() + "T1,ground,,,,,4,20,results/demo/RU1/load_log.csv,"
+                     "results/demo/RU1/fields.nc,,\n")
+    run = snakemake(workflow_copy, "-n", "-p", "all")
+    assert run.returncode == 0, run.stderr[-3000:]
+    plan = run.stdout
+    assert "results/stiffness/T1.nc" in plan and "results/report/tests/T1.html" in plan
+    assert "results/prediction/T1.nc" not in plan and "results/prediction/RU1.nc" in plan

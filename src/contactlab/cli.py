@@ -57,6 +57,18 @@ def groups() -> list[Group]:
     return [importlib.import_module(name).GROUP for name in COMMAND_MODULES]
 
 
+def config_units() -> dict[str, str]:
+    """The unit of each config key a command option takes its value from, as the option
+    declares it (``1`` for an option declared without one: a count, a ratio, a choice)."""
+    units: dict[str, str] = {}
+    for group in groups():
+        for declared in group.commands:
+            for option in declared.options:
+                for key in option.keys():
+                    units.setdefault(key, option.unit or "1")
+    return units
+
+
 def command(path: str) -> Command:
     """The declaration of ``contactlab <path>``, e.g. ``command("receding gap-sweep")``."""
     for group in groups():

@@ -1,8 +1,10 @@
-"""``config/README.md``: every config key with its type, default and meaning, from the schema.
+"""``config/README.md``: every config key with its type, default and meaning, and every
+column of the test and surface sheets, from their schemas.
 
-The schema (``workflow/schemas/config.schema.yaml``) is the one home of each default; this
-page is generated from it (``python -m contactlab.config_docs > config/README.md``) and a test
-fails when the two drift apart.
+The schemas (``workflow/schemas/config.schema.yaml``, ``tests.schema.yaml``,
+``surfaces.schema.yaml``) are the one home of each default, type, unit and allowed value;
+this page is generated from them (``python -m contactlab.config_docs > config/README.md``)
+and a test fails when the two drift apart.
 """
 
 from __future__ import annotations
@@ -14,17 +16,23 @@ from pathlib import Path
 from typing import Any
 
 SCHEMA = Path("workflow/schemas/config.schema.yaml")
+#: The sheets: title, the default study's file, the config key naming it, schema.
+SHEETS = (("The test sheet", "config/tests.csv", "tests",
+           Path("workflow/schemas/tests.schema.yaml")),
+          ("The surface sheet", "config/surfaces.csv", "surfaces.sheet",
+           Path("workflow/schemas/surfaces.schema.yaml")))
 
 HEADER = """# Configuration keys
 
-Generated from `workflow/schemas/config.schema.yaml` by
-`python -m contactlab.config_docs > config/README.md` (a test keeps it current).
+Generated from `workflow/schemas/config.schema.yaml`, `tests.schema.yaml` and
+`surfaces.schema.yaml` by `python -m contactlab.config_docs > config/README.md` (a test keeps
+it current).
 
 - `config/config.yaml` is the default study: it sets only what differs from the defaults
   below. A key without a default must be set there.
 - `config/studies/<name>.yaml` holds a named study's overrides (README: Parameter studies).
-- `config/tests.csv` and `config/surfaces.csv` are the test and surface sheets
-  (README: Your own data).
+- `config/tests.csv` and `config/surfaces.csv` are the test and surface sheets (README: Your
+  own data); their columns are [below](#the-test-sheet).
 
 """
 
@@ -78,10 +86,64 @@ def render(schema: Mapping[str, Any]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def main() -> None:
+def _allowed(node: Mapping[str, Any]) -> str:
+    """A column's allowed values: its enum, pattern or limits (empty: any of its type)."""
+    if "enum" in node:
+        return ", ".join(f"`{v}`" for v in node["enum"] if v is not None)
+    return _limits(node).replace("|", "\\|")
+
+
+def _cell(value: Any) -> str:
+    return "" if value is None else str(value)
+
+
+def sheet_section(title: str, path: str, key: str, schema: Mapping[str, Any]) -> str:
+    """One sheet's columns (type, unit, required or not, allowed values, meaning) and its
+    example rows as CSV, from the sheet's row schema."""
+    required = set(schema.get("required", []))
+    lines = [f"## {title}", "",
+             " ".join(str(schema.get("description", "")).split()), "",
+             f"The default study's is `{path}`; the config key `{key}` names another. A "
+             "column marked required must be in the sheet's header; a type \"or empty\" "
+             "allows an empty cell, and a column that is not required may be left out. "
+             "Units are those of the column's name, spelt as in the results (`mm2` is "
+             "mm^2).", "",
+             "| column | type | unit | required | allowed values | meaning |",
+             "|---|---|---|---|---|---|"]
+    for column, node in schema.get("properties", {}).items():
+        kinds = node.get("type", "")
+        kinds = [kinds] if isinstance(kinds, str) else list(kinds)
+        kind = " or empty".join([" \\| ".join(k for k in kinds if k != "null")]
+                                + ([""] if "null" in kinds else []))
+        description = " ".join(str(node.get("description", "")).split()).replace("|", "\\|")
+        lines.append("| " + " | ".join([
+            f"`{column}`", kind, node.get("units", ""), "yes" if column in required else "no",
+            _allowed(node), description]) + " |")
+    examples = schema.get("examples", [])
+    if examples:
+        columns = list(schema.get("properties", {}))
+        lines += ["", "Example rows:", "", "```csv", ",".join(columns)]
+        lines += [",".join(_cell(row.get(c)) for c in columns) for row in examples]
+        lines.append("```")
+    return "\n".join(lines) + "\n"
+
+
+def page(root: str | Path = ".") -> str:
+    """The whole page: the config keys (:func:`render`) and both sheets
+    (:func:`sheet_section`), from the schemas under ``root``."""
     import yaml
 
-    sys.stdout.write(render(yaml.safe_load(SCHEMA.read_text(encoding="utf-8"))))
+    def load(path: Path) -> Mapping[str, Any]:
+        return yaml.safe_load((Path(root) / path).read_text(encoding="utf-8"))
+
+    parts = [render(load(SCHEMA))]
+    parts += [sheet_section(title, path, key, load(schema))
+              for title, path, key, schema in SHEETS]
+    return "\n".join(parts)
+
+
+def main() -> None:
+    sys.stdout.write(page())
 
 
 if __name__ == "__main__":  # pragma: no cover

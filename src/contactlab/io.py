@@ -10,9 +10,9 @@ from __future__ import annotations
 import datetime as dt
 import logging
 import os
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import xarray as xr
 
@@ -86,6 +86,14 @@ def stamp(ds: xr.Dataset, *, title: str, source: str, history: str,
     return ds
 
 
+def variable(dims: str | Sequence[str], data: object, long_name: str, units: str = "1",
+             **attrs: object) -> xr.Variable:
+    """A CF-style variable of a result: ``data`` along ``dims`` with its ``long_name`` and
+    ``units`` (``"1"`` when dimensionless, as CF writes it) and any further attributes
+    (``flag_values``, ``confidence`` ...). The data are taken as given (no conversion)."""
+    return xr.Variable(dims, data, {"long_name": long_name, "units": units, **attrs})
+
+
 def check_cf(ds: xr.Dataset) -> None:
     """Raise ValueError if a data variable or coordinate lacks ``long_name``/``units``."""
     for name, var in {**ds.data_vars, **ds.coords}.items():
@@ -154,10 +162,50 @@ def write_text(text: str, path: str | os.PathLike[str]) -> Path:
     return Path(path)
 
 
-def write_table(table: pd.DataFrame, csv_path: str | os.PathLike[str], digits: int = 3) -> None:
-    """Write ``table`` as CSV at ``csv_path`` and as Markdown beside it (``.md``)."""
+def write_table(table: pd.DataFrame, csv_path: str | os.PathLike[str], digits: int = 4, *,
+                units: Mapping[str, str] | str | None = None,
+                margins: Mapping[str, str] | None = None) -> None:
+    """Write ``table`` as CSV at ``csv_path`` and as Markdown beside it (``.md``).
+
+    Each column of numbers is headed ``name [unit]`` (:func:`contactlab.display.with_units`:
+    the unit from ``units``, else from ``table.attrs["units"]``, as the variable's
+    ``units`` attribute spells it). The CSV holds ``digits + 3`` significant digits; the
+    Markdown shows each number as :func:`contactlab.display.shown` does (a value to its
+    margin's precision, ``margins`` naming margin columns the ``_moe`` suffix does not,
+    others with ``digits`` significant digits).
+    """
+    from contactlab.display import shown, with_units
+
     csv_path = Path(csv_path)
+    headed = with_units(table, units)
     with atomic_path(csv_path) as tmp:
-        table.to_csv(tmp, index=False, float_format=f"%.{digits + 3}g", lineterminator="\n")
-    markdown = table.to_markdown(index=False, floatfmt=f".{digits}f")
+        headed.to_csv(tmp, index=False, float_format=f"%.{digits + 3}g", lineterminator="\n")
+    text = shown(table, digits, margins)
+    text.columns = headed.columns
+    markdown = text.to_markdown(index=False, disable_numparse=True)
     write_text(markdown + "\n", csv_path.with_suffix(".md"))
+
+
+def read_table(csv_path: str | os.PathLike[str], **options: Any) -> pd.DataFrame:
+    """A table written by :func:`write_table`: its columns by name, their units in
+    ``attrs["units"]`` (columns of numbers only). ``options`` go to
+    :func:`pandas.read_csv`; ``dtype`` is keyed by column name."""
+    import csv
+
+    import pandas as pd
+
+    from contactlab.display import split_header
+
+    with open(csv_path, encoding="utf-8", newline="") as handle:
+        raw = next(csv.reader(handle), [])
+    names = [split_header(column) for column in raw]
+    dtype = options.pop("dtype", None)
+    if isinstance(dtype, Mapping):
+        by_name = dict(zip((name for name, _ in names), raw, strict=True))
+        options["dtype"] = {by_name[k]: v for k, v in dtype.items() if k in by_name}
+    elif dtype is not None:
+        options["dtype"] = dtype
+    table = pd.read_csv(csv_path, **options)
+    table.columns = [name for name, _ in names]
+    table.attrs["units"] = {name: unit for name, unit in names if unit}
+    return table

@@ -175,19 +175,61 @@ def _name_problem(sheet_path: str | Path, line: object, test: str, role: str, na
             f"{nearest_first(name, sides)}")
 
 
+def has_surfaces(row: Mapping[str, object]) -> bool:
+    """Whether a test-sheet row names its interface's surfaces (specimen and pad); a test
+    without them (e.g. from camera frames only) has no Seq and no predicted stiffness."""
+    return bool(_side(row.get("specimen")) or _side(row.get("pad")))
+
+
+def tests_with_surfaces(sheet: pd.DataFrame) -> list[str]:
+    """The ids of the tests that name their specimen and pad surfaces, in sheet order."""
+    return [str(t) for t, row in sheet.iterrows() if has_surfaces(row)]
+
+
+def tests_without_surfaces(sheet: pd.DataFrame) -> list[str]:
+    """The ids of the tests that name no surfaces, in sheet order: they are left out of
+    Seq (eq. 2.1, Tables 2.3 and 2.10) and of the stiffness prediction."""
+    return [str(t) for t, row in sheet.iterrows() if not has_surfaces(row)]
+
+
+def check_surface_pairs(sheet: pd.DataFrame, sheet_path: str | Path) -> None:
+    """Raise :class:`TestSheetError` for the first test that names one surface of its
+    interface but not the other (a side without its surface counts as a name): a test
+    names its specimen and pad, or neither."""
+    lines = sheet.attrs.get("line", {})
+    for test_id, row in sheet.iterrows():
+        named = {column: _side(row.get(column)) for column in
+                 ("specimen", "specimen_side", "pad", "pad_side")}
+        if not any(named.values()):
+            continue
+        for role in ROLES:
+            if not named[role]:
+                given = ", ".join(f"{c} {v!r}" for c, v in named.items() if v)
+                raise TestSheetError(
+                    f"{sheet_path}: line {lines.get(test_id, '?')} (test {test_id}), column "
+                    f"'{role}': empty, but the row gives {given}; name both surfaces of the "
+                    "interface (specimen and pad), or leave all four surface columns empty "
+                    "for a test without scans")
+
+
 def check_surface_names(sheet: pd.DataFrame, sheet_path: str | Path,
                         surfaces: Collection[str], surface_sheet: str | Path) -> None:
     """Raise :class:`TestSheetError` for the first test (in sheet order) whose specimen or
-    pad with its side (:func:`surface_id`) is not a surface of the surface sheet.
+    pad with its side (:func:`surface_id`) is not a surface of the surface sheet, or that
+    names one of the two but not the other (:func:`check_surface_pairs`).
 
     ``surfaces`` are the sheet's surface ids (``config/surfaces.csv``, column ``surface``).
-    Seq (eq. 2.1) and the stiffness prediction of every test read both surfaces' scans, so
-    a name missing there would fail those jobs; the error names the test sheet, line, test,
-    column and value and the names the surface sheet has, nearest first.
+    Seq (eq. 2.1) and the stiffness prediction of every test with surfaces read both
+    surfaces' scans, so a name missing there would fail those jobs; the error names the
+    test sheet, line, test, column and value and the names the surface sheet has, nearest
+    first. A test without surfaces (:func:`has_surfaces`) is not checked.
     """
+    check_surface_pairs(sheet, sheet_path)
     lines = sheet.attrs.get("line", {})
     surfaces = set(surfaces)
     for test_id, row in sheet.iterrows():
+        if not has_surfaces(row):
+            continue
         for role in ROLES:
             problem = _name_problem(sheet_path, lines.get(test_id, "?"), str(test_id), role,
                                     str(row[role]).strip(), _side(row.get(f"{role}_side")),
@@ -210,7 +252,7 @@ def check_published_surfaces(sheet: pd.DataFrame, sheet_path: str | Path,
     lines = sheet.attrs.get("line", {})
     for test_id, row in sheet.iterrows():
         own = published.get(str(test_id))
-        if not own:
+        if not own or not has_surfaces(row):
             continue
         for role in ROLES:
             problem = _name_problem(sheet_path, lines.get(test_id, "?"), str(test_id), role,

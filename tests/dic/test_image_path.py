@@ -12,12 +12,12 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 import pytest
 import xarray as xr
 
 from contactlab.cli import main
 from contactlab.dic.recovery import step_comparison, table_rows
+from contactlab.io import read_table
 from contactlab.stiffness.demo import generate_test
 from contactlab.stiffness.displacement import contact_displacement
 
@@ -86,10 +86,10 @@ def test_the_table_rows_from_images_are_within_the_published_margins(image_run: 
 def test_the_report_section_shows_quality_and_recovery(image_run: Path) -> None:
     page = (image_run / "report" / "sections" / "22_dic.html").read_text()
     assert "RECONSTRUCTED" in page and "dic_RU1i_quality.png" in page
-    quality = pd.read_csv(image_run / "report" / "tables" / "dic_quality.csv")
+    quality = read_table(image_run / "report" / "tables" / "dic_quality.csv")
     assert quality.loc[0, "test"] == "RU1i" and quality.loc[0, "frames"] == 291
     assert quality.loc[0, "subsets"] == 12 and quality.loc[0, "valid_fraction"] == 1.0
-    by_test = pd.read_csv(image_run / "report" / "tables" / "dic_recovery_by_test.csv")
+    by_test = read_table(image_run / "report" / "tables" / "dic_recovery_by_test.csv")
     row = by_test.iloc[0]
     assert (row["truth"], row["steps"], row["steps_within_from_images"]) == ("RU1", 12, 12)
     assert row["table_values_within_from_images"] == row["table_values"] == 18
@@ -105,10 +105,10 @@ def test_the_workflow_runs_an_image_test_to_its_tables_and_report(e2e_run: Path)
         assert fields.sizes["frame"] == 291 and bool((fields["status"] != 6).any())
     with xr.open_dataset(results / "stiffness" / "RU1i.nc") as ours:
         assert "results/dic/RU1i/fields.nc" in ours.attrs["source"]
-    table = pd.read_csv(results / "report" / "tables" / "table_2.1.csv")
+    table = read_table(results / "report" / "tables" / "table_2.1.csv")
     assert set(table.loc[table["test"] == "RU1i", "direction"]) == {"loading", "unloading",
                                                                     "mean"}
-    by_test = pd.read_csv(results / "report" / "tables" / "dic_recovery_by_test.csv")
+    by_test = read_table(results / "report" / "tables" / "dic_recovery_by_test.csv")
     row = by_test.set_index("test").loc["RU1i"]
     assert row["steps_within_from_images"] == row["steps"] == 12
     assert row["table_values_within_from_images"] == row["table_values"] == 18

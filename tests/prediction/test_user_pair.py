@@ -9,12 +9,13 @@ beside the values from the raw data alone. Small: 32 x 32 cells, 5 load levels.
 
 from __future__ import annotations
 
-import csv
 from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
+
+from contactlab.io import read_table
 
 STUDY = "results/studies/my_pair/"
 
@@ -60,8 +61,10 @@ def test_a_users_test_is_predicted_beside_its_measured_values(workflow_copy: Pat
             assert pair[name].values.all(), name
         assert abs(float(pair["Seq_deviation"])) < 0.05  # the composite's Sq is the scans' Seq
         predicted_kn = pair["Kn_An_max"].values
-    with (workflow_copy / STUDY / "report" / "tables" / "prediction.csv").open() as stream:
-        rows = {row["model"]: row for row in csv.DictReader(stream) if row["test"] == "U1"}
+    table = read_table(workflow_copy / STUDY / "report" / "tables" / "prediction.csv",
+                       dtype=str)
+    rows = {row["model"]: row for row in table.to_dict("records") if row["test"] == "U1"}
+    assert table.attrs["units"]["Kn_An"] == "kN/mm3"
     assert set(rows) >= {"predicted, elastic", "predicted, plastic", "measured, raw"}
     for model in ("predicted, elastic", "predicted, plastic"):
         assert float(rows[model]["Kn_An"]) > 0 and 0 < float(rows[model]["Cc_stuck"]) < 1.5

@@ -8,7 +8,7 @@ import pytest
 import xarray as xr
 
 from contactlab.cli import main
-from contactlab.io import check_cf
+from contactlab.io import check_cf, read_table
 from contactlab.published import read_published
 from contactlab.stiffness.aggregate import (
     mean_row_statistics,
@@ -181,7 +181,7 @@ def test_report_section_from_published_steps(tmp_path, repo) -> None:
                  "--out", str(out)]) == 0
     page = out.read_text()
     assert "alpha_n (1.120) as P0" in page and "stiffness_fig_2_41" in page
-    counts = pd.read_csv(tables / "compare_counts_from_published_steps.csv")
+    counts = read_table(tables / "compare_counts_from_published_steps.csv")
     # every printed number of the eight tables is compared; only listed cells are flagged
     assert counts["cells"].sum() == 462
     assert counts["thesis discrepancy"].sum() == 15

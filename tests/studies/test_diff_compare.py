@@ -49,7 +49,8 @@ def studies(tmp_path: Path, repo: Path) -> Path:
 
 def test_parameters_and_results_that_differ(studies: Path) -> None:
     diff = diff_studies(["default", "x"], studies, [BY_ID["line.K_T"], BY_ID["line.a"],
-                                                    BY_ID["gap.f_stick"]])
+                                                    BY_ID["gap.f_stick"]],
+                        units={"receding.line.lambda": "1"})
     assert [(r.key, r.values) for r in diff.parameters] == [("receding.line.lambda", [3.5, 4.0])]
     assert diff.parameters[0].abs_change == [0.5]
     assert diff.parameters[0].rel_change == [pytest.approx(0.5 / 3.5)]
@@ -59,10 +60,14 @@ def test_parameters_and_results_that_differ(studies: Path) -> None:
     assert (row.key, row.at, row.values) == ("line.K_T", "f=0.5", [0.1, 0.11])
     assert row.rel_change == [pytest.approx(0.1)]
     assert diff.not_common == {"line.K_T": 1, "line.a": 1}
+    # x has f = 0.4, which the reference lacks; the reference lacks none of x's
+    assert diff.surplus == {"line.K_T": {"x": 1}, "line.a": {"x": 1}} and diff.lacking == {}
     assert "gap.f_stick" not in diff.missing  # in neither study: nothing to say
 
     text = render_text(diff)
-    assert "receding.line.lambda  3.5" in text and "+10%" in text
+    assert "receding.line.lambda  1      3.5" in text and "+10%" in text
+    assert "line.K_T: x has 1 point(s) default lacks (grids differ; not compared there)" in text
+    assert diff.parameters[0].units == "1" and diff.results[0].units == "1"
     assert json.loads(render_json(diff))["results"][0]["abs_change"] == [pytest.approx(0.01)]
     rows = list(csv.DictReader(io.StringIO(render_csv(diff))))
     assert rows[0]["key"] == "receding.line.lambda" and rows[1]["value:x"] == "0.11"
@@ -88,8 +93,19 @@ def test_comparison_page_has_a_figure_per_quantity(studies: Path) -> None:
                        studies)
     page = out.read_text()
     figures = sorted(p.name for p in (out.parent / "figures").iterdir())
-    assert figures == ["line_K_T.pdf", "line_K_T.png", "line_a.pdf", "line_a.png"]
+    assert figures == ["line_K_T.pdf", "line_K_T.png", "line_K_T_change.pdf",
+                       "line_K_T_change.png", "line_a.pdf", "line_a.png", "line_a_change.pdf",
+                       "line_a_change.png"]
     assert "figures/line_K_T.png" in page and "gap.f_stick: no study has" in page
+    # the overlay and the change side by side; which study lacks which points
+    assert "<div class='figure-row'><figure id='fig-line_K_T'>" in page
+    assert "figures/line_K_T_change.png" in page
+    assert "line.K_T: x has 1 point(s) default lacks" in page
+    assert "No report built yet for default, x" in page
+    (studies / "results" / "report").mkdir(parents=True)
+    (studies / "results" / "report" / "index.html").write_text("<html></html>")
+    build_compare_page("t", "T", ["default", "x"], ["line.K_T"], out, studies)
+    assert "<a href='../../report/index.html'>Report of default</a>" in out.read_text()
     assert "receding.line.lambda" in (out.parent / "tables" / "parameters.csv").read_text()
     assert legend_label("x", {"receding.line.lambda": [3.5, 4.0]}) == \
         "x: receding.line.lambda=4.0"
@@ -111,7 +127,12 @@ def test_the_report_page_lists_the_comparison_pages(repo: Path, tmp_path: Path) 
     from contactlab.report.index import build_index
     from contactlab.studies.compare import index_links
 
-    links = index_links("results/report", repo)
+    shutil.copytree(repo / "config" / "compare", tmp_path / "config" / "compare")
+    assert index_links("results/report", tmp_path) == []  # not built: not linked
+    built = tmp_path / "results" / "compare" / "friction" / "index.html"
+    built.parent.mkdir(parents=True)
+    built.write_text("<html></html>")
+    links = index_links("results/report", tmp_path)
     assert links == [("Friction: a finer gap grid and the line load's map scale",
                       "../compare/friction/index.html")]
     section = tmp_path / "sections" / "10_s.html"

@@ -9,7 +9,7 @@ import pandas as pd
 import pytest
 
 from contactlab.cli import main
-from contactlab.io import stamp, write_netcdf
+from contactlab.io import read_table, stamp, write_netcdf
 from contactlab.surfaces.roughness import published_roughness
 from contactlab.surfaces.seq import add_beta_n, add_scan_seq, seq_dataset
 from contactlab.testsheet import read_test_sheet
@@ -34,22 +34,24 @@ def test_section_has_every_table_and_picture(processed: pd.DataFrame, repo: Path
     for name in ("surfaces_maps", "surfaces_profiles", "surfaces_spectra", "seq"):
         assert (report / "figures" / f"{name}.png").stat().st_size > 10_000
         assert f"figures/{name}.png" in page
-    areal = pd.read_csv(report / "tables" / "surfaces_areal.csv")
+    areal = read_table(report / "tables" / "surfaces_areal.csv")
     assert len(areal) == 25
-    assert (areal["Sq_diff_pct"].abs() < 1.0).all()
-    profile = pd.read_csv(report / "tables" / "surfaces_profile.csv")
-    assert len(profile) == 28 and (profile["Rq_diff_pct"].abs() < 1.0).all()
-    structured = pd.read_csv(report / "tables" / "surfaces_100x.csv")
+    assert (areal["Sq_difference"].abs() < 1.0).all()
+    profile = read_table(report / "tables" / "surfaces_profile.csv")
+    assert len(profile) == 28 and (profile["Rq_difference"].abs() < 1.0).all()
+    structured = read_table(report / "tables" / "surfaces_100x.csv")
     assert list(structured["test"]) == ["S3", "S2", "S1"]
-    assert (structured["sampling_length_um"] == 160.0).all()
-    undefined = pd.read_csv(report / "tables" / "surfaces_undefined.csv")
+    assert (structured["sampling_length"] == 160.0).all()
+    assert structured.attrs["units"]["sampling_length"] == "um"
+    assert areal.attrs["units"]["Sa"] == areal.attrs["units"]["Sa_published"] == "nm"
+    undefined = read_table(report / "tables" / "surfaces_undefined.csv")
     assert list(zip(undefined["surface"], undefined["parameter"], strict=True)) == [
         ("S1_specimen", "Str")]
     assert "stays above s = 0.2" in undefined["reason"].iloc[0]
     assert "stays above s = 0.2" in page and "No scan had undefined points" in page
-    assert len(pd.read_csv(report / "tables" / "surfaces_filled.csv")) == 0
-    assert len(pd.read_csv(report / "tables" / "surfaces_other.csv")) == 0
-    table = pd.read_csv(report / "tables" / "seq.csv")
+    assert len(read_table(report / "tables" / "surfaces_filled.csv")) == 0
+    assert len(read_table(report / "tables" / "surfaces_other.csv")) == 0
+    table = read_table(report / "tables" / "seq.csv")
     assert table["difference_scan"].abs().max() < 0.01
     assert {"beta_n_Seq", "beta_n_Seq_scan", "beta_n_Seq_published"} <= set(table.columns)
 
@@ -63,7 +65,7 @@ def test_report_without_texture_keeps_the_published_seq_section(repo: Path,
     out = tmp_path / "report" / "s.html"
     assert main(["surfaces", "report", "--seq", str(tmp_path / "seq.nc"),
                  "--report-dir", str(tmp_path / "report"), "--out", str(out)]) == 0
-    table = pd.read_csv(tmp_path / "report" / "tables" / "seq.csv")
+    table = read_table(tmp_path / "report" / "tables" / "seq.csv")
     assert table["Seq"].iloc[0] == pytest.approx(2.038, abs=5e-4)
 
 
@@ -94,7 +96,7 @@ def test_section_lists_refused_scans_and_still_shows_the_others(repo: Path,
                  "--report-dir", str(report), "--out", str(out)]) == 0
     page = out.read_text()
     assert "1 scan(s) were refused" in page and "opd-1-crop.opd: 95 of 49152 points" in page
-    refused = pd.read_csv(report / "tables" / "surfaces_refused.csv")
+    refused = read_table(report / "tables" / "surfaces_refused.csv")
     assert list(zip(refused["surface"], refused["scan"], strict=True)) == [("wyko", "areal")]
-    other = pd.read_csv(report / "tables" / "surfaces_other.csv").set_index("surface")
+    other = read_table(report / "tables" / "surfaces_other.csv").set_index("surface")
     assert other.loc["alicona", "Sq"] > 0 and np.isnan(other.loc["wyko", "Sq"])

@@ -114,3 +114,20 @@ def test_missing_scan_names_sheet_surface_and_column(tmp_path: Path) -> None:
         check_scan_files(specs, path, root=tmp_path)
     (tmp_path / "a.x3p").write_bytes(b"")
     check_scan_files(specs, path, generated=[Path("made.x3p")], root=tmp_path)
+
+
+def test_the_surface_sheets_schema_states_what_the_reader_takes(repo: Path) -> None:
+    """workflow/schemas/surfaces.schema.yaml documents the sheet (config/README.md is made
+    from it): its columns, the optional one, and the allowed values are the reader's."""
+    import yaml
+
+    from contactlab.surfaces import sheet
+
+    schema = yaml.safe_load((repo / "workflow/schemas/surfaces.schema.yaml").read_text())
+    properties = schema["properties"]
+    assert tuple(properties) == sheet.COLUMNS
+    assert set(sheet.COLUMNS) - set(schema["required"]) == set(sheet.OPTIONAL)
+    assert tuple(properties["objective"]["enum"]) == sheet.OBJECTIVES
+    assert tuple(v for v in properties["profile_direction"]["enum"] if v) == sheet.DIRECTIONS
+    assert properties["surface"]["pattern"] == sheet._ID.pattern
+    assert all(name in properties["surface"]["description"] for name in sheet.RESERVED)

@@ -1,6 +1,6 @@
 # Prediction branch (thesis ch. 2, beyond it): the contact stiffness of each tested pair
 # predicted by a rough-contact BEM of its two areal scans, beside the measured laws.
-# One job per test (every row of the test sheet), a summary beside the measured values
+# One job per test with surfaces in the test sheet, a summary beside the measured values
 # and a report section.
 
 import re
@@ -8,8 +8,11 @@ import re
 from contactlab.prediction.pairs import pair_lookup
 from contactlab.published import PUBLISHED_TESTS
 from contactlab.rulehelpers import command_args
+from contactlab.testsheet import tests_with_surfaces
 
-PREDICTION_TESTS = list(TEST_IDS)
+# the tests that name their surfaces (a test without scans has no pair to predict; the
+# summary and section 25 name it)
+PREDICTION_TESTS = tests_with_surfaces(TESTS)
 # the summary from the published steps exists only for a sheet with a thesis test: a
 # study of a user's own tests compares with the values from its raw data alone
 _PUBLISHED_SUMMARY = [result("stiffness/summary_from_published_steps.nc")] * any(

@@ -6,7 +6,7 @@
 import re
 
 from contactlab.published import GROUP_TABLES, PUBLISHED_TESTS, TANGENTIAL_TABLES, user_step_tables
-from contactlab.rulehelpers import command_args, raw_data_option, raw_inputs, raw_tests
+from contactlab.rulehelpers import command_args, image_tests, raw_data_option, raw_inputs, raw_tests
 
 
 RAW_TESTS = raw_tests(TESTS)
@@ -121,10 +121,38 @@ rule stiffness_report_raw:
         " --out {output.section:q} 2> {log:q}"
 
 
+rule stiffness_report_tests:
+    """Report section 23 and one page per test: its fitted values and margins, its fits and
+    for a test from camera frames the correlation's quality."""
+    input:
+        results=expand(result("stiffness/{test}.nc"), test=RAW_TESTS),
+        summary=result("stiffness/summary.nc"),
+        tests=config["tests"],
+        # the figures of sections 21 and 22 the pages show
+        fits=report_page("21_stiffness_raw"),
+        quality=[result("report/tables/dic_quality.csv")] if image_tests(TESTS) else [],
+    output:
+        **report_section("23_stiffness_tests", test=RAW_TESTS),
+        pages=expand(result("report/tests/{test}.html"), test=RAW_TESTS),
+    params:
+        report_dir=lambda wildcards, output: Path(output.section).parent.parent,
+        quality=lambda wildcards, input: ["--quality", input.quality] if input.quality else [],
+    log:
+        logs("report/stiffness_tests.log"),
+    benchmark:
+        logs("benchmarks/stiffness_report_tests.tsv"),
+    shell:
+        "contactlab stiffness report-tests {input.results:q} --summary {input.summary:q}"
+        " --tests {input.tests:q} {params.quality:q} --report-dir {params.report_dir:q}"
+        " --out {output.section:q} 2> {log:q}"
+
+
 ALL_TARGETS.extend(expand(result("stiffness/{test}.nc"), test=RAW_TESTS))
 ALL_TARGETS.append(result("stiffness/summary.nc"))
 ALL_TARGETS.extend(RAW_TABLES)
 REPORT_SECTIONS.append(report_page("21_stiffness_raw"))
+if RAW_TESTS:
+    REPORT_SECTIONS.append(report_page("23_stiffness_tests"))
 
 
 # Seconds-long gathers, light solves and reports: on a cluster they run in the
@@ -132,3 +160,4 @@ REPORT_SECTIONS.append(report_page("21_stiffness_raw"))
 localrules:
     stiffness_summarize,
     stiffness_report_raw,
+    stiffness_report_tests,

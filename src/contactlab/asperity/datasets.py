@@ -16,6 +16,7 @@ from numpy.typing import ArrayLike
 from contactlab.asperity import bem_runs, multi, single
 from contactlab.asperity import grid as hgrid
 from contactlab.asperity import grid_bem as gbem
+from contactlab.io import variable
 
 LOG = logging.getLogger(__name__)
 ONE = "1"
@@ -24,10 +25,6 @@ ONE = "1"
 def _log_seconds(what: str, seconds: ArrayLike) -> None:
     """Solver wall time to the job's log; results carry no timings."""
     LOG.info("%s: %.2f s of solver time", what, float(np.sum(seconds)))
-
-
-def _v(dims, data, long_name: str, units: str = ONE, **attrs) -> xr.Variable:
-    return xr.Variable(dims, np.asarray(data), {"long_name": long_name, "units": units, **attrs})
 
 
 def q_ratio_grid(points: int) -> np.ndarray:
@@ -51,26 +48,26 @@ def bem_family_dataset(law: str, q_ratio: ArrayLike, taus: list[float], f: float
     fr = [np.nan] * len(curves) if law == "shear_limit" else [f] * len(curves)
     ds = xr.Dataset(
         {
-            "displacement_ratio": _v(("law", "Q_ratio"),
+            "displacement_ratio": variable(("law", "Q_ratio"),
                                      [c.displacement_ratio for c in curves],
                                      "tangential displacement of a remote point Delta_x/Delta_n"),
-            "stick_radius": _v(("law", "Q_ratio"), [c.stick_radius for c in curves],
+            "stick_radius": variable(("law", "Q_ratio"), [c.stick_radius for c in curves],
                                "area-equivalent stick-zone radius c/a"),
-            "active_set_iterations": _v(("law", "Q_ratio"), [c.iterations for c in curves],
+            "active_set_iterations": variable(("law", "Q_ratio"), [c.iterations for c in curves],
                                         "active-set iterations per load step"),
-            "full_slip_Q_ratio": _v(("law",), [c.q_full_ratio for c in curves],
+            "full_slip_Q_ratio": variable(("law",), [c.q_full_ratio for c in curves],
                                     "load at full sliding Q_full/Q_n"),
-            "full_slip_displacement_ratio": _v(("law",), [c.full_slip_ratio for c in curves],
+            "full_slip_displacement_ratio": variable(("law",), [c.full_slip_ratio for c in curves],
                                                "limit of Delta_x/Delta_n as the stick zone "
                                                "vanishes"),
-            "unknowns": _v(("law",), [c.unknowns for c in curves],
+            "unknowns": variable(("law",), [c.unknowns for c in curves],
                            "traction unknowns (first quadrant)"),
         },
         coords={
             "law": ("law", labels),
-            "Q_ratio": _v(("Q_ratio",), q, "tangential load Q/Q_n"),
-            "tau_max_over_p0": _v(("law",), tau, "shear limit tau_max/p0"),
-            "friction_coefficient": _v(("law",), fr, "Coulomb friction coefficient f"),
+            "Q_ratio": variable(("Q_ratio",), q, "tangential load Q/Q_n"),
+            "tau_max_over_p0": variable(("law",), tau, "shear limit tau_max/p0"),
+            "friction_coefficient": variable(("law",), fr, "Coulomb friction coefficient f"),
         },
         attrs={"nu": nu, "cells_across_contact": cells, "interface_law": law,
                "transverse_traction": "q_y = 0 (Cattaneo-Mindlin approximation)",
@@ -110,38 +107,39 @@ def single_dataset(q_ratio: ArrayLike, bem: list[xr.Dataset], nu: float,
     ts = np.asarray(shear_limit_stress, float)
     ds = xr.Dataset(
         {
-            "displacement_ratio": _v(("law", "Q_ratio"), disp,
+            "displacement_ratio": variable(("law", "Q_ratio"), disp,
                                      "tangential displacement of a remote point Delta_x/Delta_n"),
-            "stick_radius": _v(("law", "Q_ratio"), stick, "stick-zone radius c/a"),
-            "full_slip_Q_ratio": _v(("law",), q_full, "load at full sliding Q_full/Q_n"),
-            "full_slip_displacement_ratio": _v(("law",), d_full,
+            "stick_radius": variable(("law", "Q_ratio"), stick, "stick-zone radius c/a"),
+            "full_slip_Q_ratio": variable(("law",), q_full, "load at full sliding Q_full/Q_n"),
+            "full_slip_displacement_ratio": variable(("law",), d_full,
                                                "Delta_x/Delta_n as the stick zone vanishes"),
-            "von_mises_max": _v((), sv, "maximum von Mises stress of the Hertz field / p0"),
-            "von_mises_depth": _v((), zv, "depth of the von Mises maximum z/a"),
-            "axis_von_mises": _v(("z",), single.axis_von_mises(z, nu),
+            "von_mises_max": variable((), sv, "maximum von Mises stress of the Hertz field / p0"),
+            "von_mises_depth": variable((), zv, "depth of the von Mises maximum z/a"),
+            "axis_von_mises": variable(("z",), single.axis_von_mises(z, nu),
                                  "von Mises stress on the axis / p0"),
-            "axis_displacement": _v(("z",), single.axis_displacement(z, nu),
+            "axis_displacement": variable(("z",), single.axis_displacement(z, nu),
                                     "axis displacement (G/p0) w/a, eq. 3.7"),
-            "p0_fig_3_6": _v((), p0_fig36, "Hertz p0 of the Fig. 3.6 model", "N/mm^2"),
-            "p0_fig_3_8": _v((), p0_fig38, "Hertz p0 of the Fig. 3.8 model", "N/mm^2"),
-            "contact_radius_fig_3_8": _v((), a38, "Hertz contact radius of the Fig. 3.8 model",
+            "p0_fig_3_6": variable((), p0_fig36, "Hertz p0 of the Fig. 3.6 model", "N/mm^2"),
+            "p0_fig_3_8": variable((), p0_fig38, "Hertz p0 of the Fig. 3.8 model", "N/mm^2"),
+            "contact_radius_fig_3_8": variable((), a38,
+                                               "Hertz contact radius of the Fig. 3.8 model",
                                          "mm"),
-            "yield_over_von_mises": _v(("yield_stress",), ys / (sv * p0_fig38),
+            "yield_over_von_mises": variable(("yield_stress",), ys / (sv * p0_fig38),
                                        "yield limit / von Mises maximum sigma_y/sigma_v"),
-            "plastic_Q_n": _v(("yield_stress",), ys * np.pi * a38**2,
+            "plastic_Q_n": variable(("yield_stress",), ys * np.pi * a38**2,
                               "reference load Q_n = sigma_y pi r_c^2 (eq. 3.10)", "N"),
-            "shear_limit_over_p0": _v(("shear_limit_stress",), ts / p0_fig36,
+            "shear_limit_over_p0": variable(("shear_limit_stress",), ts / p0_fig36,
                                       "FE shear limit / p0 (Fig. 3.6)"),
         },
         coords={
             "law": ("law", labels),
-            "Q_ratio": _v(("Q_ratio",), q, "tangential load Q/Q_n"),
-            "tau_max_over_p0": _v(("law",), tau, "shear limit tau_max/p0"),
-            "friction_coefficient": _v(("law",), fr, "Coulomb friction coefficient f"),
-            "z": _v(("z",), z, "depth below the contact centre z/a"),
-            "yield_stress": _v(("yield_stress",), ys, "yield limit sigma_y (Fig. 3.8 models)",
+            "Q_ratio": variable(("Q_ratio",), q, "tangential load Q/Q_n"),
+            "tau_max_over_p0": variable(("law",), tau, "shear limit tau_max/p0"),
+            "friction_coefficient": variable(("law",), fr, "Coulomb friction coefficient f"),
+            "z": variable(("z",), z, "depth below the contact centre z/a"),
+            "yield_stress": variable(("yield_stress",), ys, "yield limit sigma_y (Fig. 3.8 models)",
                                "N/mm^2"),
-            "shear_limit_stress": _v(("shear_limit_stress",), ts,
+            "shear_limit_stress": variable(("shear_limit_stress",), ts,
                                      "FE shear limit (Fig. 3.6 models)", "N/mm^2"),
         },
         attrs={"nu": nu, "bem_cells_across_contact": ",".join(map(str, cells)),
@@ -171,25 +169,25 @@ def transverse_dataset(fractions: ArrayLike, f: float, tau_max: float, nu: float
                     single.coulomb_load(stack("displacement_ratio")), np.nan)
     return xr.Dataset(
         {
-            "displacement_ratio": _v(dims, stack("displacement_ratio"),
+            "displacement_ratio": variable(dims, stack("displacement_ratio"),
                                      "prescribed displacement Delta_x/Delta_n"),
-            "Q_ratio_scalar": _v(dims, q_s, "Q/Q_n with q_y = 0 (Cattaneo-Mindlin "
+            "Q_ratio_scalar": variable(dims, q_s, "Q/Q_n with q_y = 0 (Cattaneo-Mindlin "
                                  "approximation)"),
-            "Q_ratio_vector": _v(dims, q_v, "Q/Q_n with q_y free, |q| <= g, q parallel to "
+            "Q_ratio_vector": variable(dims, q_v, "Q/Q_n with q_y free, |q| <= g, q parallel to "
                                  "slip"),
-            "Q_ratio_eq_3_5": _v(dims, eq35, "Q/(f P) from eq. 3.5 (Coulomb only)"),
-            "transverse_traction": _v(dims, stack("Qy_abs"),
+            "Q_ratio_eq_3_5": variable(dims, eq35, "Q/(f P) from eq. 3.5 (Coulomb only)"),
+            "transverse_traction": variable(dims, stack("Qy_abs"),
                                       "integral of |q_y| over the contact / Q_n"),
-            "relative_difference": _v(dims, q_v / q_s - 1.0,
+            "relative_difference": variable(dims, q_v / q_s - 1.0,
                                       "Q_vector/Q_scalar - 1 at equal Delta_x"),
-            "iterations_scalar": _v(dims, stack("iterations_scalar"),
+            "iterations_scalar": variable(dims, stack("iterations_scalar"),
                                     "FISTA iterations, q_y = 0"),
-            "iterations_vector": _v(dims, stack("iterations_vector"),
+            "iterations_vector": variable(dims, stack("iterations_vector"),
                                     "FISTA iterations, q_y free"),
-            "residual": _v(dims, stack("residual"), "final projected-step residual"),
+            "residual": variable(dims, stack("residual"), "final projected-step residual"),
         },
         coords={"law": ("law", list(laws)),
-                "fraction": _v(("fraction",), fr,
+                "fraction": variable(("fraction",), fr,
                                "displacement / full-slip displacement of the q_y = 0 model")},
         attrs={"nu": nu, "friction_coefficient": f, "tau_max_over_p0": tau_max,
                "cells_across_contact": cells, "tolerance": tol,
@@ -233,22 +231,23 @@ def multi_dataset(laws: list[str], m: int, pt_over_pm: float,
     slopes_a = np.asarray(slopes)
     return xr.Dataset(
         {
-            "Q_ratio": _v(("law", "scaled_displacement"), curves,
+            "Q_ratio": variable(("law", "scaled_displacement"), curves,
                           "normalised tangential load Q_t/(f P_t), eq. 3.16"),
-            "S_n": _v(("law",), slopes_a, "initial slope S(n), eq. 3.23"),
-            "first_full_slip_displacement": _v(("law",), first,
+            "S_n": variable(("law",), slopes_a, "initial slope S(n), eq. 3.23"),
+            "first_full_slip_displacement": variable(("law",), first,
                                                "Delta_x/Delta_n when an asperity first slips "
                                                "fully"),
-            "first_full_slip_scaled_displacement": _v(("law",), first * slopes_a,
+            "first_full_slip_scaled_displacement": variable(("law",), first * slopes_a,
                                                       "Delta_x/Delta_n S(n) at first full "
                                                       "slip"),
-            "first_full_slip_Q_ratio": _v(("law",), first_q, "Q_t/(f P_t) at first full slip"),
-            "Pt_over_Pm": _v(("law",), ptpm, "total / largest asperity load Pt/Pm"),
-            "asperity_count": _v(("law",), count, "number of asperities sum n_i"),
+            "first_full_slip_Q_ratio": variable(("law",), first_q,
+                                                "Q_t/(f P_t) at first full slip"),
+            "Pt_over_Pm": variable(("law",), ptpm, "total / largest asperity load Pt/Pm"),
+            "asperity_count": variable(("law",), count, "number of asperities sum n_i"),
         },
         coords={
             "law": ("law", names),
-            "scaled_displacement": _v(("scaled_displacement",), s,
+            "scaled_displacement": variable(("scaled_displacement",), s,
                                       "scaled displacement Delta_x/Delta_n S(n)"),
         },
         attrs={"m": int(m), "Pt_over_Pm": float(pt_over_pm),
@@ -286,36 +285,36 @@ def grid_dataset(ns: list[int], pt_over_pd: list[float], load_min: float, load_m
     kf_a, ke_a = np.asarray(kf), np.asarray(ke)
     return xr.Dataset(
         {
-            "u_cen_over_u_r": _v(("N", "Pt_over_Pd"), ratio,
+            "u_cen_over_u_r": variable(("N", "Pt_over_Pd"), ratio,
                                  "centre displacement / uniform-pressure displacement "
                                  "u_cen/u_r (Fig. 3.12)"),
-            "overlapping": _v(("N", "Pt_over_Pd"), np.asarray(overl, np.int8),
+            "overlapping": variable(("N", "Pt_over_Pd"), np.asarray(overl, np.int8),
                               "1 where Hertz spots overlap (area ratio > pi/4)"),
-            "u_cen": _v(("N", "load"), ucen,
+            "u_cen": variable(("N", "load"), ucen,
                         "centre displacement u_cen E D/((1 - nu^2) P_d) (Fig. 3.13)"),
-            "u_r": _v(("load",), hgrid.UNIFORM_SQUARE * loads,
+            "u_r": variable(("load",), hgrid.UNIFORM_SQUARE * loads,
                       "uniform-pressure centre displacement u_r E D/((1 - nu^2) P_d), eq. 3.29"),
-            "area_ratio_of_load": _v(("N", "load"), arl,
+            "area_ratio_of_load": variable(("N", "load"), arl,
                                      "real/apparent area A_real/A_apparent, eq. 3.28 "
                                      "(Fig. 3.14)"),
-            "stiffness_fixed": _v(("N", "area_ratio"), kf_a,
+            "stiffness_fixed": variable(("N", "area_ratio"), kf_a,
                                   "normal contact stiffness k (1 - nu^2)/(E D), fixed grid "
                                   "(Fig. 3.15)"),
-            "stiffness_expanding": _v(("N", "area_ratio"), ke_a,
+            "stiffness_expanding": variable(("N", "area_ratio"), ke_a,
                                       "normal contact stiffness k (1 - nu^2)/(E D), "
                                       "D = 2 C_u N, expanding grid (Fig. 3.16)"),
-            "stiffness_uniform": _v((), 1.0 / hgrid.UNIFORM_SQUARE,
+            "stiffness_uniform": variable((), 1.0 / hgrid.UNIFORM_SQUARE,
                                     "stiffness of the uniformly loaded square k (1-nu^2)/(E D)"),
-            "Pt_over_Pd_of_area": _v(("N", "area_ratio"), kfd,
+            "Pt_over_Pd_of_area": variable(("N", "area_ratio"), kfd,
                                      "total load Pt/Pd of each area ratio (fixed grid)"),
-            "max_fixed_expanding_difference": _v((), np.max(np.abs(ke_a / kf_a - 1)),
+            "max_fixed_expanding_difference": variable((), np.max(np.abs(ke_a / kf_a - 1)),
                                                  "max |k_expanding/k_fixed - 1|"),
         },
         coords={
-            "N": _v(("N",), ns, "asperities per grid side N"),
-            "Pt_over_Pd": _v(("Pt_over_Pd",), pts, "total load Pt/Pd (Fig. 3.12)"),
-            "load": _v(("load",), loads, "total load Pt/Pd (Figs 3.13, 3.14)"),
-            "area_ratio": _v(("area_ratio",), areas, "real/apparent area A_real/A_apparent"),
+            "N": variable(("N",), ns, "asperities per grid side N"),
+            "Pt_over_Pd": variable(("Pt_over_Pd",), pts, "total load Pt/Pd (Fig. 3.12)"),
+            "load": variable(("load",), loads, "total load Pt/Pd (Figs 3.13, 3.14)"),
+            "area_ratio": variable(("area_ratio",), areas, "real/apparent area A_real/A_apparent"),
         },
         attrs={"overlap_area_ratio": hgrid.OVERLAP_AREA_RATIO,
                "uniform_square_constant": hgrid.UNIFORM_SQUARE},
@@ -331,46 +330,46 @@ def grid_bem_dataset(n: int, area_ratio: ArrayLike, cells_per_spacing: int,
     hz = hgrid.fixed_grid(n, pt)
     rig = gbem.solve_grid(n, pt, cells_per_spacing)
     data = {
-        "Pt_over_Pd": _v(("area_ratio_hertz",), pt, "total load Pt/Pd"),
-        "u_cen_hertz": _v(("area_ratio_hertz",), hz["u_cen"],
+        "Pt_over_Pd": variable(("area_ratio_hertz",), pt, "total load Pt/Pd"),
+        "u_cen_hertz": variable(("area_ratio_hertz",), hz["u_cen"],
                           "centre displacement, Hertz grid model (normalised)"),
-        "stiffness_hertz": _v(("area_ratio_hertz",), hz["stiffness"],
+        "stiffness_hertz": variable(("area_ratio_hertz",), hz["stiffness"],
                               "stiffness k (1-nu^2)/(E D), Hertz grid model"),
-        "u_cen_bem": _v(("area_ratio_hertz",), rig["u_cen"],
+        "u_cen_bem": variable(("area_ratio_hertz",), rig["u_cen"],
                         "centre displacement, BEM, rigid approach (normalised)"),
-        "stiffness_bem": _v(("area_ratio_hertz",), rig["stiffness"],
+        "stiffness_bem": variable(("area_ratio_hertz",), rig["stiffness"],
                             "stiffness k (1-nu^2)/(E D), BEM, rigid approach"),
-        "area_ratio_bem": _v(("area_ratio_hertz",), rig["area_ratio"],
+        "area_ratio_bem": variable(("area_ratio_hertz",), rig["area_ratio"],
                              "real/apparent area, BEM, rigid approach"),
-        "centre_load_share": _v(("area_ratio_hertz",), rig["centre_load_share"],
+        "centre_load_share": variable(("area_ratio_hertz",), rig["centre_load_share"],
                                 "centre asperity load / (Pt/N^2), BEM, rigid approach"),
-        "corner_load_share": _v(("area_ratio_hertz",), rig["corner_load_share"],
+        "corner_load_share": variable(("area_ratio_hertz",), rig["corner_load_share"],
                                 "corner asperity load / (Pt/N^2), BEM, rigid approach"),
-        "iterations": _v(("area_ratio_hertz",), rig["iterations"], "CG iterations"),
-        "residual": _v(("area_ratio_hertz",), rig["residual"], "final residual"),
-        "converged": _v(("area_ratio_hertz",), rig["converged"].astype(np.int8),
+        "iterations": variable(("area_ratio_hertz",), rig["iterations"], "CG iterations"),
+        "residual": variable(("area_ratio_hertz",), rig["residual"], "final residual"),
+        "converged": variable(("area_ratio_hertz",), rig["converged"].astype(np.int8),
                         "1 if the normal solver converged"),
     }
     if equal_loads:
         eq = gbem.solve_grid_equal_loads(n, pt, cells_per_spacing)
         data.update({
-            "u_cen_bem_equal": _v(("area_ratio_hertz",), eq["u_cen"],
+            "u_cen_bem_equal": variable(("area_ratio_hertz",), eq["u_cen"],
                                   "centre displacement, BEM, equal asperity loads"),
-            "stiffness_bem_equal": _v(("area_ratio_hertz",), eq["stiffness"],
+            "stiffness_bem_equal": variable(("area_ratio_hertz",), eq["stiffness"],
                                       "stiffness k (1-nu^2)/(E D), BEM, equal asperity "
                                       "loads"),
-            "area_ratio_bem_equal": _v(("area_ratio_hertz",), eq["area_ratio"],
+            "area_ratio_bem_equal": variable(("area_ratio_hertz",), eq["area_ratio"],
                                        "real/apparent area, BEM, equal asperity loads"),
-            "load_error_equal": _v(("area_ratio_hertz",), eq["load_error"],
+            "load_error_equal": variable(("area_ratio_hertz",), eq["load_error"],
                                    "max relative asperity-load error, equal loads"),
-            "converged_equal": _v(("area_ratio_hertz",), eq["converged"].astype(np.int8),
+            "converged_equal": variable(("area_ratio_hertz",), eq["converged"].astype(np.int8),
                                   "1 if the equal-load solves converged"),
         })
     return xr.Dataset(
         data,
-        coords={"area_ratio_hertz": _v(("area_ratio_hertz",), ar,
+        coords={"area_ratio_hertz": variable(("area_ratio_hertz",), ar,
                                        "real/apparent area of the Hertz grid model, eq. 3.28"),
-                "N": _v((), n, "asperities per grid side N")},
+                "N": variable((), n, "asperities per grid side N")},
         attrs={"cells_per_spacing": cells_per_spacing, "sphere_radius_over_D": gbem.RADIUS,
                "equal_loads": int(equal_loads)},
     )

@@ -16,7 +16,12 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from contactlab.asperity import single as sg
+from contactlab.asperity.checks import (
+    bem_checks,
+    grid_bem_table,
+    grid_departures,
+    largest_transverse_difference,
+)
 from contactlab.report.section import ReportSection
 
 #: The section of each part (``contactlab/report/sections/<name>.yaml``).
@@ -42,27 +47,7 @@ def single_section(single_path: Path, transverse_path: Path, report_dir: Path
     sec = ReportSection(SECTIONS["single"], report_dir)
     q = ds["Q_ratio"].values
     sec.paragraph("model", cells=ds.attrs.get("bem_cells_across_contact", "?"), q1=q[1])
-    # validation table
-    rows = []
-    coul = sg.coulomb_ratio(q)
-    sel = (q > 0) & (q <= 0.99 + 1e-12)
-    for law in _labels(ds, "bem_"):
-        d = ds["displacement_ratio"].sel(law=law).values
-        row = {"law": law,
-               "tau_max/p0": float(ds["tau_max_over_p0"].sel(law=law)),
-               "f": float(ds["friction_coefficient"].sel(law=law)),
-               "Delta/Delta_n at Q/Q_n=0.5": float(np.interp(0.5, q, d)),
-               "Q_full/Q_n": float(ds["full_slip_Q_ratio"].sel(law=law)),
-               "Delta/Delta_n at full slip": float(
-                   ds["full_slip_displacement_ratio"].sel(law=law))}
-        if law == "bem_coulomb":
-            row["max |BEM/eq.3.5 - 1| (0<Q/fP<=0.99)"] = float(
-                np.max(np.abs(d[sel] / coul[sel] - 1)))
-            c = ds["stick_radius"].sel(law=law).values
-            row["max |c/a - (1-Q/fP)^(1/3)|"] = float(
-                np.nanmax(np.abs(c[q < 1] - sg.stick_radius(q[q < 1]))))
-        rows.append(row)
-    sec.table(pd.DataFrame(rows), "asperity_bem_checks", digits=4)
+    sec.table(bem_checks(ds), "asperity_bem_checks", digits=4)
 
     fig, ax = plt.subplots(figsize=(6.4, 4.2))
     ax.plot(q, ds["displacement_ratio"].sel(law="coulomb"), "k-", lw=2,
@@ -110,16 +95,21 @@ def single_section(single_path: Path, transverse_path: Path, report_dir: Path
     thesis = {5000.0: 0.93, 4000.0: 0.74, 3000.0: 0.56, 2000.0: 0.37}
     ys = ds["yield_stress"].values
     sec.table(pd.DataFrame({
-        "sigma_y (N/mm^2)": ys,
+        "sigma_y": ys,
         "sigma_y/sigma_v (computed)": ds["yield_over_von_mises"].values,
         "thesis": [thesis.get(float(v), np.nan) for v in ys],
-        "Q_n = sigma_y pi r_c^2 (N)": ds["plastic_Q_n"].values,
-    }), "asperity_yield_ratios", digits=3, sigma_v=float(ds["von_mises_max"]),
-        depth=float(ds["von_mises_depth"]), nu=ds.attrs["nu"], p0=float(ds["p0_fig_3_8"]))
+        "Q_n = sigma_y pi r_c^2": ds["plastic_Q_n"].values,
+    }), "asperity_yield_ratios", digits=3,
+        units={"sigma_y": ds["yield_stress"].attrs["units"], "sigma_y/sigma_v (computed)": "1",
+               "thesis": "1", "Q_n = sigma_y pi r_c^2": ds["plastic_Q_n"].attrs["units"]},
+        sigma_v=float(ds["von_mises_max"]), depth=float(ds["von_mises_depth"]),
+        nu=ds.attrs["nu"], p0=float(ds["p0_fig_3_8"]))
     sec.table(pd.DataFrame({
-        "shear limit (N/mm^2)": ds["shear_limit_stress"].values,
+        "shear limit": ds["shear_limit_stress"].values,
         "tau/p0 (computed)": ds["shear_limit_over_p0"].values}),
-        "asperity_shear_limits", digits=3, p0=float(ds["p0_fig_3_6"]))
+        "asperity_shear_limits", digits=3,
+        units={"shear limit": ds["shear_limit_stress"].attrs["units"], "tau/p0 (computed)": "1"},
+        p0=float(ds["p0_fig_3_6"]))
 
     table = tr[["displacement_ratio", "Q_ratio_scalar", "Q_ratio_vector", "Q_ratio_eq_3_5",
                 "transverse_traction", "relative_difference"]].to_dataframe().reset_index()
@@ -128,9 +118,9 @@ def single_section(single_path: Path, transverse_path: Path, report_dir: Path
         "Q_ratio_scalar": "Q/Q_n, q_y=0", "Q_ratio_vector": "Q/Q_n, q_y free",
         "Q_ratio_eq_3_5": "eq. 3.5", "transverse_traction": "int|q_y| dA/Q_n",
         "relative_difference": "relative difference"})
-    sec.table(table, "asperity_transverse", digits=5,
+    sec.table(table, "asperity_transverse", digits=5, units=dict.fromkeys(table.columns, "1"),
               cells=tr.attrs["cells_across_contact"], tau_max=tr.attrs["tau_max_over_p0"],
-              largest=float(np.nanmax(np.abs(tr["relative_difference"]))))
+              largest=largest_transverse_difference(tr))
     return sec
 
 
@@ -157,7 +147,7 @@ def multi_section(multi_path: Path, report_dir: Path) -> ReportSection:
         "Q_t/(f P_t) there": ds["first_full_slip_Q_ratio"].values,
         "sum n_i": ds["asperity_count"].values,
     })
-    sec.table(table, "asperity_multi", digits=4)
+    sec.table(table, "asperity_multi", digits=4, units=dict.fromkeys(table.columns, "1"))
     return sec
 
 
@@ -222,36 +212,16 @@ def grid_section(grid_path: Path, bem_path: Path, report_dir: Path) -> ReportSec
 
     sec.paragraph("bem", cells=int(bem.attrs.get("cells_per_spacing", 0)))
     fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
-    rows = []
-    # N = 1 at the same area ratio has the same cells per contact radius: its BEM/Hertz
-    # ratio is the discretisation error, divided out in the last column of the table
-    single = bem.sel(N=1) if 1 in bem["N"].values else None
-    for v in bem["N"].values:
-        b = bem.sel(N=v)
-        x = b["area_ratio_hertz"].values
-        line, = axes[0].plot(x, b["stiffness_bem"] / b["stiffness_hertz"], "o-", ms=3,
+    frame = grid_bem_table(bem)
+    for v, b in frame.groupby("N", sort=False):
+        x = b["area ratio (Hertz)"]
+        line, = axes[0].plot(x, b["k_BEM/k_Hertz"], "o-", ms=3,
                              label=f"N = {v}, rigid approach")
-        if "stiffness_bem_equal" in b and np.isfinite(b["stiffness_bem_equal"]).any():
-            axes[0].plot(x, b["stiffness_bem_equal"] / b["stiffness_hertz"], "s--", ms=3,
-                         color=line.get_color(), label=f"N = {v}, equal loads")
-            axes[1].plot(x, b["u_cen_bem_equal"] / b["u_cen_hertz"], "s--", ms=3,
-                         color=line.get_color())
-        axes[1].plot(x, b["u_cen_bem"] / b["u_cen_hertz"], "o-", ms=3, color=line.get_color())
-        for k in range(x.size):
-            row = {"N": int(v), "area ratio (Hertz)": x[k],
-                   "area ratio (BEM)": float(b["area_ratio_bem"][k]),
-                   "k_BEM/k_Hertz": float(b["stiffness_bem"][k] / b["stiffness_hertz"][k]),
-                   "u_BEM/u_Hertz": float(b["u_cen_bem"][k] / b["u_cen_hertz"][k]),
-                   "centre load share": float(b["centre_load_share"][k]),
-                   "corner load share": float(b["corner_load_share"][k])}
-            if "stiffness_bem_equal" in b:
-                row["k_BEM,eq/k_Hertz"] = float(b["stiffness_bem_equal"][k]
-                                                / b["stiffness_hertz"][k])
-                row["u_BEM,eq/u_Hertz"] = float(b["u_cen_bem_equal"][k] / b["u_cen_hertz"][k])
-                if single is not None:
-                    row["k_BEM,eq/k_Hertz / (N=1 ratio)"] = row["k_BEM,eq/k_Hertz"] / float(
-                        single["stiffness_bem"][k] / single["stiffness_hertz"][k])
-            rows.append(row)
+        if "k_BEM,eq/k_Hertz" in b and np.isfinite(b["k_BEM,eq/k_Hertz"]).any():
+            axes[0].plot(x, b["k_BEM,eq/k_Hertz"], "s--", ms=3, color=line.get_color(),
+                         label=f"N = {v}, equal loads")
+            axes[1].plot(x, b["u_BEM,eq/u_Hertz"], "s--", ms=3, color=line.get_color())
+        axes[1].plot(x, b["u_BEM/u_Hertz"], "o-", ms=3, color=line.get_color())
     for ax in axes:
         ax.axhline(1, color="k", lw=0.6)
         ax.set_xlabel("A_real/A_apparent (Hertz grid model)")
@@ -259,16 +229,11 @@ def grid_section(grid_path: Path, bem_path: Path, report_dir: Path) -> ReportSec
     axes[1].set_ylabel("u_cen,BEM/u_cen,Hertz")
     axes[0].legend(frameon=False, fontsize=7)
     sec.figure(fig, "asperity_grid_bem")
-    frame = pd.DataFrame(rows)
-    col = "k_BEM,eq/k_Hertz / (N=1 ratio)"
-    if col in frame:
-        for v, part in frame[frame["N"] > 1].groupby("N"):
-            bad = part[np.abs(part[col] - 1) > 0.05]
-            first = (f"{bad['area ratio (Hertz)'].min():.2f}" if len(bad)
-                     else sec.say("no_departure"))
-            sec.paragraph("departure", N=v, first=first,
-                          share=part["centre load share"].iloc[0],
-                          area=part["area ratio (Hertz)"].iloc[0])
+    for departure in grid_departures(frame):
+        first = departure["first"]
+        sec.paragraph("departure", N=departure["N"],
+                      first=f"{first:.2f}" if np.isfinite(first) else sec.say("no_departure"),
+                      share=departure["share"], area=departure["area"])
     sec.table(frame, "asperity_grid_bem", digits=3)
     return sec
 

@@ -30,6 +30,7 @@ from contactlab.dic.recovery import (
     table_rows,
 )
 from contactlab.report.section import ReportSection, save_figure
+from contactlab.stiffness.tables import UNITS
 
 __all__ = ["build_section", "quality_figure"]
 
@@ -190,7 +191,8 @@ def build_section(fields_paths: list[Path], results_paths: list[Path], report_di
     if demo_tests:
         section.caveat("reconstructed", tests=", ".join(demo_tests))
     quality = pd.DataFrame(quality_rows)
-    section.table(quality, "dic_quality", digits=4)
+    section.table(quality, "dic_quality", digits=4,
+                  units={c: "px" if c.endswith("_px") else "1" for c in quality.columns})
     recovery = pd.DataFrame(by_test, columns=[
         "test", "truth", "frames", "uc_max_abs_diff", "uc_rms_diff", "vc_max_abs_diff",
         "vc_rms_diff", "steps", "steps_within_from_images", "steps_within_from_fields",
@@ -205,9 +207,13 @@ def build_section(fields_paths: list[Path], results_paths: list[Path], report_di
             steps_from_fields=row["steps_within_from_fields"], values=row["table_values"],
             values_from_images=row["table_values_within_from_images"],
             values_from_fields=row["table_values_within_from_fields"])
-    section.table(recovery, "dic_recovery_by_test", digits=4)
-    section.table(pd.concat(rows, ignore_index=True) if rows
-                  else pd.DataFrame(columns=TABLE_ROW_COLUMNS), "dic_table_rows", digits=4)
+    section.table(recovery, "dic_recovery_by_test", digits=4,
+                  units={c: "um" if c.endswith("_diff") else "1" for c in recovery.columns})
+    cells = (pd.concat(rows, ignore_index=True) if rows
+             else pd.DataFrame(columns=TABLE_ROW_COLUMNS))
+    cells.insert(cells.columns.get_loc("quantity") + 1, "unit",
+                 cells["quantity"].map(lambda q: UNITS.get(q, "1")))
+    section.table(cells, "dic_table_rows", digits=4, margins={"published": "moe"})
     section.table(pd.concat(steps, ignore_index=True) if steps
                   else pd.DataFrame(columns=STEP_COLUMNS), "dic_recovery_steps", digits=4)
     for test, worst, compared in figures:

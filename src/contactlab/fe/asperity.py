@@ -30,6 +30,7 @@ import xarray as xr
 
 from contactlab.asperity.single import coulomb_ratio
 from contactlab.fe.ccx import ccx_version, run_ccx
+from contactlab.io import variable
 
 #: Largest von Mises stress of Hertz contact over p0 for nu = 0.3 (sec. 3.2.2).
 SIGMA_V_OVER_P0 = 0.62
@@ -311,11 +312,6 @@ def reaction_totals(dat: str) -> np.ndarray:
     return np.array(rows, dtype=float).reshape(-1, 4)
 
 
-def _var(values, long_name: str, units: str = "1", dims=("step",)) -> xr.Variable:
-    return xr.Variable(dims, np.asarray(values, dtype=float),
-                       {"long_name": long_name, "units": units})
-
-
 def run_asperity(model: AsperityModel, yield_stress: float, threads: int = 1,
                  keep: str | None = None) -> xr.Dataset:
     """Mesh, run and read one model; yield_stress = 0 gives the elastic stuck model."""
@@ -345,28 +341,37 @@ def run_asperity(model: AsperityModel, yield_stress: float, threads: int = 1,
     delta_n = q_n * (2.0 - model.poisson) / (8.0 * model.shear_modulus * rc)
     ds = xr.Dataset(
         {
-            "Q": _var(q, "tangential load Q (full model)", "N"),
-            "P": _var(p_during, "normal load P (full model)", "N"),
-            "delta_x": _var(delta_x, "tangential displacement Delta_x (half the top's)", "mm"),
-            "Q_ratio": _var(q / q_n, "Q/Q_n, Q_n = sigma_y pi r_c^2 (eq. 3.10)"),
-            "displacement_ratio_eq33": _var(delta_x / delta_n,
-                                            "Delta_x/Delta_n with Delta_n by eq. (3.3)"),
-            "P_normal": _var(p_normal, "normal load after the normal step (full model)", "N",
-                             dims=()),
-            "P_hertz": _var(model.hertz_load, "Hertz normal load for the approach", "N",
-                            dims=()),
-            "Q_n": _var(q_n, "reference tangential load Q_n", "N", dims=()),
-            "Delta_n_eq33": _var(delta_n, "reference displacement Delta_n, eq. (3.3)", "mm",
-                                 dims=()),
-            "yield_stress": _var(yield_stress, "von Mises yield stress (0: elastic)",
-                                 "N/mm^2", dims=()),
-            "yield_ratio": _var(yield_stress / sigma_v if yield_stress > 0 else np.nan,
-                                "yield stress over sigma_v = 0.62 p0", dims=()),
-            "n_elements": _var(mesh.n_elements, "number of C3D10 elements", dims=()),
-            "n_nodes": _var(len(mesh.nodes), "number of nodes", dims=()),
-            "iterations": _var(run.sta["iterations"], "Newton iterations", dims=()),
+            "Q": variable(("step",), np.asarray(q, dtype=float), "tangential load Q (full model)",
+                          "N"),
+            "P": variable(("step",), np.asarray(p_during, dtype=float),
+                          "normal load P (full model)", "N"),
+            "delta_x": variable(("step",), np.asarray(delta_x, dtype=float),
+                                "tangential displacement Delta_x (half the top's)", "mm"),
+            "Q_ratio": variable(("step",), np.asarray(q / q_n, dtype=float),
+                                "Q/Q_n, Q_n = sigma_y pi r_c^2 (eq. 3.10)"),
+            "displacement_ratio_eq33": variable(
+                ("step",), np.asarray(delta_x / delta_n, dtype=float),
+                "Delta_x/Delta_n with Delta_n by eq. (3.3)"),
+            "P_normal": variable((), np.asarray(p_normal, dtype=float),
+                                 "normal load after the normal step (full model)", "N"),
+            "P_hertz": variable((), np.asarray(model.hertz_load, dtype=float),
+                                "Hertz normal load for the approach", "N"),
+            "Q_n": variable((), np.asarray(q_n, dtype=float), "reference tangential load Q_n", "N"),
+            "Delta_n_eq33": variable((), np.asarray(delta_n, dtype=float),
+                                     "reference displacement Delta_n, eq. (3.3)", "mm"),
+            "yield_stress": variable((), np.asarray(yield_stress, dtype=float),
+                                     "von Mises yield stress (0: elastic)", "N/mm^2"),
+            "yield_ratio": variable(
+                (), np.asarray(yield_stress / sigma_v if yield_stress > 0 else np.nan,
+                               dtype=float), "yield stress over sigma_v = 0.62 p0"),
+            "n_elements": variable((), np.asarray(mesh.n_elements, dtype=float),
+                                   "number of C3D10 elements"),
+            "n_nodes": variable((), np.asarray(len(mesh.nodes), dtype=float), "number of nodes"),
+            "iterations": variable((), np.asarray(run.sta["iterations"], dtype=float),
+                                   "Newton iterations"),
         },
-        coords={"step": _var(np.arange(q.size), "load increment of the tangential step")},
+        coords={"step": variable(("step",), np.asarray(np.arange(q.size), dtype=float),
+                                 "load increment of the tangential step")},
     )
     ds.attrs.update(
         r_c_mm=rc, p0_N_per_mm2=model.p0, sigma_v_N_per_mm2=sigma_v, young_N_per_mm2=model.young,

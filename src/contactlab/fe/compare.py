@@ -17,10 +17,7 @@ from contactlab.fe.ddt import DdtReference
 from contactlab.fe.interface import profile_difference
 from contactlab.fe.receding import STICK_SLIP_NAME
 from contactlab.fe.study import run_quantities
-
-
-def _scalar(value: float, long_name: str, units: str = "1") -> xr.DataArray:
-    return xr.DataArray(float(value), attrs={"long_name": long_name, "units": units})
+from contactlab.io import variable
 
 
 def percent_difference(fe: float, ddt: float) -> float:
@@ -35,19 +32,21 @@ def agreement(fe: xr.Dataset, ref: DdtReference) -> xr.Dataset:
     ds = fe.copy()
     problem = ds.attrs["problem"]
     a = STICK_SLIP_NAME[problem]
-    ds["b_ddt"] = _scalar(ref.b, "separation point b/c from distributed dislocations")
-    ds[f"{a}_ddt"] = _scalar(ref.a, f"stick-slip point {a}/c from distributed dislocations")
-    ds["b_difference"] = _scalar(percent_difference(float(ds["b_fe"]), ref.b),
-                                 "(b_fe - b_ddt) / b_ddt", "percent")
-    ds[f"{a}_difference"] = _scalar(percent_difference(float(ds[f"{a}_fe"]), ref.a),
-                                    f"({a}_fe - {a}_ddt) / {a}_ddt", "percent")
+    ds["b_ddt"] = variable((), float(ref.b), "separation point b/c from distributed dislocations")
+    ds[f"{a}_ddt"] = variable((), float(ref.a),
+                              f"stick-slip point {a}/c from distributed dislocations")
+    ds["b_difference"] = variable((), float(percent_difference(float(ds["b_fe"]), ref.b)),
+                                  "(b_fe - b_ddt) / b_ddt", "percent")
+    ds[f"{a}_difference"] = variable((), float(percent_difference(float(ds[f"{a}_fe"]), ref.a)),
+                                     f"({a}_fe - {a}_ddt) / {a}_ddt", "percent")
     # the same points placed inside the element from the onset of separation and slip
     points = run_quantities(ds)
     for key, src, ddt in (("b_sep", "b_sep", ref.b), (f"{a}_slip", "a_slip", ref.a)):
-        ds[f"{key}_fe"] = _scalar(points[src], f"{key.split('_')[0]}/c from the onset of "
-                                  f"{'separation' if src == 'b_sep' else 'slip'} (FE)")
-        ds[f"{key}_difference"] = _scalar(percent_difference(points[src], ddt),
-                                          f"({key}_fe - DDT) / DDT", "percent")
+        ds[f"{key}_fe"] = variable((), float(points[src]),
+                                   f"{key.split('_')[0]}/c from the onset of "
+                                   f"{'separation' if src == 'b_sep' else 'slip'} (FE)")
+        ds[f"{key}_difference"] = variable((), float(percent_difference(points[src], ddt)),
+                                           f"({key}_fe - DDT) / DDT", "percent")
     labels = {"N": "normal traction N/q", "S": "shear traction S/q",
               "separation": "separation v2 - v1", "slip": "relative slip u2 - u1"}
     for name, long in labels.items():
@@ -59,8 +58,8 @@ def agreement(fe: xr.Dataset, ref: DdtReference) -> xr.Dataset:
             attrs={"long_name": f"{long} from distributed dislocations", "units": "1"},
         )
         scale = 1.0 if name in ("N", "S") else None
-        ds[f"{name}_max_difference"] = _scalar(
-            profile_difference(ds["x"].values, ds[name].values, values, scale),
+        ds[f"{name}_max_difference"] = variable(
+            (), float(profile_difference(ds["x"].values, ds[name].values, values, scale)),
             f"largest |FE - DDT| of {name} (over 1 for tractions, over max |DDT| otherwise)")
     ds.attrs.update(
         ddt_source=ref.source or "none",

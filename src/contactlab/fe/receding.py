@@ -41,6 +41,7 @@ from contactlab.fe.interface import (
     stick_slip_point,
 )
 from contactlab.fe.mesh2d import PlaneMesh, StripBlockGeometry, strip_on_block
+from contactlab.io import variable
 
 #: Name of the stick-slip point of each problem (a3 in ch. 5, a in chs 6-7).
 STICK_SLIP_NAME = {"gap": "a3", "line": "a", "uniform": "a"}
@@ -139,7 +140,8 @@ def traction_transitions(prof: dict[str, np.ndarray], model: RecedingModel,
 
 
 def _var(values, long_name: str, units: str = "1", dims=("x",), **attrs) -> xr.Variable:
-    return xr.Variable(dims, np.asarray(values), {"long_name": long_name, "units": units, **attrs})
+    """A variable along the interface (``dims``) by :func:`contactlab.io.variable`."""
+    return variable(dims, np.asarray(values), long_name, units, **attrs)
 
 
 def interface_forces(prof: dict[str, np.ndarray], model: RecedingModel, thickness: float

@@ -77,15 +77,15 @@ def agreement_table(results: list[xr.Dataset]) -> pd.DataFrame:
             "elements": int(ds["n_elements"]),
             "b FE": float(ds["b_fe"]),
             "b DDT": float(ds["b_ddt"]),
-            "b diff (%)": float(ds["b_difference"]),
+            "b diff": float(ds["b_difference"]),
             "stick-slip": a,
             "a FE": float(ds[f"{a}_fe"]),
             "a DDT": float(ds[f"{a}_ddt"]),
-            "a diff (%)": float(ds[f"{a}_difference"]),
+            "a diff": float(ds[f"{a}_difference"]),
             "b_sep FE": float(ds["b_sep_fe"]) if "b_sep_fe" in ds else np.nan,
-            "b_sep diff (%)": float(ds["b_sep_difference"]) if "b_sep_fe" in ds else np.nan,
+            "b_sep diff": float(ds["b_sep_difference"]) if "b_sep_fe" in ds else np.nan,
             "a_slip FE": float(ds[f"{a}_slip_fe"]) if f"{a}_slip_fe" in ds else np.nan,
-            "a_slip diff (%)": (float(ds[f"{a}_slip_difference"])
+            "a_slip diff": (float(ds[f"{a}_slip_difference"])
                                 if f"{a}_slip_fe" in ds else np.nan),
             "max |dN|": float(ds["N_max_difference"]),
             "max |dS|": float(ds["S_max_difference"]),
@@ -127,8 +127,8 @@ def study_table(studies: list[xr.Dataset]) -> pd.DataFrame:
                     "L power": float(ds["domain_power"][i, j]),
                     f"DDT N={ds.attrs['ddt_n_reference']}": float(ds["ddt"][j]),
                     "DDT +-": float(ds["ddt_uncertainty"][j]),
-                    "raw diff (%)": float(ds["raw_difference"][i, j]),
-                    "diff (%)": float(ds["difference"][i, j]),
+                    "raw diff": float(ds["raw_difference"][i, j]),
+                    "diff": float(ds["difference"][i, j]),
                     "z": float(ds["z"][i, j]),
                 })
     return pd.DataFrame(rows)
@@ -196,6 +196,12 @@ def _ddt_missing(section: ReportSection, ds: xr.Dataset) -> None:
                      reason=ds.attrs.get("ddt_missing_reason", ds.attrs["ddt_status"]))
 
 
+def _units(table: pd.DataFrame) -> dict[str, str]:
+    """The units of an agreement or study table: differences in percent, every other
+    number in units of the layer thickness c or dimensionless."""
+    return {c: "%" if c.endswith("diff") else "1" for c in table.columns}
+
+
 def build_section(results: list[Path], convergence: list[Path], asperity: Path | None,
                   report_dir: Path, out: Path, study: list[Path] | None = None) -> None:
     """Write the FE section, its tables and figures
@@ -203,7 +209,8 @@ def build_section(results: list[Path], convergence: list[Path], asperity: Path |
     datasets = load_datasets(results, "FE comparison")
     sec = ReportSection("70_fe", report_dir)
     sec.paragraph("models")
-    sec.table(agreement_table(datasets), "fe_agreement")
+    agreement = agreement_table(datasets)
+    sec.table(agreement, "fe_agreement", units=_units(agreement))
     for ds in datasets:
         _ddt_missing(sec, ds)
     sec.paragraph("reading")
@@ -219,7 +226,7 @@ def build_section(results: list[Path], convergence: list[Path], asperity: Path |
                    figs=figs)
     conv = load_datasets(convergence, "FE convergence study")
     if conv:
-        sec.table(convergence_table(conv), "fe_convergence")
+        sec.table(convergence_table(conv), "fe_convergence", units="1")
         sec.figure(convergence_figure(conv), "fe_convergence")
     studies = load_datasets(study or [], "FE study")
     if studies:
@@ -229,7 +236,8 @@ def build_section(results: list[Path], convergence: list[Path], asperity: Path |
                     length=", ".join(f"{v:g}" for v in ds["length"].values),
                     h_ref=ds.attrs["h_ref"]) for ds in studies)
         sec.paragraph("study", series=series)
-        sec.table(study_table(studies), "fe_study", digits=4)
+        study_rows = study_table(studies)
+        sec.table(study_rows, "fe_study", digits=4, units=_units(study_rows))
         for ds in studies:
             if not int(ds.attrs.get("all_converged", 1)):
                 sec.note("study_not_converged", problem=ds.attrs["problem"])
@@ -246,6 +254,6 @@ def build_section(results: list[Path], convergence: list[Path], asperity: Path |
             "P/P_Hertz": asp["P_normal"].values / asp["P_hertz"].values,
             "elements": asp["n_elements"].values.astype(int),
         })
-        sec.table(rows, "fe_asperity")
+        sec.table(rows, "fe_asperity", units="1")
         sec.figure(asperity_figure(asp), "fe_asperity")
     sec.write(out)

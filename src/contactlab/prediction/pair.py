@@ -28,6 +28,7 @@ import xarray as xr
 from numpy.typing import NDArray
 
 from contactlab.blas import single_thread
+from contactlab.io import variable
 from contactlab.prediction.composite import Composite
 from contactlab.prediction.normal import NormalSolution, solve_normal
 from contactlab.prediction.operators import PairCompliance
@@ -177,16 +178,12 @@ def normal_fit(approach: Array, load_kN: Array, area_mm2: float, load_max_kN: fl
             "Kn_An_fit": PER_UM * beta * (load_max_kN - p0) / area_mm2}
 
 
-def _attrs(long_name: str, units: str) -> dict[str, str]:
-    return {"long_name": long_name, "units": units}
-
-
 def _str(composite: Composite) -> tuple[float, dict[str, str]]:
     """Str of the composite as solved, NaN with the reason where ISO leaves it undefined."""
     from contactlab.surfaces.parameters import UndefinedParameter, texture_aspect_ratio
 
-    attrs = _attrs("texture aspect ratio Str of the composite on the BEM grid (ISO 25178-2)",
-                   "1")
+    attrs = {"long_name": "texture aspect ratio Str of the composite on the BEM grid "
+                          "(ISO 25178-2)", "units": "1"}
     try:
         return texture_aspect_ratio(composite.heights, composite.dx, composite.dy), attrs
     except UndefinedParameter as exc:
@@ -318,7 +315,7 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
     data = {name: [rec[name] for rec in records] for name in meta}
     ds = xr.Dataset()
     for name, (dims, units, long_name) in meta.items():
-        attrs = _attrs(long_name, units)
+        attrs = {"long_name": long_name, "units": units}
         if name.endswith("converged"):
             attrs.update(flag)
             if name == "set_converged":
@@ -330,12 +327,12 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
                                 else float)
         ds[name] = (dims, values, attrs)
     nx, ny = composite.heights.shape
-    ds["height"] = (("x", "y"), composite.heights.astype(np.float32),
-                    _attrs("composite roughness height (specimen + mirrored pad)", "um"))
-    ds["pressure"] = (("variant", "x", "y"),
-                      np.stack([results[v].solved.pressure_field.astype(np.float32)
-                                for v in variants]),
-                      _attrs("contact pressure at the test's load", "kN/mm2"))
+    ds["height"] = variable(("x", "y"), composite.heights.astype(np.float32),
+                            "composite roughness height (specimen + mirrored pad)", "um")
+    ds["pressure"] = variable(("variant", "x", "y"),
+                              np.stack([results[v].solved.pressure_field.astype(np.float32)
+                                        for v in variants]),
+                              "contact pressure at the test's load", "kN/mm2")
     scalars = {
         "Sq_specimen": (composite.sq_specimen, "um", "Sq of the specimen roughness (scan)"),
         "Sq_pad": (composite.sq_pad, "um", "Sq of the pad roughness (scan)"),
@@ -346,25 +343,25 @@ def _dataset(composite: Composite, material: Material, pressures: Array, area_mm
         "mindlin_ratio": (material.mindlin_ratio, "1", "Mindlin ratio 2(1 - nu)/(2 - nu)"),
     }
     for name, (value, units, long_name) in scalars.items():
-        ds[name] = ((), float(value), _attrs(long_name, units))
-    ds["nominal_area"] = ((), area_mm2, _attrs("nominal contact area An of the test", "mm2"))
-    ds["max_normal_load"] = ((), p_max * area_mm2, _attrs("the test's maximum normal load "
-                                                          "-Pn", "kN"))
+        ds[name] = variable((), float(value), long_name, units)
+    ds["nominal_area"] = variable((), area_mm2, "nominal contact area An of the test", "mm2")
+    ds["max_normal_load"] = variable((), p_max * area_mm2, "the test's maximum normal load "
+                                                          "-Pn", "kN")
     ds["Str_composite"] = ((), *_str(composite))
-    ds["beta_n_Seq"] = ("variant", ds["beta_n"].values * composite.seq,
-                        _attrs("beta_n * Seq (Tables 2.3, 2.10), predicted", "1"))
+    ds["beta_n_Seq"] = variable("variant", ds["beta_n"].values * composite.seq,
+                                "beta_n * Seq (Tables 2.3, 2.10), predicted", "1")
     kt_x = ds["Kt0_An_stuck"].values[:, DIRECTIONS.index("x")]
-    ds["Cc_stuck"] = ("variant", kt_x / ds["Kn_An_max"].values,
-                      _attrs("Cc = Kt0/Kn, fully stuck, at the test's load", "1"))
-    ds["Cc_set"] = ("variant", kt_x / ds["Kn_An_set"].values,
-                    _attrs("stuck Kt over the normal stiffness of the same contact set", "1"))
+    ds["Cc_stuck"] = variable("variant", kt_x / ds["Kn_An_max"].values,
+                              "Cc = Kt0/Kn, fully stuck, at the test's load", "1")
+    ds["Cc_set"] = variable("variant", kt_x / ds["Kn_An_set"].values,
+                            "stuck Kt over the normal stiffness of the same contact set", "1")
     return ds.assign_coords(
         variant=("variant", np.array(variants, dtype=object), {"long_name": "material model"}),
-        Pn_An=("Pn_An", pressures, _attrs("nominal normal pressure -Pn/An", "kN/mm2")),
+        Pn_An=variable("Pn_An", pressures, "nominal normal pressure -Pn/An", "kN/mm2"),
         direction=("direction", np.array(DIRECTIONS, dtype=object),
                    {"long_name": "direction of the tangential load (x: the test's)"}),
-        slip=("slip", results[variants[0]].slip_targets,
-              _attrs("aimed Q/(f Pn) of the partial-slip point", "1")),
-        x=("x", (np.arange(nx) + 0.5) * composite.dx, _attrs("position along the load", "um")),
-        y=("y", (np.arange(ny) + 0.5) * composite.dy, _attrs("position across the load", "um")),
+        slip=variable("slip", results[variants[0]].slip_targets,
+                      "aimed Q/(f Pn) of the partial-slip point", "1"),
+        x=variable("x", (np.arange(nx) + 0.5) * composite.dx, "position along the load", "um"),
+        y=variable("y", (np.arange(ny) + 0.5) * composite.dy, "position across the load", "um"),
     )

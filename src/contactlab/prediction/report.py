@@ -14,7 +14,13 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from contactlab.report.section import ReportSection
+from contactlab.prediction.findings import (
+    coupling_references,
+    findings,
+    grid_window,
+    validation_table,
+)
+from contactlab.report.section import ReportSection, dodge
 
 
 def comparison_table(summary: xr.Dataset) -> pd.DataFrame:
@@ -23,7 +29,7 @@ def comparison_table(summary: xr.Dataset) -> pd.DataFrame:
     rows = []
     for test in summary["test"].values:
         s = summary.sel(test=test)
-        base = {"test": str(test), "Str": float(s["Str_composite"]), "Seq_um": float(s["Seq"])}
+        base = {"test": str(test), "Str": float(s["Str_composite"]), "Seq": float(s["Seq"])}
         for v in summary["variant"].values:
             p = s.sel(variant=v)
             rows.append({**base, "model": f"predicted, {v}",
@@ -51,7 +57,14 @@ def comparison_table(summary: xr.Dataset) -> pd.DataFrame:
                          "f": float(m["measured_f"]), "Cc_consistent": np.nan,
                          "f_consistent": np.nan, "contact_fraction": np.nan,
                          "converged": True})
-    return pd.DataFrame(rows)
+    table = pd.DataFrame(rows)
+    table.attrs["units"] = {
+        "Str": "1", "Seq": summary["Seq"].attrs["units"],
+        **{c: summary[f"predicted_{c}"].attrs["units"] for c in (
+            "Kn_An", "beta_n", "beta_n_Seq", "Kt0_An_stuck", "Kt0_An_slip", "Cc_stuck",
+            "Cc_slip", "Cc_consistent", "f_consistent", "contact_fraction")},
+        "f": summary["f_used"].attrs["units"]}
+    return table
 
 
 def _stiffness_figure(predictions: list[xr.Dataset], summary: xr.Dataset) -> plt.Figure:
@@ -98,15 +111,16 @@ def _coupling_figure(summary: xr.Dataset) -> plt.Figure:
         if str(v) == "elastic":
             series.append((summary["predicted_Cc_consistent"].sel(variant=v),
                            f"{v}, slip at consistent f", "x", colour))
-    width = 0.8 / len(series)
+    spacing = 40.0 / len(series)  # the series of a test side by side, 40 points wide
     for k, (values, label, marker, colour) in enumerate(series):
-        ax.plot(x - 0.4 + (k + 0.5) * width, values, marker, color=colour, label=label,
-                mfc="none" if "slip" in label or "measured" in label else colour)
-    mindlin = float(summary["mindlin_ratio"].values[0])
-    ax.axhline(mindlin, color="k", lw=0.8)
-    ax.axhline(mindlin / 2, color="k", lw=0.8, ls=":")
-    ax.text(len(tests) - 0.5, mindlin, " Mindlin ratio", va="bottom", ha="right", fontsize=7)
-    ax.text(len(tests) - 0.5, mindlin / 2, " half", va="bottom", ha="right", fontsize=7)
+        dodge(ax.plot(x, values, marker, color=colour, label=label,
+                      mfc="none" if "slip" in label or "measured" in label else colour),
+              spacing * (k - (len(series) - 1) / 2))
+    for (name, value), style in zip(coupling_references(summary).items(), ("-", ":"),
+                                    strict=True):
+        ax.axhline(value, color="k", lw=0.8, ls=style)
+        ax.annotate(f" {name}", (1.0, value), xycoords=("axes fraction", "data"),
+                    va="bottom", ha="right", fontsize=7)
     ax.set_xticks(x, tests)
     ax.set_ylabel("Cc = Kt0/Kn")
     ax.legend(fontsize=6, ncol=2)
@@ -114,101 +128,41 @@ def _coupling_figure(summary: xr.Dataset) -> plt.Figure:
     return fig
 
 
-def _median_ratio(a: np.ndarray, b: np.ndarray) -> float:
-    ratio = np.asarray(a, float) / np.asarray(b, float)
-    ratio = ratio[np.isfinite(ratio)]
-    return float(np.median(ratio)) if ratio.size else float("nan")
-
-
-def _span(values: object) -> str:
-    """``min-max`` of the finite values, ``none`` without any."""
-    data = np.asarray(values, dtype=float).ravel()
-    data = data[np.isfinite(data)]
-    return f"{data.min():.2f}-{data.max():.2f}" if data.size else "none"
-
-
-def _median(values: object) -> float:
-    data = np.asarray(values, dtype=float).ravel()
-    data = data[np.isfinite(data)]
-    return float(np.median(data)) if data.size else float("nan")
-
-
-def findings(section: ReportSection, summary: xr.Dataset) -> list[str]:
-    """Plain-language findings, each computed from the summary (medians over the tests)."""
-    out = []
-    raw = summary.sel(source="raw")
-    mindlin = float(summary["mindlin_ratio"].values[0])
-    elastic = summary.sel(variant="elastic")
-    kn = _median_ratio(elastic["predicted_Kn_An"], raw["measured_Kn_An"])
-    out.append(section.say("normal", ratio=kn,
-                           predicted=_span(elastic["predicted_beta_n_Seq"]),
-                           measured=_span(raw["measured_beta_n_Seq"])))
-    cc = {"measured": _median(raw["measured_Cc"]),
-          "stuck": _median(elastic["predicted_Cc_stuck"]),
-          "slip": _median(elastic["predicted_Cc_slip"]),
-          "consistent": _median(elastic["predicted_Cc_consistent"])}
-    out.append(section.say("coupling", **cc, mindlin=mindlin,
-                           **{f"{k}_ratio": v / mindlin for k, v in cc.items()}))
-    out.append(section.say(
-        "friction", overshoot=_median_ratio(elastic["predicted_f_fit"], summary["f_used"]),
-        consistent=_median(elastic["predicted_f_consistent"]),
-        measured=_median(summary["f_used"])))
-    plastic_lowers = anisotropy_lowers = False
-    if "plastic" in summary["variant"].values:
-        plastic = summary.sel(variant="plastic")
-        cc_pl = _median(plastic["predicted_Cc_stuck"])
-        cc_pl_slip = _median(plastic["predicted_Cc_slip"])
-        change = cc_pl_slip / cc["slip"] - 1
-        plastic_lowers = change < 0
-        out.append(section.say("plasticity_raises" if change > 0 else "plasticity_lowers",
-                               stuck=cc_pl, slip=cc_pl_slip, change=100 * change))
-    kt_ratio = elastic["predicted_Kt0_An_stuck"] / elastic["predicted_Kt0_An_stuck_y"]
-    str_values = summary["Str_composite"].values
-    low = ~np.isfinite(str_values) | (str_values < 0.3)
-    if low.any():
-        cc_low = _median(elastic["predicted_Cc_stuck"].values[low])
-        anisotropy_lowers = cc_low < mindlin
+def paragraphs(section: ReportSection, summary: xr.Dataset) -> list[str]:
+    """The closing paragraphs, composed from the numbers of
+    :func:`contactlab.prediction.findings.findings`."""
+    found = findings(summary)
+    out = [section.say("normal", **found["normal"]), section.say("coupling", **found["coupling"]),
+           section.say("friction", **found["friction"])]
+    if "plasticity" in found:
+        plastic = found["plasticity"]
+        out.append(section.say("plasticity_raises" if plastic["raises"] else "plasticity_lowers",
+                               stuck=plastic["stuck"], slip=plastic["slip"],
+                               change=plastic["change"]))
+    if "anisotropy" in found:
+        low = found["anisotropy"]
         out.append(section.say(
-            "anisotropy", count=int(low.sum()), ratio=_median(kt_ratio.values[low]),
-            stuck=cc_low, stuck_ratio=cc_low / mindlin,
-            effect=section.say("stiffer_along" if cc_low > mindlin else "softer_along")))
-    if (~low).any():
-        cc_iso = _median(elastic["predicted_Cc_stuck"].values[~low])
-        agreement = ("isotropic_agrees" if abs(cc_iso / mindlin - 1) < 0.05
-                     else "isotropic_differs")
-        out.append(section.say("isotropic", count=int((~low).sum()), stuck=cc_iso,
-                               stuck_ratio=cc_iso / mindlin, agreement=section.say(agreement)))
-    closest = min(("stuck", "slip", "consistent"),
-                  key=lambda k: abs(np.log(cc["measured"] / cc[k]))
-                  if np.isfinite(cc[k]) else np.inf)
-    lowering = [section.say(name) for name, lowers in (("plastic_cap", plastic_lowers),
-                                                        ("the_anisotropy", anisotropy_lowers))
-                if lowers]
-    verdict = (section.say("only_lowers", causes=" and ".join(lowering)) if lowering
-               else section.say("neither_lowers"))
-    explained = (abs(np.log(cc["measured"] / cc[closest])) < np.log(1.25)
-                 and closest != "stuck")
-    out.append(section.say("verdict", verdict=verdict, closest=section.say(f"closest_{closest}"),
-                           ratio=cc["measured"] / cc[closest],
-                           rest=section.say("slip_explains" if explained
+            "anisotropy", count=low["count"], ratio=low["ratio"], stuck=low["stuck"],
+            stuck_ratio=low["stuck_ratio"],
+            effect=section.say("stiffer_along" if low["stiffer_along"] else "softer_along")))
+    if "isotropic" in found:
+        iso = found["isotropic"]
+        out.append(section.say("isotropic", count=iso["count"], stuck=iso["stuck"],
+                               stuck_ratio=iso["stuck_ratio"], agreement=section.say(
+                                   "isotropic_agrees" if iso["agrees"]
+                                   else "isotropic_differs")))
+    verdict = found["verdict"]
+    lowering = [section.say(name) for name, lowers in (
+        ("plastic_cap", verdict["plastic_lowers"]),
+        ("the_anisotropy", verdict["anisotropy_lowers"])) if lowers]
+    text = (section.say("only_lowers", causes=" and ".join(lowering)) if lowering
+            else section.say("neither_lowers"))
+    out.append(section.say("verdict", verdict=text,
+                           closest=section.say(f"closest_{verdict['closest']}"),
+                           ratio=verdict["ratio"],
+                           rest=section.say("slip_explains" if verdict["explained"]
                                             else "rest_unexplained")))
     return out
-
-
-def validation_table(summary: xr.Dataset) -> pd.DataFrame:
-    """The sphere checks run with the summary."""
-    errors = summary["validation_compliance_error"].values
-    return pd.DataFrame([
-        {"check": "Hertz load-approach", "value": float(summary["validation_hertz_error"]),
-         "tolerance": 0.01},
-        {"check": "Cattaneo-Mindlin compliance (largest over Q/fP)",
-         "value": float(np.max(np.abs(errors))), "tolerance": 0.02},
-        {"check": "stuck stiffness 8 G* a", "value": float(summary["validation_stuck_error"]),
-         "tolerance": 0.02},
-        {"check": "Kt/Kn of the sphere over the Mindlin ratio, minus 1",
-         "value": float(summary["validation_mindlin_ratio"])
-         / float(summary["mindlin_ratio"].values[0]) - 1, "tolerance": 0.02},
-    ])
 
 
 def write_section(summary: xr.Dataset, predictions: list[xr.Dataset], report_dir: Path,
@@ -218,18 +172,18 @@ def write_section(summary: xr.Dataset, predictions: list[xr.Dataset], report_dir
     section = ReportSection("25_prediction", report_dir)
     first = predictions[0]
     a = first.attrs
-    size = float(first["x"].values[-1] + first["x"].values[0])
-    section.paragraph("method", points=a.get("grid_points"),
-                      cell=float(first["x"].values[1] - first["x"].values[0]),
-                      window=size / 1000, E=a.get("youngs_modulus_GPa"),
-                      nu=a.get("poissons_ratio"), hardness=a.get("hardness_GPa"))
+    section.paragraph("method", points=a.get("grid_points"), **grid_window(first),
+                      E=a.get("youngs_modulus_GPa"), nu=a.get("poissons_ratio"),
+                      hardness=a.get("hardness_GPa"))
     if any("demo_scans" in str(ds.attrs.get("specimen_scan", "")) for ds in predictions):
         section.caveat("synthetic")
     deviations = [section.say("deviation", test=ds.attrs["test"],
-                              percent=100 * float(ds["Seq_deviation"])) for ds in predictions]
+                              deviation=float(ds["Seq_deviation"])) for ds in predictions]
     section.paragraph("deviations", deviations=", ".join(deviations))
     section.table(validation_table(summary), "prediction_validation", digits=4,
                   cells=float(summary["validation_cells_per_radius"]))
+    if summary.attrs.get("tests_without_prediction"):
+        section.note("without_surfaces", tests=summary.attrs["tests_without_prediction"])
     table = comparison_table(summary)
     section.table(table, "prediction")
     flagged = [str(t) for t, ok in zip(table["test"], table["converged"], strict=True) if not ok]
@@ -237,6 +191,6 @@ def write_section(summary: xr.Dataset, predictions: list[xr.Dataset], report_dir
         section.note("not_converged", tests=", ".join(sorted(set(flagged))))
     section.figure(_stiffness_figure(predictions, summary), "prediction_stiffness")
     section.figure(_coupling_figure(summary), "prediction_coupling")
-    for text in findings(section, summary):
+    for text in paragraphs(section, summary):
         section.paragraph_text(text)
     section.write(out)

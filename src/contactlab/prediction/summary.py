@@ -179,7 +179,9 @@ MEASURED = {
 def summarize(predictions: list[xr.Dataset], measured: dict[str, xr.Dataset | None],
               ratio: float, check: SphereCheck | None = None) -> xr.Dataset:
     """One dataset: predicted (test, variant) beside measured (test, source), and the
-    solvers' check on a sphere (:func:`.validation.sphere`) when given."""
+    solvers' check on a sphere (:func:`.validation.sphere`) when given. Tests measured from
+    raw data without a prediction (the test sheet names no surfaces for them) are named in
+    the attribute ``tests_without_prediction``."""
     if not predictions:
         raise ValueError("no prediction results to summarize")
     if not 0 < ratio < 1:
@@ -256,6 +258,11 @@ def summarize(predictions: list[xr.Dataset], measured: dict[str, xr.Dataset | No
         out[key] = ("test", np.array([float(ds[key]) for ds in predictions]),
                     {"long_name": name, "units": units})
     out.attrs["tangential_load_ratio"] = ratio
+    raw = measured.get("raw")
+    unpredicted = [str(t) for t in (raw["test"].values if raw is not None else [])
+                   if str(t) not in tests]
+    if unpredicted:  # the test sheet names no surfaces for them
+        out.attrs["tests_without_prediction"] = ", ".join(unpredicted)
     if check is not None:
         out = out.merge(validation_dataset(check))
     return out

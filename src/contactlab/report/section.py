@@ -18,6 +18,7 @@ from __future__ import annotations
 import html
 import os
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -29,6 +30,7 @@ import matplotlib.pyplot as plt
 import pandas as pd
 
 from contactlab.atomic import atomic_path
+from contactlab.display import shown, with_units
 from contactlab.io import write_table, write_text
 from contactlab.report.declaration import Declaration, caption_file, load
 from contactlab.report.style import STYLE, rebase_links
@@ -46,6 +48,26 @@ def save_figure(fig: plt.Figure, png_path: str | os.PathLike[str]) -> None:
     with atomic_path(png_path.with_suffix(".pdf")) as tmp:
         fig.savefig(tmp, bbox_inches="tight", metadata=_PDF_METADATA, format="pdf")
     plt.close(fig)
+
+
+def dodge(drawn: Any, points: float) -> Any:
+    """Move what was just drawn (the return of ``ax.plot``, ``ax.errorbar``, ``ax.vlines``)
+    ``points`` to the right and return it: series at the same x (a step, a test) side by
+    side without changing their numbers; the axes keep the limits of the numbers."""
+    import matplotlib.transforms as transforms
+    from matplotlib.artist import Artist
+    from matplotlib.container import Container
+
+    if isinstance(drawn, Container):
+        artists = drawn.get_children()
+    elif isinstance(drawn, Artist):
+        artists = [drawn]
+    else:
+        artists = list(drawn)
+    for artist in artists:
+        artist.set_transform(transforms.offset_copy(
+            artist.axes.transData, fig=artist.figure, x=points, y=0.0, units="points"))
+    return drawn
 
 
 @dataclass
@@ -69,13 +91,19 @@ class Section:
         self.blocks.append(f'<p class="note">{html.escape(text)}</p>')
 
     def table(
-        self, table: pd.DataFrame, caption: str, csv_path: str | os.PathLike[str], digits: int = 3
+        self, table: pd.DataFrame, caption: str, csv_path: str | os.PathLike[str],
+        digits: int = 4, units: Mapping[str, str] | str | None = None,
+        margins: Mapping[str, str] | None = None,
     ) -> None:
-        """Write ``table`` to CSV/Markdown and show it with a caption and a download link."""
-        write_table(table, csv_path, digits)
-        body = table.to_html(
-            index=False, float_format=lambda v: f"{v:.{digits}f}", na_rep="–", border=0
-        )
+        """Write ``table`` to CSV/Markdown and show it with a caption and a download link:
+        each column of numbers headed with its unit (``units``, else
+        ``table.attrs["units"]``), each number with the digits its margin justifies
+        (:mod:`contactlab.display`; ``margins`` names margin columns the ``_moe`` suffix does
+        not, ``digits`` the significant digits of the others)."""
+        write_table(table, csv_path, digits, units=units, margins=margins)
+        text = shown(table, digits, margins)
+        text.columns = with_units(table, units).columns
+        body = text.to_html(index=False, border=0)
         link = self._relative(csv_path)
         self.blocks.append(
             f"<figure class='table' id='tab-{Path(csv_path).stem}'>"
@@ -89,6 +117,17 @@ class Section:
         save_figure(fig, png_path)
         self.image(png_path, caption)
 
+    def figure_row(self, figures: list[tuple[plt.Figure, str, str | os.PathLike[str]]]
+                   ) -> None:
+        """Save each (figure, caption, PNG path) as :meth:`figure` does and show them side
+        by side (a row that wraps on a narrow page)."""
+        start = len(self.blocks)
+        for fig, caption, png_path in figures:
+            self.figure(fig, caption, png_path)
+        row = "".join(self.blocks[start:])
+        del self.blocks[start:]
+        self.blocks.append(f"<div class='figure-row'>{row}</div>")
+
     def image(self, png_path: str | os.PathLike[str], caption: str) -> None:
         """Show a figure already saved by :func:`save_figure` (PNG, PDF beside) with a
         caption; its id (``fig-<file name>``) lets the page's contents link it."""
@@ -99,6 +138,14 @@ class Section:
             f"alt='{html.escape(caption)}'><figcaption>{html.escape(caption)} "
             f"(<a href='{pdf}'>PDF</a>)</figcaption></figure>"
         )
+
+    def links(self, items: list[tuple[str, str]], cls: str = "links") -> None:
+        """Add a list of links: (text, target) pairs, each target a page of the report
+        relative to ``report_dir`` (``tests/RU1.html``, ``index.html#stiffness-tests``),
+        rebased with the page's other links."""
+        entries = "".join(f"<li><a href='{html.escape(target)}'>{html.escape(text)}</a></li>"
+                          for text, target in items)
+        self.blocks.append(f"<ul class='{html.escape(cls)}'>{entries}</ul>")
 
     def heading(self, text: str) -> None:
         """Start a sub-section (``<h3>``, listed in the page's contents)."""
@@ -155,10 +202,14 @@ class ReportSection:
     (``<stem>.rst``: the caption, the section's title and its caveats).
     """
 
-    def __init__(self, name: str, report_dir: str | os.PathLike[str]) -> None:
+    def __init__(self, name: str, report_dir: str | os.PathLike[str], *,
+                 title: str | None = None, anchor: str | None = None) -> None:
+        """The section ``name``; ``title`` and ``anchor`` replace the declared ones for a
+        page of its own the section builds (one per test)."""
         self.declaration: Declaration = load(name)
         self.report_dir = Path(report_dir)
-        self.page = Section(self.declaration.title, self.declaration.anchor, self.report_dir)
+        self.page = Section(title or self.declaration.title, anchor or self.declaration.anchor,
+                            self.report_dir)
         self.captions: dict[Path, str] = {}
         self.caveats: list[str] = []
 
@@ -193,6 +244,10 @@ class ReportSection:
         """Start a sub-section headed by the declared text ``key``."""
         self.page.heading(self.say(key, **values))
 
+    def links(self, items: list[tuple[str, str]]) -> None:
+        """Add a list of links to pages of the report (:meth:`Section.links`)."""
+        self.page.links(items)
+
     def keys(self, prefix: str) -> list[str]:
         """The declared text keys ``<prefix><n>``, in the order declared."""
         return [key for key in self.declaration.text if key.startswith(prefix)
@@ -222,18 +277,28 @@ class ReportSection:
         path, caption = self._file("figure", stem, values)
         self.page.image(path, caption)
 
-    def table(self, table: pd.DataFrame, stem: str, /, digits: int = 3, **values: Any) -> None:
-        """Write ``table`` as the declared table ``stem`` (CSV, Markdown) and show it with
-        its caption."""
-        path, caption = self._file("table", stem, values)
-        self.page.table(table, caption, path, digits)
+    def image_of(self, section: str, stem: str, /, **values: Any) -> None:
+        """Show a figure another section declares and saves (``section``'s figure ``stem``
+        with its caption there), e.g. a test's fits on the test's own page."""
+        other = load(section)
+        self.page.image(other.file("figure", stem, self.report_dir, values),
+                        other.caption("figure", stem, values))
 
-    def table_file(self, table: pd.DataFrame, stem: str, /, digits: int = 3,
-                   **values: Any) -> None:
+    def table(self, table: pd.DataFrame, stem: str, /, digits: int = 4,
+              units: Mapping[str, str] | str | None = None,
+              margins: Mapping[str, str] | None = None, **values: Any) -> None:
+        """Write ``table`` as the declared table ``stem`` (CSV, Markdown) and show it with
+        its caption (units and digits: :meth:`Section.table`)."""
+        path, caption = self._file("table", stem, values)
+        self.page.table(table, caption, path, digits, units, margins)
+
+    def table_file(self, table: pd.DataFrame, stem: str, /, digits: int = 4,
+                   units: Mapping[str, str] | str | None = None,
+                   margins: Mapping[str, str] | None = None, **values: Any) -> None:
         """Write ``table`` as the declared table ``stem`` (CSV, Markdown) without showing
         it on the page; its caption goes to Snakemake's report only."""
         path, _ = self._file("table", stem, values)
-        write_table(table, path, digits)
+        write_table(table, path, digits, units=units, margins=margins)
 
     def caption_text(self, caption: str) -> str:
         """The caption file of a figure or table: its caption, the section it belongs to

@@ -31,6 +31,8 @@ table.run th, table.run td, table.changes td { text-align: left; }
 td { min-width: 3em; }
 figure { margin: 1.5em 0; min-width: 0; } figure img { max-width: 100%; }
 figcaption { font-size: 0.9em; color: #333; margin-top: 0.4em; }
+.figure-row { display: flex; flex-wrap: wrap; gap: 1.5em; align-items: flex-start; }
+.figure-row figure { flex: 1 1 32em; margin: 1em 0; }
 .note { background: #fff4d6; padding: 0.5em; border-left: 4px solid #e0a800; }
 section { border-top: 2px solid #ddd; margin-top: 2em; }
 h2.part { margin-top: 2em; color: #444; }

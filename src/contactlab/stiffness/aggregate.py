@@ -72,7 +72,7 @@ as an :class:`~contactlab.stiffness.errors.ErrorModel`.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Collection, Mapping
 
 import numpy as np
 import pandas as pd
@@ -308,19 +308,20 @@ def coupling(means: pd.DataFrame, normal: pd.DataFrame,
 
 
 def beta_n_seq(normal: pd.DataFrame, seq: Mapping[str, float] | pd.Series | pd.DataFrame,
-               direction: str = "loading") -> pd.DataFrame:
+               direction: str = "loading", without: Collection[str] = ()) -> pd.DataFrame:
     """Tables 2.3/2.10: Seq [um] and the dimensionless beta_n Seq (loading beta_n).
 
     ``seq`` maps test -> Seq, or is a frame indexed by test with a ``Seq`` column and
     optionally ``Seq_scan`` (Seq from the scans' Sq); each Seq column gives its
-    own ``beta_n_<column>`` product, side by side.
+    own ``beta_n_<column>`` product, side by side. Tests in ``without`` (the test sheet
+    names no surfaces for them) are left out; any other test without a Seq is an error.
     """
     frame = seq.copy() if isinstance(seq, pd.DataFrame) else pd.Series(
         seq, dtype=float).to_frame("Seq")
     columns = [c for c in ("Seq", "Seq_scan") if c in frame.columns]
     if "Seq" not in columns:
         raise ValueError("Seq: no column 'Seq'")
-    rows = normal[normal["direction"] == direction]
+    rows = normal[(normal["direction"] == direction) & ~normal["test"].isin(list(without))]
     missing = sorted(set(rows["test"]) - set(frame.index))
     if missing:
         raise ValueError(f"Seq: no value for test(s) {missing}")

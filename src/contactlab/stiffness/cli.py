@@ -1,6 +1,7 @@
 """``contactlab stiffness ...``: contact stiffness from raw data and from published steps.
 
-The raw-data commands (``demo``, ``process``, ``summarize``, ``figures``, ``report-raw``)
+The raw-data commands (``demo``, ``process``, ``summarize``, ``figures``, ``report-raw``,
+``report-tests``)
 and those on the published per-step values (``summarize-published``,
 ``report-published``). Options fed from the config (``stiffness.raw``,
 ``stiffness.errors``, ``stiffness.published_steps``) take the schema's defaults when not
@@ -38,7 +39,8 @@ EXAMPLES = """\
       --out results/stiffness/RU1.nc
   contactlab stiffness summarize results/stiffness/*.nc --tests config/tests.csv \\
       --seq results/surfaces/seq.nc --out results/stiffness/summary.nc
-  contactlab stiffness figures results/stiffness/RU1.nc --out-dir /tmp/figures
+  contactlab stiffness figures results/stiffness/RU1.nc --summary results/stiffness/summary.nc \\
+      --out-dir /tmp/figures
   contactlab stiffness summarize-published --tests config/tests.csv \\
       --out results/stiffness/summary_from_published_steps.nc
 Loads kN, displacements um, areas mm^2, stiffness per area kN/mm^3, beta 1/um. Options
@@ -87,6 +89,13 @@ def _report_raw(args: argparse.Namespace) -> None:
                   published_dir=args.published_dir)
 
 
+def _report_tests(args: argparse.Namespace) -> None:
+    from contactlab.stiffness.report_tests import build_section
+
+    build_section(args.results, args.summary, args.tests, args.report_dir, args.out,
+                  quality_path=args.quality)
+
+
 def _model_from_args(args: argparse.Namespace) -> ErrorModel:
     """The :class:`~contactlab.stiffness.errors.ErrorModel` of the command's options."""
     from contactlab.stiffness.errors import ErrorModel
@@ -116,10 +125,14 @@ def _report_published(args: argparse.Namespace) -> None:
 
 
 def _figures(args: argparse.Namespace) -> None:
+    import xarray as xr
+
     from contactlab.stiffness.report_raw import test_figures
 
+    with xr.open_dataset(args.summary) as opened:
+        summary = opened.load()
     for result in args.results:
-        test_figures(result, args.out_dir, args.published_dir)
+        test_figures(result, summary, args.out_dir, args.published_dir)
 
 
 def kt0_threshold_option(section: str) -> Option:
@@ -209,7 +222,10 @@ COMMANDS = (
         NAME, "figures", "figures of one or more per-test results",
         description="Figures like Figs 2.8-2.17 (normal and tangential fits, per-step "
                     "stiffness, mean-row Kt0) of per-test results, published values overlaid.",
-        options=(results_option(), published_dir_option(),
+        options=(results_option(),
+                 Option("--summary", "results/stiffness/summary.nc (the per-step f, beta_t, "
+                        "Kt0 with their margins)", input_file),
+                 published_dir_option(),
                  Option("--out-dir", "directory for the PNG/PDF figures", Path,
                         default=Path("results/report/figures"), role="output folder")),
         run=_figures),
@@ -223,6 +239,21 @@ COMMANDS = (
                  published_dir_option(),
                  *section_outputs()),
         run=_report_raw),
+    Command(
+        NAME, "report-tests", "report section and one page per test",
+        description="Report section 23: one page per test (results/report/tests/<test>.html) "
+                    "with its fitted values and margins from the summary, its fits (section "
+                    "21's figures) and for a test from camera frames the correlation's quality "
+                    "(section 22's table and map); the section lists the tests and links "
+                    "their pages.",
+        options=(results_option(),
+                 Option("--summary", "results/stiffness/summary.nc", input_file),
+                 Option("--tests", "test sheet (config/tests.csv)", input_file),
+                 Option("--quality", "section 22's table of the correlation quality "
+                        "(results/report/tables/dic_quality.csv), for tests from camera frames",
+                        input_file, default=None),
+                 *section_outputs()),
+        run=_report_tests),
     Command(
         NAME, "summarize-published",
         "summary netCDF and Tables 2.1-2.4, 2.7-2.10 from the published per-step values",

@@ -16,7 +16,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from contactlab.io import read_table
 from contactlab.published import PUBLISHED_DIR, read_published
+from contactlab.stiffness.errors import stiffness_at
+from contactlab.stiffness.tables import UNITS
 
 __all__ = [
     "COMPARED_TABLES",
@@ -177,8 +180,21 @@ def read_recomputed(table: str, tables_dir: Path) -> pd.DataFrame | None:
     path = tables_dir / f"table_{table}.csv"
     if not path.is_file():
         return None
-    return pd.read_csv(path, dtype={"test": str, "steps_used": str}, keep_default_na=False,
-                       na_values=[""])
+    return read_table(path, dtype={"test": str, "steps_used": str}, keep_default_na=False,
+                      na_values=[""])
+
+
+#: kN/(um mm^2) in kN/mm^3: a stiffness (kN/um) per nominal area (mm^2).
+PER_UM_MM2 = 1000.0
+
+
+def published_stiffness_An(beta: float, offset: float, load_kN: np.ndarray,
+                           area_mm2: float) -> np.ndarray:
+    """The stiffness per nominal area (kN/mm^3) of a published fit on the loads
+    ``load_kN`` (the load grid of our result): eq. (2.4) with beta_n and P0 of Tables
+    2.1/2.7, or eq. (2.5) with beta_t and Qs of Appendix A (:func:`.errors.stiffness_at`),
+    over the nominal area An (mm^2)."""
+    return stiffness_at(beta, offset, load_kN) * PER_UM_MM2 / area_mm2
 
 
 #: Summary values the thesis prints with a 95% margin: table -> (row key, quantities).
@@ -209,10 +225,31 @@ def summary_within_margins(ours: dict[str, pd.DataFrame],
             rows = merged.dropna(subset=[q, f"{q}_moe"])
             parts.append(pd.DataFrame({
                 "table": table, "test": rows["test"], "key": rows[key], "quantity": q,
-                "published": rows[q], "moe": rows[f"{q}_moe"], "ours": rows[f"{q}_ours"],
+                "unit": UNITS.get(q, "1"), "published": rows[q], "moe": rows[f"{q}_moe"],
+                "ours": rows[f"{q}_ours"],
                 "within": (rows[f"{q}_ours"] - rows[q]).abs() <= rows[f"{q}_moe"]}))
-    columns = ["table", "test", "key", "quantity", "published", "moe", "ours", "within"]
+    columns = ["table", "test", "key", "quantity", "unit", "published", "moe", "ours",
+               "within"]
     return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=columns)
+
+
+def within_by_quantity(cells: pd.DataFrame) -> pd.DataFrame:
+    """Of :func:`summary_within_margins`: per quantity, the values within the published
+    margins and the values compared."""
+    if not len(cells):
+        table = pd.DataFrame(columns=["quantity", "within", "cells"])
+    else:
+        grouped = cells.groupby("quantity", sort=False)["within"]
+        table = pd.DataFrame({"within": grouped.sum().astype(int),
+                              "cells": grouped.count()}).reset_index()
+    table.attrs["units"] = {"within": "1", "cells": "1"}
+    return table
+
+
+def within_totals(cells: pd.DataFrame) -> dict[str, int]:
+    """Of :func:`summary_within_margins`: the values within the published margins
+    (``within``) and the values compared (``cells``)."""
+    return {"within": int(cells["within"].sum()) if len(cells) else 0, "cells": len(cells)}
 
 
 def raw_vs_published(tables_dir: Path, published_dir: Path | None = None) -> pd.DataFrame:
@@ -262,9 +299,10 @@ def margins_with_covariance(tables_dir: Path) -> pd.DataFrame:
         part = ours.loc[:, ["test", key, col, f"{col}_moe", f"{col}_moe_cov"]].rename(
             columns={key: "row", col: "value", f"{col}_moe": "moe_neglected",
                      f"{col}_moe_cov": "moe_with_covariance"})
+        part.insert(0, "unit", UNITS.get(col, "1"))
         part.insert(0, "quantity", col)
         part.insert(0, "table", table)
         parts.append(part.dropna(subset=["value"]))
-    columns = ["table", "quantity", "test", "row", "value", "moe_neglected",
+    columns = ["table", "quantity", "unit", "test", "row", "value", "moe_neglected",
                "moe_with_covariance"]
     return pd.concat(parts, ignore_index=True) if parts else pd.DataFrame(columns=columns)

@@ -83,6 +83,7 @@ __all__ = [
     "normal_load_margin",
     "pressure_reading",
     "product_margin",
+    "stiffness_at",
     "student_t_margin",
 ]
 
@@ -183,6 +184,14 @@ def normal_load_margin(load_kN: ArrayLike, model: ErrorModel | None = None, *,
     return load * np.hypot(m.piston_area_rel_uncertainty, term)
 
 
+def stiffness_at(beta: ArrayLike, offset: ArrayLike, load_kN: ArrayLike) -> np.ndarray:
+    """The slope of an exponential fit at a load, kN/um: eq. (2.4) ``Kn = beta_n (-Pn - P0)``
+    of the normal fit (eq. 2.2, ``load_kN`` = -Pn) or eq. (2.5) ``Kt = beta_t (Qt - Qs)`` of
+    the tangential one (eq. 2.3, ``load_kN`` = Qt)."""
+    return np.asarray(beta, dtype=float) * (np.asarray(load_kN, dtype=float)
+                                            - np.asarray(offset, dtype=float))
+
+
 def kn_margin(beta_n: ArrayLike, beta_n_moe: ArrayLike, p0: ArrayLike, p0_moe: ArrayLike,
               load_kN: ArrayLike, model: ErrorModel | None = None, *,
               corr: ArrayLike | None = None) -> tuple[np.ndarray, np.ndarray]:
@@ -198,7 +207,7 @@ def kn_margin(beta_n: ArrayLike, beta_n_moe: ArrayLike, p0: ArrayLike, p0_moe: A
     dp0 = np.asarray(p0_moe, dtype=float)
     load = np.abs(np.asarray(load_kN, dtype=float))
     span = load - p0
-    kn = beta * span
+    kn = stiffness_at(beta, p0, load)
     dload = normal_load_margin(load, model)
     rel_b = dbeta / np.abs(beta)
     rel_s = add_margins(dload, dp0) / np.abs(span)

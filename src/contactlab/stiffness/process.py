@@ -17,11 +17,11 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from contactlab.io import stamp
+from contactlab.io import stamp, variable
 from contactlab.progress import track
 from contactlab.stiffness.aggregate import mean_row_statistics
 from contactlab.stiffness.displacement import contact_displacement, contact_displacement_rows
-from contactlab.stiffness.errors import ErrorModel, add_margins, kn_margin
+from contactlab.stiffness.errors import ErrorModel, add_margins, kn_margin, stiffness_at
 from contactlab.stiffness.fit import PARAMETERS, fit_step, model, varpro_fit
 from contactlab.stiffness.readers import (
     check_fields_match_log,
@@ -79,44 +79,43 @@ def _xy(kind: str, frames: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
     return frames["vc"].to_numpy(), frames["Qt"].to_numpy()
 
 
-def _attrs(long_name: str, units: str, **extra: object) -> dict[str, object]:
-    return {"long_name": long_name, "units": units, **extra}
-
-
 #: The per-step variables of a result, in file order: (dims after ``step``, attributes).
 STEP_VARIABLES: dict[str, tuple[tuple[str, ...], dict[str, object]]] = {
-    "n_frames": ((), _attrs("frames fitted (N)", "1")),
-    "alpha": ((), _attrs("alpha_n (eq. 2.2) or alpha_t (eq. 2.3)", "kN")),
-    "beta": ((), _attrs("beta_n (eq. 2.2) or beta_t (eq. 2.3)", "1/um")),
-    "offset": ((), _attrs("P0 (eq. 2.2) or Qs (eq. 2.3)", "kN")),
-    "alpha_moe": ((), _attrs("95% margin of alpha (t-distribution)", "kN")),
-    "beta_moe": ((), _attrs("95% margin of beta (t-distribution)", "1/um")),
-    "offset_moe": ((), _attrs("95% margin of P0 or Qs (t-distribution)", "kN")),
-    "alpha_stderr": ((), _attrs("standard error of alpha", "kN")),
-    "beta_stderr": ((), _attrs("standard error of beta", "1/um")),
-    "offset_stderr": ((), _attrs("standard error of P0 or Qs", "kN")),
+    "n_frames": ((), {"long_name": "frames fitted (N)", "units": "1"}),
+    "alpha": ((), {"long_name": "alpha_n (eq. 2.2) or alpha_t (eq. 2.3)", "units": "kN"}),
+    "beta": ((), {"long_name": "beta_n (eq. 2.2) or beta_t (eq. 2.3)", "units": "1/um"}),
+    "offset": ((), {"long_name": "P0 (eq. 2.2) or Qs (eq. 2.3)", "units": "kN"}),
+    "alpha_moe": ((), {"long_name": "95% margin of alpha (t-distribution)", "units": "kN"}),
+    "beta_moe": ((), {"long_name": "95% margin of beta (t-distribution)", "units": "1/um"}),
+    "offset_moe": ((), {"long_name": "95% margin of P0 or Qs (t-distribution)", "units": "kN"}),
+    "alpha_stderr": ((), {"long_name": "standard error of alpha", "units": "kN"}),
+    "beta_stderr": ((), {"long_name": "standard error of beta", "units": "1/um"}),
+    "offset_stderr": ((), {"long_name": "standard error of P0 or Qs", "units": "kN"}),
     "covariance": (("parameter", "parameter_b"),
-                   _attrs("covariance of (alpha, beta, offset) estimates "
-                          "(units: products of the parameter units)", "1")),
-    "corr_beta_offset": ((), _attrs("correlation of the beta and P0/Qs estimates", "1")),
-    "gof": ((), _attrs("adjusted R-square goodness of fit", "1")),
-    "rmse": ((), _attrs("root-mean-square load residual", "kN")),
-    "converged": ((), _attrs("fit converged with a covariance estimate (1) or not (0)", "1")),
+                   {"long_name": "covariance of (alpha, beta, offset) estimates "
+                          "(units: products of the parameter units)", "units": "1"}),
+    "corr_beta_offset": ((), {"long_name": "correlation of the beta and P0/Qs estimates",
+                              "units": "1"}),
+    "gof": ((), {"long_name": "adjusted R-square goodness of fit", "units": "1"}),
+    "rmse": ((), {"long_name": "root-mean-square load residual", "units": "kN"}),
+    "converged": ((), {"long_name": "fit converged with a covariance estimate (1) or not (0)",
+                       "units": "1"}),
     "fit_message": ((), {"long_name": "why a fit is flagged (empty when converged)"}),
-    "load_grid": (("grid",), _attrs("load on the grid: -Pn (normal) or Qt (tangential)",
-                                    "kN")),
-    "displacement_fit": (("grid",), _attrs("contact displacement of the fitted curve: uc or "
-                                           "vc", "um")),
-    "stiffness_An": (("grid",), _attrs("contact stiffness per nominal area Kn/An (eq. 2.4) "
-                                       "or Kt/An (eq. 2.5)", "kN/mm3")),
-    "stiffness_An_moe": (("grid",), _attrs("95% margin of the stiffness (eq. 2.8; Kt: "
-                                           "product rule, 1% load error)", "kN/mm3")),
-    "Kt0_An_row": (("row",), _attrs("Kt0/An of each pixel row (sec. 2.5.4); NaN for normal "
-                                    "steps", "kN/mm3")),
-    "Kt0_An_mean_row": ((), _attrs("mean-row Kt0/An (sec. 2.5.4)", "kN/mm3")),
-    "Kt0_An_mean_row_moe": ((), _attrs("Student-t margin of the mean-row Kt0/An", "kN/mm3")),
-    "Kt0_An_row_max": ((), _attrs("largest per-row Kt0/An", "kN/mm3")),
-    "Kt0_An_row_min": ((), _attrs("smallest per-row Kt0/An", "kN/mm3")),
+    "load_grid": (("grid",), {"long_name": "load on the grid: -Pn (normal) or Qt (tangential)",
+                              "units": "kN"}),
+    "displacement_fit": (("grid",), {"long_name": "contact displacement of the fitted curve: uc or "
+                                           "vc", "units": "um"}),
+    "stiffness_An": (("grid",), {"long_name": "contact stiffness per nominal area Kn/An (eq. 2.4) "
+                                       "or Kt/An (eq. 2.5)", "units": "kN/mm3"}),
+    "stiffness_An_moe": (("grid",), {"long_name": "95% margin of the stiffness (eq. 2.8; Kt: "
+                                           "product rule, 1% load error)", "units": "kN/mm3"}),
+    "Kt0_An_row": (("row",), {"long_name": "Kt0/An of each pixel row (sec. 2.5.4); NaN for normal "
+                                    "steps", "units": "kN/mm3"}),
+    "Kt0_An_mean_row": ((), {"long_name": "mean-row Kt0/An (sec. 2.5.4)", "units": "kN/mm3"}),
+    "Kt0_An_mean_row_moe": ((), {"long_name": "Student-t margin of the mean-row Kt0/An",
+                                 "units": "kN/mm3"}),
+    "Kt0_An_row_max": ((), {"long_name": "largest per-row Kt0/An", "units": "kN/mm3"}),
+    "Kt0_An_row_min": ((), {"long_name": "smallest per-row Kt0/An", "units": "kN/mm3"}),
 }
 
 
@@ -167,7 +166,7 @@ def fit_load_step(kind: str, x: np.ndarray, y: np.ndarray, *, label: str, p_max:
         if kind == "normal":
             k, k_moe = kn_margin(beta, moe[1], c, moe[2], load, error_model)
         else:
-            k = beta * (load - c)
+            k = stiffness_at(beta, c, load)
             d_load = add_margins(error_model.qs_rel_extra * np.abs(load), moe[2])
             k_moe = np.abs(k) * np.hypot(moe[1] / abs(beta), d_load / np.abs(load - c))
         curves["stiffness_An"] = k * _PER_UM / area
@@ -249,45 +248,45 @@ def process_test(test: str, frames: pd.DataFrame, rows: xr.Dataset | None, *,
         long_name=f"{confidence * 100:g}% Student-t margin of the mean-row Kt0/An",
         confidence=confidence)
     per_frame = {
-        "Pn": ("frame", frames["Pn"].to_numpy(float),
-               _attrs("normal load (thesis sign, compression negative)", "kN")),
-        "Qt": ("frame", frames["Qt"].to_numpy(float), _attrs("tangential load", "kN")),
-        "uc": ("frame", frames["uc"].to_numpy(float),
-               _attrs("normal contact displacement (sec. 2.3.2)", "um")),
-        "vc": ("frame", frames["vc"].to_numpy(float),
-               _attrs("tangential contact displacement (sec. 2.3.2)", "um")),
-        "frame_step": ("frame", step_of_frame.astype(np.int32),
-                       _attrs("index of the frame's step along the step dimension", "1")),
-        "load_fitted": ("frame", fitted,
-                        _attrs("fitted -Pn (normal) or Qt (tangential) at the frame's contact "
-                               "displacement", "kN")),
+        "Pn": variable("frame", frames["Pn"].to_numpy(float),
+                       "normal load (thesis sign, compression negative)", "kN"),
+        "Qt": variable("frame", frames["Qt"].to_numpy(float), "tangential load", "kN"),
+        "uc": variable("frame", frames["uc"].to_numpy(float),
+                       "normal contact displacement (sec. 2.3.2)", "um"),
+        "vc": variable("frame", frames["vc"].to_numpy(float),
+                       "tangential contact displacement (sec. 2.3.2)", "um"),
+        "frame_step": variable("frame", step_of_frame.astype(np.int32),
+                               "index of the frame's step along the step dimension", "1"),
+        "load_fitted": variable("frame", fitted,
+                                "fitted -Pn (normal) or Qt (tangential) at the frame's contact "
+                               "displacement", "kN"),
         "kind": ("step", np.array(kinds, dtype=object), {"long_name": "step kind"}),
         "direction": ("step", np.array(directions, dtype=object),
                       {"long_name": "loading or unloading"}),
-        "step_number": ("step", np.array(numbers, dtype=np.int32),
-                        _attrs("step number within its kind and direction", "1")),
+        "step_number": variable("step", np.array(numbers, dtype=np.int32),
+                                "step number within its kind and direction", "1"),
     }
     par_names = ["alpha", "beta", "offset"]
     ds = xr.Dataset(
         {**per_frame, **per_step},
         coords={
-            "frame": ("frame", frames["frame"].to_numpy(int), _attrs("frame id", "1")),
-            "step": ("step", np.arange(len(order), dtype=np.int32),
-                     _attrs("step index in time order", "1")),
+            "frame": variable("frame", frames["frame"].to_numpy(int), "frame id", "1"),
+            "step": variable("step", np.arange(len(order), dtype=np.int32),
+                             "step index in time order", "1"),
             "parameter": ("parameter", par_names),
             "parameter_b": ("parameter_b", par_names),
-            "grid": ("grid", np.arange(grid_points, dtype=np.int32),
-                     _attrs("load grid index", "1")),
-            "row": ("row", np.arange(max(n_rows, 1), dtype=np.int32),
-                    _attrs("pixel row index (points of equal y)", "1")),
+            "grid": variable("grid", np.arange(grid_points, dtype=np.int32), "load grid index",
+                             "1"),
+            "row": variable("row", np.arange(max(n_rows, 1), dtype=np.int32),
+                            "pixel row index (points of equal y)", "1"),
         },
     )
     if rows is not None:
-        ds["uc_row"] = (("frame", "row"), rows["uc"].to_numpy(),
-                        _attrs("normal contact displacement per pixel row", "um"))
-        ds["vc_row"] = (("frame", "row"), rows["vc"].to_numpy(),
-                        _attrs("tangential contact displacement per pixel row", "um"))
-        ds = ds.assign_coords(y=("row", rows["y"].to_numpy(), _attrs("row position y", "um")))
+        ds["uc_row"] = variable(("frame", "row"), rows["uc"].to_numpy(),
+                                "normal contact displacement per pixel row", "um")
+        ds["vc_row"] = variable(("frame", "row"), rows["vc"].to_numpy(),
+                                "tangential contact displacement per pixel row", "um")
+        ds = ds.assign_coords(y=variable("row", rows["y"].to_numpy(), "row position y", "um"))
     flagged = _flag_lines(ds)
     stamp(ds, title=f"Contact stiffness of test {test} from raw data",
           source="; ".join(f"{k}: {v}" for k, v in (sources or {}).items()),

@@ -25,8 +25,8 @@ from contactlab.published import GROUP_TABLES, TANGENTIAL_TABLES, user_step_tabl
 from contactlab.stiffness.errors import ErrorModel
 from contactlab.stiffness.process import step_tables
 from contactlab.stiffness.summary import published_inputs, read_seq, summary_dataset
-from contactlab.stiffness.tables import build_tables, write_tables
-from contactlab.testsheet import read_test_sheet
+from contactlab.stiffness.tables import build_tables, units, write_tables
+from contactlab.testsheet import read_test_sheet, tests_without_surfaces
 
 __all__ = ["raw_tables", "summarize_raw", "table_files", "tests_of"]
 
@@ -80,7 +80,8 @@ def raw_tables(results: list[xr.Dataset], sheet: pd.DataFrame,
     normal.loc[~normal["converged"].astype(bool), ["alpha_n_moe", "beta_n_moe", "P0_moe"]] = \
         np.nan
     tables = build_tables(steps, normal, tests_of(results, sheet), seq, error_model,
-                          threshold=threshold, texture_wavelength=texture_wavelength)
+                          threshold=threshold, texture_wavelength=texture_wavelength,
+                          without_surfaces=tests_without_surfaces(sheet))
     tables["mean_row"] = parts["mean_row"]
     return tables
 
@@ -134,7 +135,8 @@ def summarize_raw(results: list[Path], tests_path: Path, out: Path, *,
     for stem, table in files.items():
         if stem.startswith("table_A.") or stem.startswith("table_fit_") or stem.startswith(
                 "table_mean_row_"):
-            write_table(table, Path(tables_dir) / f"{stem}.csv")
+            write_table(table, Path(tables_dir) / f"{stem}.csv", digits=3,
+                        units=units(table.columns))
     ds = summary_dataset(tables, tests_of(datasets, sheet), tables["mean_row"])
     steps = tables["steps"]
     test_ids = [str(t) for t in ds["test"].values]

@@ -12,6 +12,8 @@ from pathlib import Path
 import pandas as pd
 import xarray as xr
 
+from contactlab.stiffness.tables import UNITS
+
 __all__ = ["recovery_table"]
 
 
@@ -57,4 +59,32 @@ def recovery_table(results: list[Path], published_dir: Path | None = None) -> pd
                     inside = inside and ok
                 row["within_margins"] = inside
                 rows.append(row)
-    return pd.DataFrame(rows)
+    table = pd.DataFrame(rows)
+    table.attrs["units"] = {c: UNITS.get(c.removesuffix("_published").removesuffix("_moe"),
+                                         "1") for c in table.columns}
+    return table
+
+
+def recovery_by_test(recovery: pd.DataFrame) -> pd.DataFrame:
+    """Per test of a :func:`recovery_table`: the steps compared, those whose fitted
+    parameters all lie within the published margins, and their fraction."""
+    columns = ["test", "fraction_within", "steps_within", "steps"]
+    if not len(recovery):
+        empty = pd.DataFrame(columns=columns)
+        empty.attrs["units"] = dict.fromkeys(columns[1:], "1")
+        return empty
+    grouped = recovery.groupby("test", sort=False)["within_margins"]
+    out = pd.DataFrame({"steps_within": grouped.sum().astype(int),
+                        "steps": grouped.count()}).reset_index()
+    out["fraction_within"] = out["steps_within"] / out["steps"]
+    out = out[columns]
+    out.attrs["units"] = dict.fromkeys(columns[1:], "1")
+    return out
+
+
+def recovery_totals(recovery: pd.DataFrame) -> dict[str, float]:
+    """Of a :func:`recovery_table`: the steps within the published margins (``within``), the
+    steps compared (``steps``) and the fraction (``fraction``, NaN without steps)."""
+    within, steps = int(recovery["within_margins"].sum()) if len(recovery) else 0, len(recovery)
+    return {"within": within, "steps": steps,
+            "fraction": within / steps if steps else float("nan")}

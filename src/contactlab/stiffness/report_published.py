@@ -17,8 +17,9 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from contactlab.io import read_table
 from contactlab.published import read_published
-from contactlab.report.section import ReportSection
+from contactlab.report.section import ReportSection, dodge
 from contactlab.stiffness.compare import COMPARED_TABLES, THESIS_DISCREPANCIES, comparison
 
 __all__ = ["build_section"]
@@ -31,7 +32,7 @@ def _ours(tables_dir: Path, table: str) -> pd.DataFrame:
     path = Path(tables_dir) / f"table_{table}{SUFFIX}.csv"
     if not path.is_file():
         raise FileNotFoundError(f"{path}: recomputed table not found")
-    return pd.read_csv(path, dtype={"test": str, "steps_used": str})
+    return read_table(path, dtype={"test": str, "steps_used": str})
 
 
 def _legend(ax: plt.Axes) -> None:
@@ -132,21 +133,22 @@ def _mean_row_figure(ds: xr.Dataset) -> plt.Figure:
     for ax, test in zip(axes.ravel(), tests, strict=False):
         for k, direction in enumerate(("loading", "unloading")):
             sel = ds.sel(test=test, step_direction=direction)
-            x = steps + (k - 0.5) * 0.3
             fit = sel["Kt0_An_step"].values
             ok = np.isfinite(fit)
-            ax.errorbar(x[ok] - 0.05, fit[ok],
-                        yerr=np.minimum(sel["Kt0_An_moe_step"].values[ok], fit[ok]),
-                        fmt="o", ms=3, capsize=2, color=f"C{k}",
-                        mfc="none" if direction == "unloading" else f"C{k}",
-                        label=f"fit ({direction})")
+            # loading left of the step, unloading right; the fit left of its mean row
+            dodge(ax.errorbar(steps[ok], fit[ok],
+                              yerr=np.minimum(sel["Kt0_An_moe_step"].values[ok], fit[ok]),
+                              fmt="o", ms=3, capsize=2, color=f"C{k}",
+                              mfc="none" if direction == "unloading" else f"C{k}",
+                              label=f"fit ({direction})"), 16 * k - 12)
             if "Kt0_An_mean_row" in ds:
                 mean = sel["Kt0_An_mean_row"].values
                 lo, hi = sel["Kt0_An_row_min"].values, sel["Kt0_An_row_max"].values
-                ax.vlines(x + 0.05, lo, hi, color="0.6", lw=3, alpha=0.6,
-                          label="row min-max" if k == 0 else None)
-                ax.errorbar(x + 0.05, mean, yerr=sel["Kt0_An_mean_row_moe"].values, fmt="s",
-                            ms=3, capsize=2, color="k", label="mean row" if k == 0 else None)
+                dodge(ax.vlines(steps, lo, hi, color="0.6", lw=3, alpha=0.6,
+                                label="row min-max" if k == 0 else None), 16 * k - 4)
+                dodge(ax.errorbar(steps, mean, yerr=sel["Kt0_An_mean_row_moe"].values,
+                                  fmt="s", ms=3, capsize=2, color="k",
+                                  label="mean row" if k == 0 else None), 16 * k - 4)
         ax.set_title(test, fontsize=9)
         ax.set_xticks(steps)
         ax.set_ylabel(f"Kt0/An ({_KN_UNIT})", fontsize=8)
@@ -184,11 +186,11 @@ def build_section(summary_path: Path, tables_dir: Path, report_dir: Path, out: P
                                                     .sum()),
                        "thesis discrepancy": int(cmp["status"].str.startswith("thesis").sum())})
         section.table(cmp, "compare_{table}_from_published_steps", digits=4, table=table)
-    section.table(pd.DataFrame(counts), "compare_counts_from_published_steps", digits=0)
+    section.table(pd.DataFrame(counts), "compare_counts_from_published_steps", units="1")
 
     ground = [t for t in ("RU1", "RU2", "RU3", "SU1", "SU2", "SU3") if t in ds["test"].values]
     structured = [t for t in ("S1", "S2", "S3") if t in ds["test"].values]
-    pn_an = (ds["max_normal_load_kN"] / ds["nominal_area_mm2"]).to_series()
+    pn_an = ds["Pn_An"].to_series()
     if ground:
         groups = {"rough (RU)": [t for t in ground if t.startswith("RU")],
                   "smooth (SU)": [t for t in ground if t.startswith("SU")]}

@@ -11,23 +11,28 @@ of the published parameters, and the list of flagged (non-converged) fits.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
 import pandas as pd
 import xarray as xr
 
+from contactlab.display import axis_label
 from contactlab.published import per_step_fits, read_published
-from contactlab.report.section import ReportSection, save_figure
+from contactlab.report.section import ReportSection, dodge, save_figure
 from contactlab.stiffness.compare import (
     MARGIN_CHECKS,
     margins_with_covariance,
+    published_stiffness_An,
     raw_vs_published,
     read_recomputed,
     summary_within_margins,
+    within_by_quantity,
+    within_totals,
 )
 from contactlab.stiffness.process import flagged_steps
-from contactlab.stiffness.recovery import recovery_table
+from contactlab.stiffness.recovery import recovery_by_test, recovery_table, recovery_totals
 
 __all__ = ["TEST_FIGURES", "build_section", "summary_figure", "test_figures"]
 
@@ -60,9 +65,27 @@ def _published_mean_row(test: str, published_dir: Path | None) -> pd.DataFrame:
     return rows[rows["test"] == test]
 
 
-def test_figures(result: Path, out_dir: Path, published_dir: Path | None = None) -> list[Path]:
+def _errorbars(ax: plt.Axes, series: list[tuple[Any, Any, Any, float, dict[str, Any]]]
+               ) -> None:
+    """Each series of points (x, y, 95% margin, shift in points, style) with its margins;
+    the axis scales to the points, not to the bars (a margin of 100 % would hide the
+    points' spread)."""
+    for x, y, _, shift, style in series:
+        dodge(ax.plot(x, y, ls="none", **style), shift)
+    ax.margins(y=0.5)
+    ax.autoscale_view()
+    ax.set_autoscaley_on(False)
+    for x, y, margin, shift, style in series:
+        dodge(ax.errorbar(x, y, yerr=margin, fmt="none", capsize=2, color=style.get("color")),
+              shift)
+
+
+def test_figures(result: Path, summary: xr.Dataset, out_dir: Path,
+                 published_dir: Path | None = None) -> list[Path]:
     """Write the four figures of one test (:data:`TEST_FIGURES`) in ``out_dir``; return
-    their PNG paths."""
+    their PNG paths. Fits and curves come from the test's result, the per-step f, beta_t
+    and Kt0 with their margins (eqs 2.9, 2.10) from ``summary`` (``summary.nc``, as the
+    tables have them)."""
     with xr.open_dataset(result) as opened:
         ds = opened.load()
     test = str(ds.attrs["test"])
@@ -72,6 +95,7 @@ def test_figures(result: Path, out_dir: Path, published_dir: Path | None = None)
     kind = ds["kind"].values.astype(str)
     direction = ds["direction"].values.astype(str)
     step_of = ds["frame_step"].values
+    per_step = summary.sel(test=test)
     reconstructed = " (RECONSTRUCTED demo data)" if int(ds.attrs.get("reconstructed", 0)) \
         else ""
 
@@ -86,16 +110,16 @@ def test_figures(result: Path, out_dir: Path, published_dir: Path | None = None)
             ax_d.plot(ds["uc"].values[sel], -ds["Pn"].values[sel], "o", ms=3, label="from raw")
             ax_d.plot(ds["displacement_fit"].values[i], ds["load_grid"].values[i], "-",
                       label=f"fit, gof {float(ds['gof'][i]):.3f}")
-            load, k = ds["load_grid"].values[i], ds["stiffness_An"].values[i]
-            moe = ds["stiffness_An_moe"].values[i]
-            ax_k.plot(load, k, "-", label="from raw (eq. 2.4)")
-            ax_k.plot(load, k + moe, ":", color="grey")
-            ax_k.plot(load, k - moe, ":", color="grey", label="error lines (eq. 2.8)")
+            load = ds["load_grid"].values[i]
+            ax_k.errorbar(load, ds["stiffness_An"].values[i],
+                          yerr=ds["stiffness_An_moe"].values[i], fmt="-", capsize=2,
+                          errorevery=max(1, len(load) // 8),
+                          label="from raw (eq. 2.4), 95% margin (eq. 2.8)")
             if d in pub_n.index:
                 p = pub_n.loc[d]
                 if np.isfinite(p["beta_n"]) and np.isfinite(p["P0"]):
-                    ax_k.plot(load, p["beta_n"] * (load - p["P0"]) * 1000.0 / area, "--",
-                              label="published (Table 2.1/2.7)")
+                    ax_k.plot(load, published_stiffness_An(p["beta_n"], p["P0"], load, area),
+                              "--", label="published (Table 2.1/2.7)")
                     ax_k.errorbar([float(ds.attrs["max_normal_load_kN"])], [p["Kn_An"]],
                                   yerr=[p["Kn_An_moe"]], fmt="s", color="k", ms=4)
         ax_d.set_xlabel("uc (um)")
@@ -127,8 +151,8 @@ def test_figures(result: Path, out_dir: Path, published_dir: Path | None = None)
         if len(hit):
             q = ds["load_grid"].values[i]
             p = hit.iloc[0]
-            axes[1].plot(q, p["beta_t"] * (q - p["Qs"]) * 1000.0 / area, "--", color=c,
-                         lw=0.8)
+            axes[1].plot(q, published_stiffness_An(p["beta_t"], p["Qs"], q, area), "--",
+                         color=c, lw=0.8)
     axes[0].set_xlabel("vc (um)")
     axes[0].set_ylabel("Qt (kN)")
     axes[1].set_xlabel("Qt (kN)")
@@ -139,42 +163,29 @@ def test_figures(result: Path, out_dir: Path, published_dir: Path | None = None)
     fig.tight_layout()
     save_figure(fig, paths[1])
 
-    # Figs 2.16, 2.17 top: f, beta_t and Kt0 per step
+    # Figs 2.16, 2.17 top: f, beta_t and Kt0 per step, as the tables have them
     fig, axes = plt.subplots(3, 2, figsize=(9, 7.5), sharex=True)
-    p_max = float(ds.attrs["max_normal_load_kN"])
     for col, d in enumerate(("loading", "unloading")):
         idx = np.flatnonzero((kind == "tangential") & (direction == d))
         steps = ds["step_number"].values[idx]
-        beta = ds["beta"].values[idx]
-        qs = ds["offset"].values[idx]
-        values = {"f": np.abs(qs) / p_max, "beta_t": beta,
-                  "Kt0_An": -beta * qs * 1000.0 / area}
-        margins = {"f": ds["offset_moe"].values[idx] / p_max,
-                   "beta_t": ds["beta_moe"].values[idx],
-                   "Kt0_An": np.abs(values["Kt0_An"]) * np.hypot(
-                       ds["beta_moe"].values[idx] / np.abs(beta),
-                       ds["offset_moe"].values[idx] / np.abs(qs))}
+        ours = per_step.sel(step_direction=d, step=steps)
         pub = pub_t[pub_t["direction"] == d]
         for r, name in enumerate(("f", "beta_t", "Kt0_An")):
             ax = axes[r, col]
-            ax.errorbar(steps - 0.08, values[name], yerr=margins[name], fmt="o", ms=4,
-                        capsize=2, label="from raw")
+            series = [(steps, ours[f"{name}_step"].values, ours[f"{name}_moe_step"].values,
+                       -3, {"marker": "o", "ms": 4, "color": "C0", "label": "from raw"})]
             if len(pub):
-                ax.errorbar(pub["step"] + 0.08, pub[name], yerr=pub[f"{name}_moe"], fmt="s",
-                            ms=4, capsize=2, color="k", mfc="none", label="published")
-            ax.set_ylabel({"f": "f", "beta_t": "beta_t (1/um)",
-                           "Kt0_An": "Kt0/An (kN/mm^3)"}[name])
-            finite = np.concatenate([values[name][np.isfinite(values[name])],
-                                     pub[name].to_numpy() if len(pub) else []])
-            if len(finite):
-                lo, hi = float(np.min(finite)), float(np.max(finite))
-                pad = 0.6 * (hi - lo) + 0.3 * abs(hi) + 1e-9
-                ax.set_ylim(lo - pad, hi + pad)
+                series.append((pub["step"], pub[name], pub[f"{name}_moe"], 3,
+                               {"marker": "s", "ms": 4, "mfc": "none", "color": "k",
+                                "label": "published"}))
+            _errorbars(ax, series)
+            ax.set_ylabel(axis_label(name.replace("_An", "/An"), ours[f"{name}_step"].attrs
+                                     .get("units")))
         axes[0, col].set_title(f"{d} steps")
         axes[2, col].set_xlabel("step")
         axes[0, col].legend(fontsize=7, frameon=False)
-    fig.suptitle(f"Test {test}: per-step f, beta_t, Kt0 (95% margins){reconstructed}",
-                 fontsize=10)
+    fig.suptitle(f"Test {test}: per-step f, beta_t, Kt0 (95% margins, eqs 2.9, 2.10)"
+                 f"{reconstructed}", fontsize=10)
     fig.tight_layout()
     save_figure(fig, paths[2])
 
@@ -185,22 +196,22 @@ def test_figures(result: Path, out_dir: Path, published_dir: Path | None = None)
         idx = np.flatnonzero((kind == "tangential") & (direction == d))
         ax = axes[col]
         steps = ds["step_number"].values[idx]
-        ax.errorbar(steps - 0.08, ds["Kt0_An_mean_row"].values[idx],
-                    yerr=ds["Kt0_An_mean_row_moe"].values[idx], fmt="o", ms=4, capsize=2,
-                    label="mean row, from raw")
-        ax.plot(steps - 0.08, ds["Kt0_An_row_max"].values[idx], "v", ms=3, color="C0")
-        ax.plot(steps - 0.08, ds["Kt0_An_row_min"].values[idx], "^", ms=3, color="C0")
-        beta, qs = ds["beta"].values[idx], ds["offset"].values[idx]
-        ax.plot(steps, -beta * qs * 1000.0 / area, "x", color="C1", label="mean field")
+        dodge(ax.errorbar(steps, ds["Kt0_An_mean_row"].values[idx],
+                          yerr=ds["Kt0_An_mean_row_moe"].values[idx], fmt="o", ms=4, capsize=2,
+                          label="mean row, from raw"), -3)
+        dodge(ax.plot(steps, ds["Kt0_An_row_max"].values[idx], "v", ms=3, color="C0"), -3)
+        dodge(ax.plot(steps, ds["Kt0_An_row_min"].values[idx], "^", ms=3, color="C0"), -3)
+        ax.plot(steps, per_step["Kt0_An_step"].sel(step_direction=d, step=steps).values, "x",
+                color="C1", label="mean field")
         pub = pub_r[pub_r["direction"] == d]
         if len(pub):
-            ax.errorbar(pub["step"] + 0.08, pub["Kt0_An_mean_row"],
-                        yerr=pub["Kt0_An_mean_row_moe"], fmt="s", ms=4, mfc="none",
-                        color="k", capsize=2, label="published mean row")
-            ax.plot(pub["step"] + 0.08, pub["Kt0_An_row_max"], "v", ms=3, color="k",
-                    mfc="none")
-            ax.plot(pub["step"] + 0.08, pub["Kt0_An_row_min"], "^", ms=3, color="k",
-                    mfc="none")
+            dodge(ax.errorbar(pub["step"], pub["Kt0_An_mean_row"],
+                              yerr=pub["Kt0_An_mean_row_moe"], fmt="s", ms=4, mfc="none",
+                              color="k", capsize=2, label="published mean row"), 3)
+            dodge(ax.plot(pub["step"], pub["Kt0_An_row_max"], "v", ms=3, color="k",
+                          mfc="none"), 3)
+            dodge(ax.plot(pub["step"], pub["Kt0_An_row_min"], "^", ms=3, color="k",
+                          mfc="none"), 3)
         ax.set_title(f"{d} steps")
         ax.set_xlabel("step")
     axes[0].set_ylabel("Kt0/An (kN/mm^3)")
@@ -216,7 +227,7 @@ def summary_figure(summary: xr.Dataset, published_dir: Path | None, png: Path) -
     """Like Figs 2.40-2.42 (and 2.60, 2.61): Kn, Kt0, f and Cc against -Pn/An, the loads
     and areas being those the summary records."""
     tests = summary["test"].values.astype(str)
-    pn_an = summary["max_normal_load_kN"].values / summary["nominal_area_mm2"].values
+    pn_an = summary["Pn_An"].values
     pub_n = pd.concat([read_published("2.1", published_dir),
                        read_published("2.7", published_dir)]).set_index(["test", "direction"])
     pub_t = pd.concat([read_published("2.2", published_dir),
@@ -234,15 +245,15 @@ def summary_figure(summary: xr.Dataset, published_dir: Path | None, png: Path) -
     for ax, var, dim, sel, pub, label in panels:
         values = summary[var].sel({dim: sel}).values
         moe = summary[f"{var}_moe"].sel({dim: sel}).values
-        ax.errorbar(pn_an - 0.005, values, yerr=moe, fmt="o", capsize=2, label="from raw")
+        dodge(ax.errorbar(pn_an, values, yerr=moe, fmt="o", capsize=2, label="from raw"), -3)
         pv = [pub[var].get((t, sel), np.nan) for t in tests]
         pm = [pub[f"{var}_moe"].get((t, sel), np.nan) for t in tests]
-        ax.errorbar(pn_an + 0.005, pv, yerr=pm, fmt="s", mfc="none", color="k", capsize=2,
-                    label="published")
+        dodge(ax.errorbar(pn_an, pv, yerr=pm, fmt="s", mfc="none", color="k", capsize=2,
+                          label="published"), 3)
         for x, y, t in zip(pn_an, values, tests, strict=True):
             if np.isfinite(y):
                 ax.annotate(t, (x, y), fontsize=6, xytext=(3, 3), textcoords="offset points")
-        ax.set_xlabel("-Pn/An (kN/mm^2)")
+        ax.set_xlabel(axis_label("-Pn/An", summary["Pn_An"].attrs.get("units")))
         ax.set_ylabel(label)
     axes[0, 0].legend(fontsize=7, frameon=False)
     fig.suptitle("Summary from raw data vs thesis (Figs 2.40-2.42, 2.60-2.61)", fontsize=10)
@@ -276,24 +287,17 @@ def build_section(results: list[Path], summary_path: Path, report_dir: Path, out
         section.paragraph("all_converged")
 
     recovery = recovery_table(results, published_dir)
-    per_test = pd.DataFrame(columns=["test", "fraction_within", "steps_within", "steps"])
     if len(recovery):
-        per_test = recovery.groupby("test", sort=False)["within_margins"].agg(
-            ["mean", "sum", "count"]).reset_index().rename(
-            columns={"mean": "fraction_within", "sum": "steps_within", "count": "steps"})
-        section.paragraph("recovery", within=recovery["within_margins"].sum(),
-                          steps=len(recovery),
-                          percent=100 * float(recovery["within_margins"].mean()))
-    section.table(per_test, "stiffness_raw_recovery_by_test")
+        section.paragraph("recovery", **recovery_totals(recovery))
+    section.table(recovery_by_test(recovery), "stiffness_raw_recovery_by_test")
     section.table_file(recovery, "stiffness_raw_recovery")
 
     ours = {t: table for t in MARGIN_CHECKS
             if (table := read_recomputed(t, tables_dir)) is not None}
     cells = summary_within_margins(ours, published_dir)
-    by_quantity = cells.groupby("quantity", sort=False)["within"].agg(
-        ["sum", "count"]).reset_index().rename(columns={"sum": "within", "count": "cells"})
+    by_quantity = within_by_quantity(cells)
     if len(cells):
-        section.paragraph("margins", within=int(cells["within"].sum()), cells=len(cells))
+        section.paragraph("margins", **within_totals(cells))
     section.table(by_quantity, "stiffness_raw_summary_margins_by_quantity")
     section.table_file(cells, "stiffness_raw_summary_margins")
     outside = cells[~cells["within"].astype(bool)]
@@ -307,12 +311,12 @@ def build_section(results: list[Path], summary_path: Path, report_dir: Path, out
     if len(covariance):
         section.paragraph("covariance")
     section.table(covariance, "stiffness_raw_margins_covariance")
-    with xr.open_dataset(summary_path) as summary:
-        summary_figure(summary.load(), published_dir,
-                       section.figure_path("stiffness_raw_summary"))
+    with xr.open_dataset(summary_path) as opened:
+        summary = opened.load()
+    summary_figure(summary, published_dir, section.figure_path("stiffness_raw_summary"))
     section.image("stiffness_raw_summary")
     for path in results:
-        test_figures(path, Path(report_dir) / "figures", published_dir)
+        test_figures(path, summary, Path(report_dir) / "figures", published_dir)
         with xr.open_dataset(path) as ds:
             test = str(ds.attrs["test"])
         for stem in TEST_FIGURES:

@@ -9,8 +9,9 @@ into one dataset with coordinates
 
 and variables Kn_An, Kt0_An, beta_n, beta_t, f, Cc with their 95% margins ``*_moe``
 (sec. 2.5, covariance neglected as in the thesis) and ``*_moe_cov`` (fit covariance kept; NaN
-without it), beta_n_Seq, Seq, per-step Kt0_An_step/f_step/beta_t_step with margins and the
-``step_used`` flag, and the mean-row statistics of sec. 2.5.4 when given.
+without it), beta_n_Seq, Seq, the normal pressure Pn_An, per-step
+Kt0_An_step/f_step/beta_t_step with margins and the ``step_used`` flag, and the mean-row
+statistics of sec. 2.5.4 when given.
 """
 
 from __future__ import annotations
@@ -26,7 +27,7 @@ from contactlab.io import stamp, write_netcdf
 from contactlab.published import mean_row_stiffness, per_step_fits, read_published
 from contactlab.stiffness.errors import ErrorModel
 from contactlab.stiffness.tables import build_tables, write_tables
-from contactlab.testsheet import read_test_sheet
+from contactlab.testsheet import read_test_sheet, tests_without_surfaces
 
 __all__ = ["published_inputs", "summarize_published", "summary_dataset"]
 
@@ -147,6 +148,11 @@ def summary_dataset(tables: Mapping[str, pd.DataFrame], tests: pd.DataFrame,
                                                 "units": "1"})):
             if col in seq.columns:
                 ds[col] = ("test", _grid(seq, ("test",), (test_ids,), col), attrs)
+    ds["Pn_An"] = ("test", _grid(normal.drop_duplicates("test"), ("test",), (test_ids,),
+                                 "Pn_An"),
+                   {"long_name": "normal pressure -Pn/An of the tangential steps (the test's "
+                                 "maximum normal load over its nominal area)",
+                    "units": "kN/mm2"})
     sheet = tests.reindex(test_ids)
     ds["max_normal_load_kN"] = ("test", sheet["max_normal_load_kN"].to_numpy(dtype=float),
                                 {"long_name": "normal load -Pn of the tangential steps",
@@ -203,6 +209,7 @@ def summarize_published(tests_path: str | Path, out: str | Path, *,
         raise ValueError(f"{tests_path}: no test id matches the published tables")
     seq = read_seq(seq_path) if seq_path is not None else None
     tables = build_tables(steps, normal, sheet, seq, model, threshold=threshold,
+                          without_surfaces=tests_without_surfaces(sheet),
                           texture_wavelength=inputs["texture_wavelength"]["texture_wavelength"])
     if tables_dir is not None:
         write_tables(tables, tables_dir, suffix=suffix)

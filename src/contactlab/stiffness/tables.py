@@ -22,7 +22,7 @@ Ground tests (test-sheet ``group`` "ground") go to 2.1-2.4, structured ones to 2
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Collection, Iterable, Mapping
 from pathlib import Path
 
 import pandas as pd
@@ -32,7 +32,8 @@ from contactlab.published import GROUP_TABLES
 from contactlab.stiffness import aggregate
 from contactlab.stiffness.errors import ErrorModel
 
-__all__ = ["TABLE_COLUMNS", "build_tables", "split_by_group", "write_tables"]
+__all__ = ["TABLE_COLUMNS", "UNITS", "build_tables", "split_by_group", "units",
+           "write_tables"]
 
 _NORMAL = ["test", "direction", "gof", "Pn_An", "Kn_An", "Kn_An_moe", "beta_n", "beta_n_moe",
            "alpha_n", "alpha_n_moe", "P0", "P0_moe", "Kn_An_moe_cov"]
@@ -53,27 +54,36 @@ TABLE_COLUMNS: dict[str, list[str]] = {
     "2.9": _with_wavelength(_CC),
 }
 
-_TABLE_UNITS: dict[str, str] = {
+#: Units of the tables' columns of numbers (by name); every other number is dimensionless.
+UNITS: dict[str, str] = {
     "Pn_An": "kN/mm2", "Kn_An": "kN/mm3", "Kn_An_moe": "kN/mm3", "Kn_An_moe_cov": "kN/mm3",
     "Kt0_An": "kN/mm3", "Kt0_An_moe": "kN/mm3", "Kt0_An_moe_cov": "kN/mm3",
     "beta_n": "1/um", "beta_n_moe": "1/um", "beta_t": "1/um", "beta_t_moe": "1/um",
     "alpha_n": "kN", "alpha_n_moe": "kN", "P0": "kN", "P0_moe": "kN", "Seq": "um",
-    "Seq_scan": "um",
+    "Seq_scan": "um", "alpha_t": "kN", "alpha_t_moe": "kN", "Qs": "kN", "Qs_moe": "kN",
+    "Kt0_An_mean_row": "kN/mm3", "Kt0_An_mean_row_moe": "kN/mm3",
+    "Kt0_An_row_max": "kN/mm3", "Kt0_An_row_min": "kN/mm3",
     "texture_wavelength": "um",
 }
+
+
+def units(columns: Iterable[str]) -> dict[str, str]:
+    """The unit of each column of a stiffness table (:data:`UNITS`, else dimensionless)."""
+    return {c: UNITS.get(c, "1") for c in columns}
 
 
 def build_tables(steps: pd.DataFrame, normal: pd.DataFrame, tests: pd.DataFrame,
                  seq: Mapping[str, float] | pd.Series | pd.DataFrame | None = None,
                  model: ErrorModel | None = None, *, threshold: float = 0.5,
-                 texture_wavelength: Mapping[str, float] | None = None
-                 ) -> dict[str, pd.DataFrame]:
+                 texture_wavelength: Mapping[str, float] | None = None,
+                 without_surfaces: Collection[str] = ()) -> dict[str, pd.DataFrame]:
     """All aggregated tables: keys ``steps`` (per-step quantities), ``normal``, ``means``,
     ``coupling``, ``seq`` (all tests) and the thesis numbers ``"2.1"`` ... ``"2.10"``.
 
     ``steps``/``normal``/``tests``/``seq`` follow the interface of
     :mod:`contactlab.stiffness.aggregate`; ``texture_wavelength`` (um per structured test)
-    fills the column of Tables 2.7-2.9 (NaN when not given).
+    fills the column of Tables 2.7-2.9 (NaN when not given); the tests of
+    ``without_surfaces`` have no Seq and are left out of Tables 2.3 and 2.10.
     """
     quantities = aggregate.step_quantities(steps, tests, model, threshold=threshold)
     kn = aggregate.normal_stiffness(normal, tests, model)
@@ -81,7 +91,7 @@ def build_tables(steps: pd.DataFrame, normal: pd.DataFrame, tests: pd.DataFrame,
     cc = aggregate.coupling(means, kn)
     if "Cc_moe_cov" not in cc.columns:
         cc["Cc_moe_cov"] = float("nan")
-    beta_seq = (aggregate.beta_n_seq(kn, seq) if seq is not None
+    beta_seq = (aggregate.beta_n_seq(kn, seq, without=without_surfaces) if seq is not None
                 else pd.DataFrame(columns=_SEQ))
     out = {"steps": quantities, "normal": kn, "means": means, "coupling": cc, "seq": beta_seq}
     out.update(split_by_group({"normal": kn, "means": means, "coupling": cc,
@@ -109,7 +119,7 @@ def split_by_group(tables: Mapping[str, pd.DataFrame], tests: pd.DataFrame,
             if "texture_wavelength" in TABLE_COLUMNS[number]:
                 part["texture_wavelength"] = part["test"].map(wavelength).astype(float)
             part = part.reindex(columns=TABLE_COLUMNS[number]).reset_index(drop=True)
-            part.attrs["units"] = {c: _TABLE_UNITS.get(c, "1") for c in part.columns}
+            part.attrs["units"] = units(part.columns)
             out[number] = part
     return out
 

@@ -58,7 +58,10 @@ def _diff(args: argparse.Namespace) -> None:
     if args.json and args.csv:
         raise ValueError("give --json or --csv, not both")
     output = "json" if args.json else "csv" if args.csv else "text"
-    sys.stdout.write(studies_diff(args.studies, repository(args.root), output, args.quantity))
+    from contactlab.cli import config_units
+
+    sys.stdout.write(studies_diff(args.studies, repository(args.root), output, args.quantity,
+                                  units=config_units()))
 
 
 def _show(args: argparse.Namespace) -> None:
@@ -76,9 +79,10 @@ def _export(args: argparse.Namespace) -> None:
 
 
 def _compare(args: argparse.Namespace) -> None:
+    from contactlab.cli import config_units
     from contactlab.studies.compare import compare_page_from_file
 
-    compare_page_from_file(args.spec, args.out, args.root)
+    compare_page_from_file(args.spec, args.out, args.root, units=config_units())
 
 
 def _family_page(args: argparse.Namespace) -> None:
@@ -86,7 +90,10 @@ def _family_page(args: argparse.Namespace) -> None:
 
     if not isinstance(args.grid, dict):
         raise ValueError("--grid must be the family file's grid, a JSON object")
-    family_page(args.family, args.grid, args.studies, args.quantities, args.out, args.root)
+    from contactlab.cli import config_units
+
+    family_page(args.family, args.grid, args.studies, args.quantities, args.out, args.root,
+                units=config_units())
 
 
 GROUP = Group(

@@ -11,7 +11,9 @@ names the studies and the headline quantities (:mod:`contactlab.studies.headline
 and provenance from :mod:`contactlab.studies.catalog`), the parameters that differ, the
 headline results that differ (:mod:`contactlab.studies.diff`), and one figure per quantity
 with every study's curve in its own colour, the legend naming the study and the keys it
-changes against the default study. Figures and tables are written with
+changes against the default study, beside a figure of each study's change from the
+reference (relative where that helps); links to each study's report; which study lacks which
+points of the others'. Figures and tables are written with
 :mod:`contactlab.report.section` (PNG and PDF, CSV and Markdown) beside the page.
 A family's page (``results/studies/<family>/compare/index.html``) is the same page over the
 family's variants.
@@ -78,16 +80,19 @@ def read_compare_files(root: str | os.PathLike[str] = "."
 
 def index_links(report_dir: str | os.PathLike[str] = "results/report",
                 root: str | os.PathLike[str] = ".") -> list[tuple[str, str]]:
-    """The comparison pages of the compare files as (title, link relative to the report
-    folder ``report_dir``), for the report page's list (:func:`contactlab.report.index.
-    build_index`, ``comparisons``)."""
+    """The comparison pages of the compare files that have been built, as (title, link
+    relative to the report folder ``report_dir``), for the report page's list
+    (:func:`contactlab.report.index.build_index`, ``comparisons``); a page not built yet is
+    not linked (the report rule lists them again when one is)."""
     links = []
     for name, path in compare_files(root).items():
+        page = Path("results/compare") / name / "index.html"
+        if not (Path(root) / page).is_file():
+            continue
         try:
             title = load_yaml_file(path).get("title") or name
         except ConfigError:
             title = name
-        page = Path("results/compare") / name / "index.html"
         links.append((str(title), os.path.relpath(page, report_dir)))
     return links
 
@@ -172,24 +177,30 @@ def legend_label(name: str, changes: Mapping[str, Sequence[Any]], limit: int = 3
     return f"{name}: {', '.join(items[:limit])}{more}"
 
 
-def overlay_figure(q, data: Sequence[Any], labels: Sequence[str]):
+def overlay_figure(q, data: Sequence[Any], labels: Sequence[str], ylabel: str | None = None,
+                   title: str | None = None, first_style: int = 0):
     """One quantity of several studies in one figure: a line per study along its first
     coordinate (a panel per value of a second coordinate common to all, at most
-    :data:`MAX_PANELS`), a marker per study for a single number."""
+    :data:`MAX_PANELS`), a marker per study for a single number. ``ylabel`` and ``title``
+    replace the quantity's (its name, or ratio in units of c, with its unit; its label);
+    ``first_style``: the style of the first study drawn (a difference figure starts at the
+    second study's)."""
     import matplotlib.pyplot as plt
     import numpy as np
+
+    from contactlab.display import axis_label, symbol
 
     colours = plt.get_cmap("tab10")
     # hollow markers of their own shape, larger for the earlier studies: curves that
     # coincide stay visible one inside the other
     style = [{"color": colours(i % 10), "marker": MARKERS[i % len(MARKERS)],
-              "mfc": "none", "ms": 4 + 2.5 * (len(data) - 1 - i), "lw": 1.0}
-             for i in range(len(data))]
+              "mfc": "none", "ms": 4 + 2.5 * (len(data) + first_style - 1 - i), "lw": 1.0}
+             for i in range(first_style, first_style + len(data))]
     present = [(d, lab, st) for d, lab, st in zip(data, labels, style, strict=True)
                if d is not None]
     first = present[0][0]
-    units = first.attrs.get("units", "")
-    ylabel = f"{q.variable} ({units})" if units not in ("", "1") else q.variable
+    ylabel = ylabel or axis_label(symbol(q.variable, first.attrs.get("long_name")),
+                                  first.attrs.get("units"))
     legend_height = 0.17 * len(present) + 0.15
     if first.ndim == 0:
         fig, ax = plt.subplots(figsize=(6.5, 3.2 + legend_height))
@@ -220,22 +231,52 @@ def overlay_figure(q, data: Sequence[Any], labels: Sequence[str]):
                 if not numeric:
                     ax.set_xticks(np.arange(len(x)), [str(v) for v in x], rotation=45,
                                   ha="right")
-            xunits = first[dim].attrs.get("units", "") if dim in first.coords else ""
-            ax.set_xlabel(f"{dim} ({xunits})" if xunits not in ("", "1") else dim)
+            coordinate = first[dim].attrs if dim in first.coords else {}
+            ax.set_xlabel(axis_label(symbol(dim, coordinate.get("long_name")),
+                                     coordinate.get("units")))
             if panel is not None:
                 ax.set_title(f"{panel[0]} = {panel[1]:g}" if isinstance(panel[1], float)
                              else f"{panel[0]} = {panel[1]}", fontsize=9)
         axes[0][0].set_ylabel(ylabel)
     handles, names = fig.axes[0].get_legend_handles_labels()
-    fig.suptitle(q.label, fontsize=9)
+    fig.suptitle(title or q.label, fontsize=9)
     fig.legend(handles, names, fontsize=7, loc="lower center", frameon=False, ncols=1)
     fig.tight_layout(rect=(0, legend_height / fig.get_figheight(), 1, 1))
     return fig
 
 
+def difference_figure(q, data: Sequence[Any], labels: Sequence[str], reference: str):
+    """The differences of each study from the reference (the first of ``data``) along the
+    quantity's coordinates (:func:`contactlab.studies.diff.difference`), relative in
+    percent where that helps (:func:`contactlab.studies.diff.helps_relative`); None when
+    the reference or every other study lacks the quantity."""
+    from contactlab.display import axis_label, symbol
+    from contactlab.studies.diff import difference, helps_relative
+
+    if data[0] is None or all(d is None for d in data[1:]):
+        return None
+    relative = helps_relative(data[0].values)
+    changes = [None if d is None else difference(data[0], d, relative) for d in data[1:]]
+    name = symbol(q.variable, data[0].attrs.get("long_name"))
+    ylabel = axis_label(f"{name} - {name} of {reference}", data[0].attrs.get("units")) \
+        if not relative else f"({name} - {name} of {reference}) / |{name} of {reference}| (%)"
+    fig = overlay_figure(q, changes, labels[1:], ylabel=ylabel,
+                         title=f"{q.label}: change from {reference}", first_style=1)
+    for ax in fig.axes:
+        ax.axhline(0.0, color="0.4", lw=0.6)
+    return fig
+
+
+def study_report(study: str, root: str | os.PathLike[str] = ".") -> Path | None:
+    """The report page of ``study`` if it has been built."""
+    page = Path(root) / study_results(study) / "report" / "index.html"
+    return page if page.is_file() else None
+
+
 def build_compare_page(name: str, title: str, studies: Sequence[str],
                        quantities: Sequence[str], out: str | os.PathLike[str],
-                       root: str | os.PathLike[str] = ".", description: str = "") -> Path:
+                       root: str | os.PathLike[str] = ".", description: str = "",
+                       units: Mapping[str, str] | None = None) -> Path:
     """Write the comparison page of ``studies`` (names; the first is the reference) over
     ``quantities`` (headline ids) to ``out`` (its figures and tables beside it).
 
@@ -246,6 +287,7 @@ def build_compare_page(name: str, title: str, studies: Sequence[str],
     studies, quantities : what to compare.
     out : the page, ``results/compare/<name>/index.html`` by convention.
     root : the repository root (where config/ and results/ are).
+    units : the unit of each config key (the command options' declarations).
     """
     import pandas as pd
 
@@ -253,7 +295,12 @@ def build_compare_page(name: str, title: str, studies: Sequence[str],
     from contactlab.report.index import build_date
     from contactlab.report.section import Section
     from contactlab.studies.catalog import discover, study_status
-    from contactlab.studies.diff import diff_studies, format_percent, format_value
+    from contactlab.studies.diff import (
+        diff_studies,
+        format_percent,
+        format_value,
+        points_not_compared,
+    )
     from contactlab.studies.effective import load_schema
     from contactlab.studies.headline import quantity, read_quantity
     from contactlab.studies.manifest import netcdf_provenance
@@ -265,7 +312,7 @@ def build_compare_page(name: str, title: str, studies: Sequence[str],
     statuses = {s: study_status(known[s], root, schema) if s in known else None
                 for s in studies}
     chosen = [quantity(q) for q in quantities]
-    diff = diff_studies(studies, root, chosen)
+    diff = diff_studies(studies, root, chosen, units=units)
     section = Section(title, f"compare-{name}", folder)
     if description:
         section.paragraph(description)
@@ -290,10 +337,18 @@ def build_compare_page(name: str, title: str, studies: Sequence[str],
                   "compared result files record, and what each changes against the default "
                   "study (contactlab studies list tells which are complete or stale).",
                   folder / "tables" / "studies.csv")
+    reports = {s: study_report(s, root) for s in studies}
+    section.links([(f"Report of {s}", os.path.relpath(page, folder))
+                   for s, page in reports.items() if page is not None])
+    unbuilt = [s for s, page in reports.items() if page is None]
+    if unbuilt:
+        section.paragraph(f"No report built yet for {', '.join(unbuilt)} (snakemake -j2 "
+                          "all with the study's config builds it).")
     section.heading("Parameters")
     if diff.parameters:
-        table = pd.DataFrame([{"key": r.key, **{s: format_value(v) for s, v in
-                                                zip(studies, r.values, strict=True)}}
+        table = pd.DataFrame([{"key": r.key, "units": r.units or "-",
+                               **{s: format_value(v) for s, v in
+                                  zip(studies, r.values, strict=True)}}
                               for r in diff.parameters])
         section.table(table, "Config keys whose values differ between the studies.",
                       folder / "tables" / "parameters.csv")
@@ -313,6 +368,13 @@ def build_compare_page(name: str, title: str, studies: Sequence[str],
                       f"{studies[0]}.", folder / "tables" / "results.csv")
     else:
         section.paragraph(f"All {diff.results_compared} headline values compared are equal.")
+    for line in points_not_compared(diff):
+        section.note(line)
+    section.paragraph("Each quantity: every study's values overlaid (left) and each study's "
+                      f"change from {studies[0]} at the points both have (right; relative, "
+                      "in percent, where no reference value is near zero). Lengths of the "
+                      "receding contacts are in units of the layer thickness c (a/c, b/c, "
+                      "w/c).")
     for q in chosen:
         data = [read_quantity(root / study_results(s), q) for s in studies]
         if all(d is None for d in data):
@@ -325,8 +387,13 @@ def build_compare_page(name: str, title: str, studies: Sequence[str],
                    "changed keys.")
         if missing:
             caption += f" Not in {', '.join(missing)}."
-        section.figure(overlay_figure(q, data, labels), caption,
-                       folder / "figures" / f"{q.id.replace('.', '_')}.png")
+        stem = q.id.replace(".", "_")
+        figures = [(overlay_figure(q, data, labels), caption, folder / "figures" / f"{stem}.png")]
+        change = difference_figure(q, data, labels, studies[0])
+        if change is not None:
+            figures.append((change, f"{q.label}: each study minus {studies[0]} at the points "
+                            "both have.", folder / "figures" / f"{stem}_change.png"))
+        section.figure_row(figures)
     page = (
         "<!DOCTYPE html>\n<html lang='en'>\n<head>\n<meta charset='utf-8'>\n"
         f"<title>{html.escape(title)}</title>\n<style>{_STYLE}</style>\n</head>\n<body>\n"
@@ -342,27 +409,31 @@ table { border-collapse: collapse; font-size: 0.9em; }
 th, td { padding: 0.2em 0.6em; border-bottom: 1px solid #ccc; text-align: left; }
 figure { margin: 1.5em 0; overflow-x: auto; } figure img { max-width: 100%; }
 figcaption { font-size: 0.9em; color: #333; margin-top: 0.4em; }
+.figure-row { display: flex; flex-wrap: wrap; gap: 1.5em; align-items: flex-start; }
+.figure-row figure { flex: 1 1 32em; margin: 1em 0; }
 .note { background: #fff4d6; padding: 0.5em; border-left: 4px solid #e0a800; }
 p.built { font-size: 0.85em; color: #555; }
 """
 
 
 def compare_page_from_file(path: str | os.PathLike[str], out: str | os.PathLike[str],
-                           root: str | os.PathLike[str] = ".") -> Path:
+                           root: str | os.PathLike[str] = ".",
+                           units: Mapping[str, str] | None = None) -> Path:
     """The page of one compare file (:func:`read_compare_file`) written to ``out``."""
     spec = read_compare_file(path, root)
     return build_compare_page(Path(path).stem, spec.get("title", Path(path).stem),
                               spec["studies"], spec["quantities"], out, root,
-                              spec.get("description", ""))
+                              spec.get("description", ""), units)
 
 
 def family_page(family: str, grid: Mapping[str, Any], studies: Sequence[str],
                 quantities: Sequence[str], out: str | os.PathLike[str],
-                root: str | os.PathLike[str] = ".") -> Path:
+                root: str | os.PathLike[str] = ".",
+                units: Mapping[str, str] | None = None) -> Path:
     """The comparison page of a family's variants (``studies``, the first the reference)
     over ``quantities``, written to ``out``; ``grid`` is the family file's grid."""
     values = ", ".join(f"{key}: {value}" for key, value in grid.items())
     return build_compare_page(family, f"Family {family}: {len(studies)} variants", studies,
                               quantities, out, root,
                               f"Every variant of the family's grid ({values}), against the "
-                              "first.")
+                              "first.", units)

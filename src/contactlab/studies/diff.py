@@ -64,6 +64,10 @@ class StudyDiff:
     results_compared: int = 0
     results_equal: int = 0
     not_common: dict[str, int] = field(default_factory=dict)
+    #: quantity -> study -> the reference's points the study lacks, and the study's points
+    #: the reference lacks (grids that differ; not compared)
+    lacking: dict[str, dict[str, int]] = field(default_factory=dict)
+    surplus: dict[str, dict[str, int]] = field(default_factory=dict)
     missing: dict[str, list[str]] = field(default_factory=dict)
     #: studies with no headline result file at all
     unbuilt: list[str] = field(default_factory=list)
@@ -135,9 +139,12 @@ def find_studies(names: Sequence[str], root: str | os.PathLike[str] = "."):
 
 
 def diff_studies(names: Sequence[str], root: str | os.PathLike[str] = ".",
-                 quantities: Sequence[Quantity] | None = None, rtol: float = RTOL) -> StudyDiff:
+                 quantities: Sequence[Quantity] | None = None, rtol: float = RTOL,
+                 units: Mapping[str, str] | None = None) -> StudyDiff:
     """Compare the studies ``names`` (at least two; the first is the reference) in the
-    repository at ``root``: the parameters and headline results that differ."""
+    repository at ``root``: the parameters and headline results that differ. ``units``:
+    the unit of each config key (the command options' declarations), shown beside a
+    parameter's numbers."""
     if len(names) < 2:
         raise ValueError("give at least two studies to compare")
     root = Path(root)
@@ -151,7 +158,10 @@ def diff_studies(names: Sequence[str], root: str | os.PathLike[str] = ".",
         if all(same(values[0], v) for v in values[1:]):
             continue
         absolute, relative = changes_against(values)
-        diff.parameters.append(DiffRow("parameter", key, "", "", values, absolute, relative))
+        numeric = any(_number(v) is not None for v in values)
+        diff.parameters.append(DiffRow("parameter", key, "",
+                                       (units or {}).get(key, "") if numeric else "", values,
+                                       absolute, relative))
 
     quantities = list(QUANTITIES if quantities is None else quantities)
     tables = [headline(root / r.results, quantities) for r in records]
@@ -178,6 +188,14 @@ def diff_studies(names: Sequence[str], root: str | os.PathLike[str] = ".",
         everywhere = set().union(*(h["points"] for h in have if h is not None))
         if len(everywhere) > len(common):
             diff.not_common[q.id] = len(everywhere) - len(common)
+        reference = set(have[0]["points"])
+        for name, h in zip(names[1:], have[1:], strict=True):
+            if h is None:
+                continue
+            if reference - set(h["points"]):
+                diff.lacking.setdefault(q.id, {})[name] = len(reference - set(h["points"]))
+            if set(h["points"]) - reference:
+                diff.surplus.setdefault(q.id, {})[name] = len(set(h["points"]) - reference)
         for at in common:
             values = [None if h is None else h["points"].get(at) for h in have]
             diff.results_compared += 1
@@ -188,6 +206,32 @@ def diff_studies(names: Sequence[str], root: str | os.PathLike[str] = ".",
             diff.results.append(DiffRow("result", q.id, at, have[0]["units"], values,
                                         absolute, relative))
     return diff
+
+
+def helps_relative(reference: Any) -> bool:
+    """Whether a quantity's differences read better relative to the reference: every
+    reference value finite and none near zero (at least 1 % of the largest)."""
+    import numpy as np
+
+    values = np.abs(np.asarray(reference, dtype=float))
+    return bool(values.size and np.isfinite(values).all() and values.min() > 0
+                and values.min() >= 0.01 * values.max())
+
+
+def difference(reference: Any, other: Any, relative: bool = False) -> Any:
+    """``other`` minus ``reference`` (two xarray DataArrays of one quantity) at the points
+    both have, or relative to the reference in percent: the change :func:`changes_against`
+    gives each number, along the quantity's coordinates. Its ``units`` are the
+    quantity's, ``%`` when relative."""
+    import xarray as xr
+
+    ref, oth = xr.align(reference, other, join="inner")
+    change = oth - ref
+    if relative:
+        change = 100.0 * change / abs(ref)
+    change.attrs = {"long_name": f"change of {reference.attrs.get('long_name', '')}".strip(),
+                    "units": "%" if relative else reference.attrs.get("units", "")}
+    return change
 
 
 def format_value(value: Any) -> str:
@@ -231,22 +275,34 @@ def _cells(row: DiffRow) -> list[str]:
     return cells
 
 
+def points_not_compared(diff: StudyDiff) -> list[str]:
+    """One line per quantity whose studies' grids differ: which study lacks how many of
+    the reference's points, and which has points the reference lacks (not compared)."""
+    lines = []
+    reference = diff.studies[0]
+    for q in dict.fromkeys([*diff.lacking, *diff.surplus]):
+        parts = [f"{study} lacks {n} of the reference's point(s)"
+                 for study, n in diff.lacking.get(q, {}).items()]
+        parts += [f"{study} has {n} point(s) {reference} lacks"
+                  for study, n in diff.surplus.get(q, {}).items()]
+        lines.append(f"{q}: {'; '.join(parts)} (grids differ; not compared there)")
+    return lines
+
+
 def render_text(diff: StudyDiff) -> str:
     """The comparison as plain-text tables: parameters, then headline results, with the
     change of each study against the first."""
     lines = [f"Studies {', '.join(diff.studies)}; changes (Δ, Δ%) against {diff.studies[0]}.",
              "", f"Parameters that differ: {len(diff.parameters)}"]
     if diff.parameters:
-        lines += _table(["key", *_columns(diff)],
-                        [[r.key, *_cells(r)] for r in diff.parameters])
+        lines += _table(["key", "units", *_columns(diff)],
+                        [[r.key, r.units or "-", *_cells(r)] for r in diff.parameters])
     lines += ["", f"Headline results that differ: {len(diff.results)} of "
               f"{diff.results_compared} compared ({diff.results_equal} equal)"]
     if diff.results:
         lines += _table(["quantity", "at", "units", *_columns(diff)],
                         [[r.key, r.at or "-", r.units, *_cells(r)] for r in diff.results])
-    notes = [f"{q}: {n} point(s) not in the reference and another study (grids differ), "
-             "not compared"
-             for q, n in diff.not_common.items()]
+    notes = points_not_compared(diff)
     lacking: dict[tuple[str, ...], list[str]] = {}
     for q, names in diff.missing.items():
         lacking.setdefault(tuple(names), []).append(q)
@@ -297,11 +353,13 @@ def render_csv(diff: StudyDiff) -> str:
 
 
 def studies_diff(names: Sequence[str], root: str | os.PathLike[str] = ".",
-                 output: str = "text", quantities: Sequence[str] | None = None) -> str:
+                 output: str = "text", quantities: Sequence[str] | None = None,
+                 units: Mapping[str, str] | None = None) -> str:
     """``contactlab studies diff A B [...] [--json|--csv]``: the parameters and headline
     results that differ between the studies ``names`` (``output``: text, json or csv;
-    ``quantities``: ids of :data:`contactlab.studies.headline.QUANTITIES`, default all)."""
+    ``quantities``: ids of :data:`contactlab.studies.headline.QUANTITIES`, default all;
+    ``units``: each config key's unit)."""
     chosen = None if quantities is None else [quantity(q) for q in quantities]
-    diff = diff_studies(names, root, chosen)
+    diff = diff_studies(names, root, chosen, units=units)
     renderers = {"text": render_text, "json": render_json, "csv": render_csv}
     return renderers[output](diff)

@@ -35,6 +35,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from contactlab.display import symbol
+
 
 @dataclass(frozen=True)
 class Quantity:
@@ -131,16 +133,26 @@ def label(coords: Mapping[str, Any]) -> str:
 
 
 def points(data) -> list[tuple[str, float]]:
-    """The values of a quantity's DataArray at each coordinate point, as (label, value);
-    non-numeric values are left out."""
+    """The values of a quantity's DataArray at each coordinate point, as (label, value),
+    each coordinate named as a reader reads it (``w/c=2.5`` for ``w_hat``,
+    :func:`contactlab.display.symbol`); non-numeric values are left out."""
     if data.dtype.kind not in "fiub":
         return []
     if data.ndim == 0:
         return [("", float(data.values))]
     series = data.astype(float).to_series()
-    names = list(series.index.names)
+    names = [symbol(str(n), data[n].attrs.get("long_name") if n in data.coords else None)
+             for n in series.index.names]
     return [(label(dict(zip(names, key if isinstance(key, tuple) else (key,), strict=True))),
              float(value)) for key, value in series.items()]
+
+
+def units(q: Quantity, data) -> str:
+    """The units of a quantity as a reader reads them: its variable's, or ``units of c``
+    for a length of Part III given as its ratio to the layer thickness (``a/c``)."""
+    if symbol(q.variable, data.attrs.get("long_name")).endswith("/c"):
+        return "units of c"
+    return str(data.attrs.get("units", ""))
 
 
 def headline(results: str | os.PathLike[str], quantities: Sequence[Quantity] = QUANTITIES
@@ -152,6 +164,5 @@ def headline(results: str | os.PathLike[str], quantities: Sequence[Quantity] = Q
         data = read_quantity(results, q)
         if data is None:
             continue
-        out[q.id] = {"label": q.label, "units": str(data.attrs.get("units", "")),
-                     "points": dict(points(data))}
+        out[q.id] = {"label": q.label, "units": units(q, data), "points": dict(points(data))}
     return out

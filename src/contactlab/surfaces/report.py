@@ -14,97 +14,21 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from contactlab.published import read_published
+from contactlab.display import significant
 from contactlab.report.section import ReportSection
-from contactlab.surfaces.texture import AREAL, PROFILE, refused_scans
-
-#: Thesis tables that print Seq per test (ground and structured tests).
-SEQ_TABLES = ("2.3", "2.10")
-
-
-def published_seq(directory: Path | None = None) -> pd.DataFrame:
-    """Published Seq (um) and beta_n*Seq per test from Tables 2.3 and 2.10."""
-    frames = [read_published(table, directory) for table in SEQ_TABLES]
-    return pd.concat(frames).set_index("test")[["Seq", "beta_n_Seq"]]
-
-
-def seq_comparison(seq: xr.Dataset, published: pd.DataFrame | pd.Series) -> pd.DataFrame:
-    """Ours beside published Seq, with the difference, one row per test."""
-    columns = [c for c in ("Sq_specimen", "Sq_pad", "Seq", "Sq_specimen_scan", "Sq_pad_scan",
-                           "Seq_scan", "beta_n", "beta_n_Seq", "beta_n_Seq_scan") if c in seq]
-    table = seq[columns].to_dataframe().reset_index()
-    if isinstance(published, pd.Series):
-        published = published.to_frame("Seq")
-    table["Seq_published"] = table["test"].map(published["Seq"])
-    table["difference"] = table["Seq"] - table["Seq_published"]
-    if "Seq_scan" in table:
-        table["difference_scan"] = table["Seq_scan"] - table["Seq_published"]
-    if "beta_n_Seq" in published and "beta_n_Seq" in table:
-        table["beta_n_Seq_published"] = table["test"].map(published["beta_n_Seq"])
-    return table
-
-
-def areal_comparison(texture: xr.Dataset, directory: Path | None = None) -> pd.DataFrame:
-    """Tables A.1/A.27 equivalent: Sa, Sq (nm), Sp (um), Str, D, ours beside published."""
-    published = pd.concat([read_published(t, directory) for t in ("A.1", "A.27")])
-    published = published.set_index("surface")
-    ours = texture.to_dataframe()
-    rows = []
-    for surface in published.index:
-        if surface not in ours.index or not np.isfinite(ours.loc[surface, "Sq"]):
-            continue
-        o, p = ours.loc[surface], published.loc[surface]
-        rows.append({
-            "surface": surface,
-            "Sa_nm": 1000 * o["Sa"], "Sa_pub_nm": p["Sa"],
-            "Sq_nm": 1000 * o["Sq"], "Sq_pub_nm": p["Sq"],
-            "Sq_diff_pct": 100 * (1000 * o["Sq"] / p["Sq"] - 1),
-            "Sp_um": o["Sp"], "Sp_pub_um": p["Sp"],
-            "Str": o["Str"], "Str_pub": p["Str"],
-            "D": o["fractal_dimension"], "D_pub": p["fractal_dimension"],
-        })
-    return pd.DataFrame(rows)
-
-
-def profile_comparison(texture: xr.Dataset, directory: Path | None = None) -> pd.DataFrame:
-    """Tables A.1/A.26 profile parameters: Ra, Rq (nm), Rz (um), ours beside published."""
-    published = pd.concat([read_published(t, directory) for t in ("A.1", "A.26")])
-    published = published.drop_duplicates("surface").set_index("surface")
-    ours = texture.to_dataframe()
-    rows = []
-    for surface in published.index:
-        if surface not in ours.index or not np.isfinite(ours.loc[surface, "Rq"]):
-            continue
-        o, p = ours.loc[surface], published.loc[surface]
-        rows.append({
-            "surface": surface, "direction": o["profile_direction"],
-            "length_mm": o["profile_length"],
-            "Ra_nm": 1000 * o["Ra"], "Ra_pub_nm": p["Ra"],
-            "Rq_nm": 1000 * o["Rq"], "Rq_pub_nm": p["Rq"],
-            "Rq_diff_pct": 100 * (1000 * o["Rq"] / p["Rq"] - 1),
-            "Rz_um": o["Rz"], "Rz_pub_um": p["Rz"],
-        })
-    return pd.DataFrame(rows)
-
-
-def structured_comparison(texture: xr.Dataset, directory: Path | None = None) -> pd.DataFrame:
-    """Table 2.6 equivalent: 100x profiles normal to the grooves."""
-    published = read_published("2.6", directory).set_index("test")
-    ours = texture.to_dataframe()
-    rows = []
-    for test, p in published.iterrows():
-        surface = f"{test}_specimen_100x"
-        if surface not in ours.index:
-            continue
-        o = ours.loc[surface]
-        rows.append({
-            "test": test, "groove_um": p["structure_wavelength"], "lambda_c_um": o["lambda_c"],
-            "sampling_length_um": o["sampling_length"],
-            "Ra_nm": 1000 * o["Ra"], "Ra_pub_nm": p["Ra"],
-            "Rq_nm": 1000 * o["Rq"], "Rq_pub_nm": p["Rq"],
-            "Rz_um": o["Rz"], "Rz_pub_um": p["Rz"],
-        })
-    return pd.DataFrame(rows)
+from contactlab.surfaces.compare import (
+    areal_comparison,
+    filled_table,
+    gaussian_density,
+    height_distribution,
+    other_surfaces,
+    profile_comparison,
+    published_seq,
+    seq_comparison,
+    structured_comparison,
+    undefined_limit,
+)
+from contactlab.surfaces.texture import refused_scans
 
 
 def undefined_table(texture: xr.Dataset) -> pd.DataFrame:
@@ -122,26 +46,6 @@ def refused_table(texture: xr.Dataset) -> pd.DataFrame:
     return pd.DataFrame(refused_scans(texture), columns=["surface", "scan", "reason"])
 
 
-def filled_table(texture: xr.Dataset) -> pd.DataFrame:
-    """Surfaces whose scans had undefined points filled: the filled percentage per scan."""
-    table = pd.DataFrame({
-        "surface": texture["surface"].values.astype(str),
-        "areal_filled_pct": 100 * texture["filled_fraction_areal"].values,
-        "profile_filled_pct": 100 * texture["filled_fraction_profile"].values,
-    })
-    return table[(table[["areal_filled_pct", "profile_filled_pct"]] > 0).any(axis=1)]
-
-
-def other_surfaces(texture: xr.Dataset, directory: Path | None = None) -> pd.DataFrame:
-    """Parameters of the surfaces the thesis's tables do not list (a user's own scans)."""
-    published = pd.concat([read_published(t, directory) for t in ("A.1", "A.26", "A.27")])
-    listed = set(published["surface"])
-    listed |= {f"{test}_specimen_100x" for test in read_published("2.6", directory)["test"]}
-    ours = texture[[*AREAL, *PROFILE, "objective", "lambda_c"]].to_dataframe()
-    ours = ours[~ours.index.isin(listed)]
-    return ours.reset_index().rename(columns={"lambda_c": "lambda_c_um"})
-
-
 def _maps_figure(datasets: dict[str, xr.Dataset]) -> plt.Figure:
     areal = {k: v for k, v in datasets.items() if "roughness_map" in v}
     n = max(len(areal), 1)
@@ -152,10 +56,11 @@ def _maps_figure(datasets: dict[str, xr.Dataset]) -> plt.Figure:
         ax.set_axis_off()
     for ax, (surface, ds) in zip(axes.ravel(), areal.items(), strict=False):
         z = ds["roughness_map"].values
-        limit = 3 * float(ds["Sq"])
-        ax.imshow(z.T, origin="lower", cmap="RdBu_r", vmin=-limit, vmax=limit,
-                  extent=(0, float(ds["map_x"][-1]), 0, float(ds["map_y"][-1])))
-        ax.set_title(f"{surface}\nSq {1000 * float(ds['Sq']):.0f} nm", fontsize=7)
+        image = ax.imshow(z.T, origin="lower", cmap="RdBu_r",
+                          extent=(0, float(ds["map_x"][-1]), 0, float(ds["map_y"][-1])))
+        image.set_clim(-3 * float(ds["Sq"]), 3 * float(ds["Sq"]))  # +-3 Sq
+        ax.set_title(f"{surface}\nSq {significant(float(ds['Sq']), 3)} "
+                     f"{ds['Sq'].attrs.get('units', 'um')}", fontsize=7)
     fig.suptitle("Roughness surfaces (x right, y up; colour +-3 Sq)", fontsize=9)
     fig.tight_layout()
     return fig
@@ -185,10 +90,9 @@ def _spectra_figure(datasets: dict[str, xr.Dataset]) -> plt.Figure:
         if "psd_areal" not in ds:
             continue
         ax_psd.loglog(ds["q_areal"], ds["psd_areal"], lw=0.7, label=surface)
-        sq = float(ds["Sq"])
-        ax_hist.plot(ds["roughness_height"] / sq, ds["height_density"] * sq, lw=0.7)
+        ax_hist.plot(*height_distribution(ds), lw=0.7)
     z = np.linspace(-4, 4, 200)
-    ax_hist.plot(z, np.exp(-z**2 / 2) / np.sqrt(2 * np.pi), "k--", lw=1, label="Gaussian")
+    ax_hist.plot(z, gaussian_density(z), "k--", lw=1, label="Gaussian")
     ax_hist.set_yscale("log")
     ax_hist.set_ylim(1e-4, 1)
     ax_hist.set_xlim(-6, 8)
@@ -209,6 +113,7 @@ def build_section(seq_path: Path, report_dir: Path, published_dir: Path | None,
     (``contactlab/report/sections/10_surfaces.yaml``)."""
     with xr.open_dataset(seq_path) as seq:
         table = seq_comparison(seq.load(), published_seq(published_dir))
+        without = seq.attrs.get("tests_without_surfaces", "")
     section = ReportSection("10_surfaces", report_dir)
     if texture_path is not None:
         with xr.open_dataset(texture_path) as texture:
@@ -232,7 +137,7 @@ def build_section(seq_path: Path, report_dir: Path, published_dir: Path | None,
         section.paragraph("tolerances")
         section.table(other_surfaces(texture, published_dir), "surfaces_other")
         filled = filled_table(texture)
-        section.paragraph("undefined", limit=100 * float(texture.attrs["max_undefined_fraction"]),
+        section.paragraph("undefined", limit=undefined_limit(texture),
                           filled=section.say("filled", count=len(filled)) if len(filled)
                           else section.say("none_filled"))
         section.table(filled, "surfaces_filled")
@@ -246,6 +151,8 @@ def build_section(seq_path: Path, report_dir: Path, published_dir: Path | None,
             section.figure(_profiles_figure(datasets), "surfaces_profiles")
             section.figure(_spectra_figure(datasets), "surfaces_spectra")
     section.paragraph("seq")
+    if without:
+        section.note("without_surfaces", tests=without)
     section.table(table, "seq")
     fig, ax = plt.subplots(figsize=(6, 3.2))
     x = np.arange(len(table))

@@ -9,7 +9,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from contactlab.testsheet import surface_id
+from contactlab.testsheet import surface_id, tests_with_surfaces, tests_without_surfaces
 
 
 def equivalent_roughness(sq_1: np.ndarray | float, sq_2: np.ndarray | float) -> np.ndarray:
@@ -38,12 +38,22 @@ def _sq_um(roughness: pd.DataFrame, surface: str) -> float:
     return value / 1000.0 if unit == "nm" else value
 
 
+def with_surfaces(sheet: pd.DataFrame) -> pd.DataFrame:
+    """The rows of the test sheet that name their interface's surfaces (a test without
+    them has no Seq, :func:`contactlab.testsheet.has_surfaces`)."""
+    return sheet.loc[tests_with_surfaces(sheet)]
+
+
 def seq_dataset(sheet: pd.DataFrame, roughness: pd.DataFrame) -> xr.Dataset:
-    """Seq of each test's imaged interface (specimen and pad sides of the sheet), in um.
+    """Seq of each test's imaged interface (specimen and pad sides of the sheet), in um;
+    tests without surfaces are left out and named in the attribute
+    ``tests_without_surfaces`` (absent when every test has them).
 
     ``roughness`` holds one row per surface id with an ``Sq`` column
     (Tables A.1 and A.27) and its unit in ``attrs["units"]``.
     """
+    without = tests_without_surfaces(sheet)
+    sheet = with_surfaces(sheet)
     tests = list(sheet["id"])
     sq_specimen = np.array(
         [
@@ -55,7 +65,7 @@ def seq_dataset(sheet: pd.DataFrame, roughness: pd.DataFrame) -> xr.Dataset:
         [_sq_um(roughness, surface_id(row.pad, row.pad_side)) for row in sheet.itertuples()]
     )
     um = {"units": "um"}
-    return xr.Dataset(
+    ds = xr.Dataset(
         {
             "Sq_specimen": ("test", sq_specimen, {"long_name": "Sq of the specimen surface", **um}),
             "Sq_pad": ("test", sq_pad, {"long_name": "Sq of the pad surface", **um}),
@@ -67,6 +77,9 @@ def seq_dataset(sheet: pd.DataFrame, roughness: pd.DataFrame) -> xr.Dataset:
         },
         coords={"test": ("test", np.array(tests, dtype=object), {"long_name": "test id"})},
     )
+    if without:
+        ds.attrs["tests_without_surfaces"] = ", ".join(without)
+    return ds
 
 
 def add_scan_seq(ds: xr.Dataset, sheet: pd.DataFrame, sq_um: pd.Series,
@@ -86,7 +99,7 @@ def add_scan_seq(ds: xr.Dataset, sheet: pd.DataFrame, sq_um: pd.Series,
                            "(name an areal scan for it in the surface sheet)")
         return float(value)
 
-    rows = list(sheet.itertuples())
+    rows = list(with_surfaces(sheet).itertuples())
     specimen = np.array([lookup(surface_id(r.specimen, r.specimen_side), r.id) for r in rows])
     pad = np.array([lookup(surface_id(r.pad, r.pad_side), r.id) for r in rows])
     um = {"units": "um"}

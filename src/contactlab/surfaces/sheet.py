@@ -7,26 +7,14 @@ scan files and the measurement settings of sec. 2.3.4. Keeping it apart from the
 test sheet lets one surface serve several tests (a specimen side is shared by
 three tests) without repeating its scans.
 
-Columns:
-
-- ``surface``: surface id (``rough_specimen_B``, ``RU1_pad_B``, ``S1_specimen_normal``...).
-- ``objective``: one of :data:`OBJECTIVES`: ``20x`` or ``100x`` (the Alicona objectives of
-  sec. 2.3.4), or ``other`` for any other instrument or lens (informational; the scan
-  file gives the pixel size). Anything else is refused, so a typo cannot pass.
-- ``areal_scan``: scan for the areal parameters (Sa, Sq, Sp, Str, fractal dimension),
-  or empty.
-- ``profile_scan``: scan whose lines give Ra, Rq, Rz, or empty.
-- ``profile_axis``: ``x`` or ``y``, the scan axis the profile lines run along.
-- ``profile_direction``: the direction sec. 2.3.4 states: ``lengthwise`` (along the
-  tangential load; for the ground surfaces this is across the grinding marks),
-  ``normal_to_pattern`` or ``parallel_to_pattern`` (structured specimens).
-- ``profile_length_mm``: length of each profile line (traverse), mm.
-- ``lambda_c_um``: Gaussian cut-off wavelength, um (800 for the 20x scans).
-- ``sampling_length_um`` (optional column): sampling length of the profile parameters, um;
-  blank (or no such column) = lambda_c, as ISO 4288 pairs them. Ra, Rq, Rz are means over
-  the whole sampling lengths in the evaluation length (80 % of the profile length), so it
-  may not exceed that. The 100x rows of Table 2.6 use 160 um, a fifth of their 0.8 mm
-  evaluation length (see the comment in config/surfaces.csv).
+Columns: ``workflow/schemas/surfaces.schema.yaml`` (documented in ``config/README.md``,
+"The surface sheet"; a test keeps the schema and :data:`COLUMNS`, :data:`OPTIONAL`,
+:data:`OBJECTIVES`, :data:`DIRECTIONS` in step). ``profile_length_mm`` is read in mm and
+kept in um (:attr:`SurfaceSpec.profile_length_um`); a blank ``sampling_length_um`` (or no
+such column) is lambda_c, as ISO 4288 pairs them: Ra, Rq, Rz are means over the whole
+sampling lengths in the evaluation length (80 % of the profile length), so it may not exceed
+that. The 100x rows of Table 2.6 use 160 um, a fifth of their 0.8 mm evaluation length (see
+the comment in config/surfaces.csv).
 """
 
 from __future__ import annotations

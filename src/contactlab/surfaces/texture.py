@@ -28,6 +28,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import xarray as xr
 
+from contactlab.io import variable
 from contactlab.surfaces.filters import mean_surface, remove_line, remove_plane, roughness_profile
 from contactlab.surfaces.parameters import (
     UndefinedParameter,
@@ -257,19 +258,14 @@ def surface_texture(spec: SurfaceSpec, histogram_bins: int, max_undefined_fracti
     return texture
 
 
-def _var(name: str, dims, data, **extra) -> xr.Variable:
-    long_name, units = ATTRS[name]
-    return xr.Variable(dims, data, {"long_name": long_name, "units": units, **extra})
-
-
 def surface_dataset(texture: SurfaceTexture) -> xr.Dataset:
     """The CF-style dataset of ``results/surfaces/<surface>.nc``."""
     spec = texture.spec
     data: dict[str, xr.Variable] = {}
     for name in AREAL + PROFILE:
         reason = texture.undefined.get(name)
-        data[name] = _var(name, (), texture.values[name],
-                          **({"undefined_reason": reason} if reason else {}))
+        data[name] = variable((), texture.values[name], *ATTRS[name],
+                              **{"undefined_reason": reason} if reason else {})
     for kind, fraction in texture.filled.items():
         data[f"filled_fraction_{kind}"] = xr.Variable((), fraction, FILLED[kind])
     data["lambda_c"] = xr.Variable((), spec.lambda_c_um,
@@ -349,7 +345,7 @@ def summary_dataset(datasets: list[xr.Dataset]) -> xr.Dataset:
                          "rerun them with one setting")
     surfaces = np.array([ds.attrs["surface"] for ds in datasets], dtype=object)
     data = {
-        name: _var(name, "surface", np.array([float(ds[name]) for ds in datasets]))
+        name: variable("surface", np.array([float(ds[name]) for ds in datasets]), *ATTRS[name])
         for name in AREAL + PROFILE
     }
     data["undefined_reason"] = xr.Variable(

@@ -226,8 +226,9 @@ def build_section(sweep_path: Path, compare_paths: list[Path], regimes_path: Pat
     section.figure(densities_figure(main), "receding_gap_densities")
     section.figure(tractions_figure(main), "receding_gap_tractions")
     section.figure(displacements_figure(main), "receding_gap_displacements")
-    section.table(points_table(profiles), "receding_gap_points", digits=4)
-    section.table(summary_table(sweeps), "receding_gap_summary", digits=0)
+    section.table(points_table(profiles), "receding_gap_points", digits=4, units="1")
+    section.table(summary_table(sweeps), "receding_gap_summary", units="1")
     every = max(1, regimes["w_hat"].size // 10)
-    section.table(thresholds_table(regimes, every), "receding_gap_thresholds", digits=4)
+    section.table(thresholds_table(regimes, every), "receding_gap_thresholds", digits=4,
+                  units="1")
     section.write(out)

@@ -17,6 +17,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from contactlab.display import units_of
 from contactlab.receding.core.summary import sweep_counts, unsolved_points
 from contactlab.receding.problems import registry
 from contactlab.report.section import ReportSection
@@ -264,20 +265,23 @@ def build_section(sweep_paths: Sequence[Path], profile_paths: Sequence[Path],
     for ds in sweeps:
         section.figure(sweep_figure(ds), "receding_rough_{problem}",
                        problem=ds.attrs["problem"])
-    section.table(smooth_limit_table(sweeps), "receding_rough_smooth_limit", digits=6)
-    section.table(summary_table(sweeps), "receding_rough_summary", digits=0)
-    section.table(sweep_table(sweeps), "receding_rough_sweep", digits=5)
+    section.table(smooth_limit_table(sweeps), "receding_rough_smooth_limit", digits=6,
+                  units="1")
+    section.table(summary_table(sweeps), "receding_rough_summary", units="1")
+    section.table(sweep_table(sweeps), "receding_rough_sweep", digits=5, units="1")
     section.heading("heading_pairs")
     problem = registry()[pairs.attrs["problem"]]
     load = section.say("pairs_patch" if problem.widths else "pairs_line",
                        problem=problem.name, w_hat=pairs.attrs["w_hat"])
     section.paragraph("pairs", load=load, E=pairs.attrs["E_kN_mm2"], nu=pairs.attrs["nu"])
     section.figure(pairs_figure(pairs), "receding_rough_pairs")
-    section.table(pairs_table(pairs), "receding_rough_pairs", digits=4)
+    section.table(pairs_table(pairs), "receding_rough_pairs", digits=4,
+                  units=units_of(pairs))
     section.heading("heading_profiles")
     section.figure(profiles_figure(profiles, "tractions"), "receding_rough_tractions")
     section.figure(profiles_figure(profiles, "displacements"), "receding_rough_displacements")
-    section.table(profile_points_table(profiles), "receding_rough_profile_points", digits=5)
+    section.table(profile_points_table(profiles), "receding_rough_profile_points", digits=5,
+                  units="1")
     section.heading("heading_fe")
     if fe is None:
         section.paragraph("no_fe")
@@ -286,5 +290,6 @@ def build_section(sweep_paths: Sequence[Path], profile_paths: Sequence[Path],
         which = ("fe_richardson" if int(fe.attrs.get("meshes", 1)) >= 3 else "fe_finest")
         section.paragraph("fe", meshes=meshes, which=section.say(which))
         section.figure(fe_figure(fe), "receding_rough_fe")
-    section.table(fe_table(fe), "receding_rough_fe", digits=4)
+    section.table(fe_table(fe), "receding_rough_fe", digits=4,
+                  units=units_of(fe) if fe is not None else "1")
     section.write(out)
