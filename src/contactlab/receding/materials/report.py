@@ -15,6 +15,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from contactlab.display import units_of
 from contactlab.report.section import ReportSection
 
 QUANTITIES = (("a", "end of the stick zone a/c"), ("b", "end of contact b/c"),
@@ -92,28 +93,24 @@ def fe_table(fe: xr.Dataset | None) -> pd.DataFrame:
 
 
 def _facts(ds: xr.Dataset) -> dict:
-    """The numbers of the sweep paragraph."""
-    beta = ds["beta"].values
-    a, b, k = (_ok(ds, q) for q in ("a", "b", "K_T"))
-    zero = int(np.argmin(np.abs(beta)))
-    low, high = 0, beta.size - 1
+    """The numbers of the sweep paragraph: the smallest beta, beta = 0 and the largest,
+    the changes from beta = 0 as the sweep records them (``materials.sweep``)."""
+    ok = ds.where((ds["converged"] == 1) & (ds["admissible"] == 1))
+    low, zero, high = ok.isel(beta=0), ok.sel(beta=0.0), ok.isel(beta=-1)
     return {"problem": ds.attrs["problem"], "f": float(ds.attrs["f"]),
             "alpha": float(ds.attrs["alpha"]), "nu2": float(ds.attrs["nu_half_plane"]),
             "n": int(ds.attrs["N"]), "n_check": int(ds.attrs.get("N_check", ds.attrs["N"])),
-            "a_low": a[low], "a_high": a[high], "a_zero": a[zero],
-            "beta_low": float(beta[low]), "beta_high": float(beta[high]),
-            "b_low": 100 * (b[low] / b[zero] - 1), "b_high": 100 * (b[high] / b[zero] - 1),
-            "k_low": 100 * (k[low] / k[zero] - 1), "k_high": 100 * (k[high] / k[zero] - 1)}
+            "a_low": float(low["a"]), "a_high": float(high["a"]), "a_zero": float(zero["a"]),
+            "beta_low": float(low["beta"]), "beta_high": float(high["beta"]),
+            "b_low": float(low["b_change"]), "b_high": float(high["b_change"]),
+            "k_low": float(low["K_T_change"]), "k_high": float(high["K_T_change"])}
 
 
 def _convergence(ds: xr.Dataset) -> dict:
-    def spread(name: str) -> float:
-        if f"{name}_check" not in ds:
-            return np.nan
-        return float(np.nanmax(np.abs(_ok(ds, name) - ds[f"{name}_check"].values)))
-
+    """The numbers of the convergence note: the sweep's spreads N -> N_check."""
     return {"n": int(ds.attrs["N"]), "n_check": int(ds.attrs.get("N_check", ds.attrs["N"])),
-            "da": spread("a"), "db": spread("b"), "dk": spread("K_T"),
+            **{key: float(ds[f"{name}_check_spread"]) if f"{name}_check_spread" in ds
+               else np.nan for key, name in (("da", "a"), ("db", "b"), ("dk", "K_T"))},
             "solved": int(((ds["converged"] == 1) & (ds["admissible"] == 1)).sum()),
             "points": int(ds.sizes["beta"])}
 
@@ -133,18 +130,19 @@ def build_section(sweep_path: Path, pair_path: Path, fe_path: Path | None, repor
     section.paragraph("pair", pair=name, alpha=float(pair.attrs["dundurs_alpha"]),
                       beta=float(pair.attrs["dundurs_beta"]), f=float(pair.attrs["f"]),
                       w_hat=float(pair.attrs["w_hat"]))
-    section.table(pair_table(pair), "receding_materials_pair", digits=5)
+    section.table(pair_table(pair), "receding_materials_pair", digits=5, units="1")
     section.heading("heading_sweep")
     section.paragraph("sweep", **_facts(ds))
     section.note("convergence", **_convergence(ds))
     section.figure(beta_figure(ds), "receding_materials_beta")
     section.figure(profiles_figure(ds), "receding_materials_profiles")
-    section.table(beta_table(ds), "receding_materials_beta", digits=5)
+    section.table(beta_table(ds), "receding_materials_beta", digits=5, units="1")
     section.heading("heading_fe")
     if fe is None:
         section.paragraph("no_fe")
     else:
         meshes = ", ".join(f"{h:g}" for h in np.atleast_1d(fe.attrs.get("h", [])))
         section.paragraph("fe", meshes=meshes)
-    section.table(fe_table(fe), "receding_materials_fe", digits=4)
+    section.table(fe_table(fe), "receding_materials_fe", digits=4,
+                  units=units_of(fe) if fe is not None else "1")
     section.write(out)

@@ -115,6 +115,10 @@ def sweep_beta(problem: str, f: float, alpha: float, betas: Sequence[float], n: 
                  for c in checks]),
                 {"long_name": f"{name} at N = {n_check} (the convergence check)",
                  "units": ONE})
+            ds[f"{name}_check_spread"] = ((), float(np.nanmax(np.abs(
+                ds[name].where(ok).values - ds[f"{name}_check"].values), initial=0.0)), {
+                "long_name": f"largest |{name} at N - {name} at N_check| of the solved points",
+                "units": ONE})
         ds.attrs["N_check"] = n_check
     ds = ds.merge(_profiles(solutions, values, f, profile_x_max, profile_points))
     ds.attrs.update(
