@@ -236,3 +236,53 @@ def test_a_rough_interface_between_two_materials() -> None:
     certificates = two.certify()
     assert certificates["equilibrium_error"] < 1e-4 and certificates["end_gap"] < 1e-3
     assert two.b < one.b - 0.1
+    # the normal traction alone (no shear kernels) is the two materials' too
+    x = np.linspace(0.0, 4.0, 17)
+    assert two.normal_traction(x) == pytest.approx(two.tractions(x)[1], abs=1e-12)
+
+
+@pytest.mark.parametrize("materials", [ONE_MATERIAL, TI_ON_STEEL])
+def test_the_compliance_table_seeds_one_material_only(monkeypatch, materials) -> None:
+    """The compliance table (``line.compliant_guess``) holds the line load's answers in one
+    material: a cold point of two materials neither starts from it nor is refused by it
+    (the table refuses f = 0.02, C = 1e-3 at N = 100 in one material) but follows the
+    continuation from the smooth solution (``compliance_seed``); one material starts
+    from the table and is refused."""
+    from types import SimpleNamespace
+
+    from contactlab.receding.core.interface import linear_interface
+    from contactlab.receding.liftoff import solver
+    from contactlab.receding.liftoff.line import compliant_guess
+
+    starts = []
+
+    def search(*args, **kwargs):
+        starts.append(args[7])
+        return SimpleNamespace(converged=False, admissible=False, a=np.nan, b=np.nan, n=100,
+                               f=args[1], message="", regime="", checks={}, refusal="")
+
+    monkeypatch.setattr(solver, "solve_liftoff", search)
+    monkeypatch.setattr(solver, "compliance_seed", lambda *args: (0.3, 1.8))
+    smooth = SimpleNamespace(converged=True, a=0.01, b=1.4)
+    table = compliant_guess(0.02, 1e-3)
+    sol = solver.solve_compliant(make_load("line"), 0.02, 100, 3.5, 3.5, 5.0, True, "line",
+                                 linear_interface(1e-3, 7e-4), None, lambda: smooth, table,
+                                 materials)
+    if materials.same:
+        assert starts == [table] and sol.refusal.startswith("stick zone not resolved")
+    else:
+        assert starts == [(0.3, 1.8)] and not sol.refusal
+
+
+def test_the_stick_zone_limit_is_not_taken_at_once_for_two_materials() -> None:
+    """Below the critical friction one material's stick zone is solved in its limit before
+    any resolved search (``limit.below_resolution``); that limit is one material's, so two
+    materials go the resolved way."""
+    from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT, below_resolution
+    from contactlab.receding.liftoff.line import line_guess
+
+    a0, b0 = line_guess(0.05)
+    args = (make_load("line"), 0.05, 100, 3.5, 3.5, 5.0, "line", True, a0, b0, STICK_ZONE_LIMIT)
+    one = below_resolution(*args)
+    assert one is not None and one.converged and one.regime == "no_stick"
+    assert below_resolution(*args, TI_ON_STEEL) is None

@@ -65,14 +65,11 @@ def material_options(section: str = MATERIALS, only: tuple[str, ...] | None = No
     return (
         Option("--young-layer", "Young's modulus E1 of the layer", float, unit="kN/mm^2",
                key=f"{section}.young_layer", only=only),
-        Option("--nu-layer", "Poisson's ratio nu1 of the layer", float,
-               key=f"{section}.nu_layer", only=only),
+        Option("--nu-layer", type=float, key=f"{section}.nu_layer", only=only),
         Option("--young-half-plane", "Young's modulus E2 of the half-plane", float,
                unit="kN/mm^2", key=f"{section}.young_half_plane", only=only),
-        Option("--nu-half-plane", "Poisson's ratio nu2 of the half-plane", float,
-               key=f"{section}.nu_half_plane", only=only),
-        Option("--plane", "plane strain or plane stress (Kolosov's kappa)",
-               choices=("strain", "stress"), key=f"{section}.plane", only=only),
+        Option("--nu-half-plane", type=float, key=f"{section}.nu_half_plane", only=only),
+        Option("--plane", choices=("strain", "stress"), key=f"{section}.plane", only=only),
     )
 
 

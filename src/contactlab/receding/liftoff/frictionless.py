@@ -84,7 +84,8 @@ def assemble_frictionless(load: Load, n: int, b: float, lam_a: float, lam_b: flo
     if interface.normal:
         pre = Preformed(load, b, e, materials) if preformed else None
         system = extend(system, geometry(interface, 0.0, b, n, materials),
-                        lambda x: base_tractions(load, glide, climb, pre, x, materials),
+                        lambda x, shear: base_tractions(load, glide, climb, pre, x, shear,
+                                                        materials),
                         normal_rows=slice(0, m), normal_points=xb, shear_rows=slice(m, 2 * m),
                         shear_points=xa, friction=np.zeros(m), state=state)
     return system, glide, climb
