@@ -207,7 +207,8 @@ def test_a_run_by_hand_records_the_defaults_it_used(tmp_path: Path) -> None:
     assert history == shlex.join([
         "contactlab", "receding", "gap-profile", "--w-hat", "2.5", "--f", "0.5", "--points",
         "21", "--out", str(out), "--n", "100", "--x-max", "6.0", "--stick-zone-limit",
-        "1e-30", "--refine-max-n", "400"])
+        "1e-30", "--refine-max-n", "400", "--young-layer", "113.8", "--nu-layer", "0.31",
+        "--young-half-plane", "113.8", "--nu-half-plane", "0.31", "--plane", "strain"])
 
 
 # ---- every command by hand, with only what the user must give -----------------------
@@ -248,6 +249,12 @@ MINIMAL: dict[str, list[str]] = {
         # a run without tested pairs (a sheet without the pairs' tests)
         "report-rough --sweeps {tmp}/rough_line.nc --profiles {tmp}/rough_profile.nc "
         "--report-dir {tmp}/report_no_pairs --out {tmp}/report_no_pairs/rough.html",
+        # the default beta sweep (eight points at N = 200) takes a minute: one point, N = 40
+        "beta-sweep --problem line --beta -0.1 --n 40 --n-check 48 --refine-max-n 48 "
+        "--out {tmp}/beta.nc",
+        "materials-pair --young-layer 210 --n 40 --refine-max-n 40 --out {tmp}/pair.nc",
+        "report-materials --sweep {tmp}/beta.nc --pair {tmp}/pair.nc --report-dir "
+        "{tmp}/report --out {tmp}/report/materials.html",
     ],
     "surfaces": [
         "demo-scans --sheet config/e2e_surfaces.csv --out-dir {tmp}/scans",
@@ -325,6 +332,10 @@ MINIMAL: dict[str, list[str]] = {
         "rough --problem line --compliance 1 --compliance-t 1.2 --level coarse "
         "--out {tmp}/rough_line.nc",
         "rough-compare {tmp}/rough_line.nc --out {tmp}/rough_compare.nc",
+        # a pair of materials on the coarse mesh and its comparison (DDT at N = 40)
+        "receding --problem line --level coarse --young-half-plane 210000 "
+        "--out {tmp}/line_two.nc",
+        "materials-compare {tmp}/line_two.nc --ddt-n 40 --out {tmp}/materials_compare.nc",
         "report --results {tmp}/gap.nc --report-dir {tmp}/report --out {tmp}/report/fe.html",
     ],
     "report": [

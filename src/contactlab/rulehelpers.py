@@ -510,6 +510,32 @@ def study_run(fe: dict, problem: str, edges: str, h: str, scale: str) -> dict[st
             "level": f"h{h}_s{scale}"}
 
 
+def materials_fe_runs(fe: dict, results: str = "results/") -> list[str]:
+    """<results>fe/materials/<pair>_h<h>.nc: the line-load runs of each pair of materials on
+    each mesh of ``fe.materials`` (none unless ``fe.enabled`` and ``fe.materials.enabled``)."""
+    spec = fe.get("materials", {})
+    if not (fe.get("enabled", False) and spec.get("enabled", False)):
+        return []
+    return [f"{results}fe/materials/{pair}_h{float(h):g}.nc" for pair in spec["pairs"]
+            for h in spec["h"]]
+
+
+def materials_fe_run(fe: dict, pair: str, h: str) -> dict[str, Any]:
+    """The values of one pair's run that ``contactlab fe receding`` does not take from the
+    config: the line load, f, h/c, the domain, the strip's and the block's E and nu and the
+    level name ``<pair>_h<h>``."""
+    spec = fe["materials"]
+    hs = {f"{float(v):g}": float(v) for v in spec["h"]}
+    if pair not in spec["pairs"] or h not in hs:
+        raise ValueError(f"fe materials run {pair}_h{h} is not in fe.materials (pairs "
+                         f"{sorted(spec['pairs'])}, h {sorted(hs)})")
+    body = spec["pairs"][pair]
+    return {"problem": "line", "f": spec["f"], "h": hs[h], "length": spec["length"],
+            "depth": spec["depth"], "young": body["young_layer"], "poisson": body["nu_layer"],
+            "young_half_plane": body["young_half_plane"],
+            "poisson_half_plane": body["nu_half_plane"], "level": f"{pair}_h{h}"}
+
+
 def asperity_runs(fe: dict, results: str = "results/") -> list[str]:
     """<results>fe/asperity/sy<sigma_y>.nc: the elastic model (sy0) and each yield stress."""
     spec = fe.get("asperity", {})

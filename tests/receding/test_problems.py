@@ -13,11 +13,10 @@ import pytest
 import yaml
 
 from contactlab.receding.core.interface import linear_interface, measured_interface
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.problem import (
     Continuation,
-    Elastic,
     Loading,
-    Materials,
     RecedingProblem,
 )
 from contactlab.receding.problems import (
@@ -157,8 +156,8 @@ def test_a_new_problem_is_a_module_and_nothing_else(
 @pytest.mark.parametrize(("call", "message"), [
     (lambda: registry()["gap"].point(0.5, 2.5, interface=linear_interface(1.0, 1.0)),
      "gap problem: no linear interface"),
-    (lambda: registry()["line"].point(0.5, materials=Materials(
-        Elastic(113.8, 0.31), Elastic(210.0, 0.3))), "different materials"),
+    (lambda: registry()["line"].point(0.5, materials=(113.8, 0.31)),
+     "materials must be a core.materials.Materials"),
     (lambda: registry()["line"].point(0.5, loading=Loading((1.0, 0.2, 1.0))),
      "load histories"),
     (lambda: registry()["uniform"].point(0.3, None), "w_hat must be a positive number"),
@@ -166,7 +165,8 @@ def test_a_new_problem_is_a_module_and_nothing_else(
     (lambda: registry()["table"].point(0.3, 1.0), "a pressure shape is needed"),
     (lambda: Continuation(axes={"f": -1}, keep="best"), "keep is better or last"),
     (lambda: Loading((1.0, -1.0)), "load factors must be positive"),
-    (lambda: Elastic(-1.0, 0.3), "E must be positive"),
+    (lambda: Materials(-1.0, 0.3), "young_layer must be a positive Young's modulus"),
+    (lambda: Materials(113.8, 0.5), "nu_layer must lie in"),
 ])
 def test_points_refuse_what_is_not_solved(call, message) -> None:
     with pytest.raises(ValueError, match=message):
@@ -175,8 +175,35 @@ def test_points_refuse_what_is_not_solved(call, message) -> None:
 
 def test_one_material_and_a_proportional_load_are_todays_problem() -> None:
     point = registry()["line"].point(0.5, interface=measured_interface(0.4, 1.6, 0.3))
-    assert point.materials.same and point.loading.proportional
-    assert Materials(Elastic(113.8, 0.31), Elastic(113.8, 0.31)).same
+    assert point.materials is ONE_MATERIAL and point.loading.proportional
+    assert Materials(210.0, 0.3, 210.0, 0.3).same
+    assert not Materials(113.8, 0.31, 210.0, 0.3).same
+
+
+def test_every_problem_takes_two_materials_into_its_solve(monkeypatch) -> None:
+    """The point's materials reach the solver of every problem (the gap problem, the line
+    load, the patches, a user's shape): each solve function is handed them."""
+    from contactlab.receding.gap import solver as gap_solver
+    from contactlab.receding.liftoff import line, patch
+
+    body = Materials(113.8, 0.31, 210.0, 0.3)
+    seen = []
+
+    def spy(*args, materials=None, **kwargs):
+        seen.append(materials)
+        raise ValueError("spied")
+
+    monkeypatch.setattr(gap_solver, "solve_gap", spy)
+    monkeypatch.setattr(line, "solve_line", spy)
+    monkeypatch.setattr(patch, "solve_patch", spy)
+    settings = {"lam": 3.5, "e": 5.0, "lam_b": 2.0, "e_minus_w": 5.0,
+                "stick_zone_limit": 1e-4}
+    for spec in registry().values():
+        shape = ((0.0, 1.0), (1.0, 0.0)) if spec.shape else None
+        point = spec.point(0.5, 1.0 if spec.widths else None, shape=shape, materials=body)
+        with pytest.raises(ValueError, match="spied"):
+            spec.solve(point, 40, None, **settings)
+    assert seen == [body] * len(registry())
 
 
 def test_the_gap_seed_tables_are_recomputed_by_the_solver() -> None:

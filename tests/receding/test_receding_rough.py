@@ -22,8 +22,8 @@ from contactlab.receding.core.interface import (
     linear_interface,
     measured_interface,
     mindlin_ratio,
-    modulus_scale,
 )
+from contactlab.receding.core.materials import ONE_MATERIAL
 from contactlab.receding.core.measured_law import StiffnessLaw, law_from_summary
 from contactlab.receding.core.solution import CHECK_TOL
 from contactlab.receding.liftoff.frictionless import solve_frictionless
@@ -216,9 +216,9 @@ def test_interface_law_numbers() -> None:
                                (law.tangential_compliance(P[1:] + h)
                                 - law.tangential_compliance(P[1:] - h)) / (2 * h), rtol=1e-6)
     assert law.closure_slope(np.array([1.0]))[0] == pytest.approx(0.5)  # C at p = T
-    assert modulus_scale(113.8, 0.31) == pytest.approx(113.8 / (4 * (1 - 0.31**2)))
+    assert ONE_MATERIAL.modulus == 113.8 / (4 * (1 - 0.31**2))
     # the briefing's number: RU1, 95 kN/mm^3 at 0.2 kN/mm^2, Ti-6Al-4V, c = 1 mm
-    assert compliance_number(113.8, 0.31, 1.0, 94.985) == pytest.approx(0.331, abs=1e-3)
+    assert compliance_number(ONE_MATERIAL, 1.0, 94.985) == pytest.approx(0.331, abs=1e-3)
 
 
 @pytest.fixture(scope="module")
@@ -235,14 +235,14 @@ def test_law_from_a_stiffness_summary(published_summary) -> None:
                            tangential_direction="combined", cc_basis="mean")
     assert float(ru1.k_n(0.2)) == pytest.approx(94.985, rel=1e-3)
     with pytest.raises(ValueError, match=r"RU1 .*p0 = -0.01125 kN/mm\^2"):
-        ru1.measured(T=0.4, E=113.8, nu=0.31, c=1.0)
-    lin = ru1.linearised(pressure=0.2, E=113.8, nu=0.31, c=1.0)
+        ru1.measured(T=0.4, materials=ONE_MATERIAL, c=1.0)
+    lin = ru1.linearised(pressure=0.2, materials=ONE_MATERIAL, c=1.0)
     assert lin.C == pytest.approx(0.331, abs=1e-3) and lin.C_T == pytest.approx(
         lin.C / ru1.cc)
     s3 = law_from_summary(published_summary, "S3", normal_direction="loading",
                           tangential_direction="combined", cc_basis="mean")
     assert s3.p0 == pytest.approx(0.2245)
-    law = s3.measured(T=0.4, E=113.8, nu=0.31, c=10.0)
+    law = s3.measured(T=0.4, materials=ONE_MATERIAL, c=10.0)
     assert law.kind == "measured" and law.pi0 == pytest.approx(0.2245 / 0.4)
     with pytest.raises(ValueError, match=r"P0 of test RU1 .*mean.* is missing"):
         law_from_summary(published_summary, "RU1", normal_direction="mean",
@@ -260,11 +260,11 @@ def test_law_from_a_stiffness_summary(published_summary) -> None:
     (lambda: linear_interface(0.1, np.inf), "compliance number C_T"),
     (lambda: measured_interface(0.1, 0.1, 0.0), "pi0 = 0.0"),
     (lambda: measured_interface(0.1, 0.1, -1.0), "p0/T must be positive"),
-    (lambda: compliance_number(113.8, 0.31, 1.0, 0.0), "k_n must be positive, got 0.0"),
-    (lambda: compliance_number(113.8, 0.31, -1.0, 90.0), "thickness c must be positive"),
+    (lambda: compliance_number(ONE_MATERIAL, 1.0, 0.0), "k_n must be positive, got 0.0"),
+    (lambda: compliance_number(ONE_MATERIAL, -1.0, 90.0), "thickness c must be positive"),
     (lambda: StiffnessLaw(-1.0, 0.1, 0.5, 0.3), "beta_n must be positive"),
     (lambda: StiffnessLaw(500.0, -0.01, 0.5, 0.3).linearised(
-        pressure=0.005, E=113.8, nu=0.31, c=1.0), "k_n = -2.5 kN/mm\\^3 <= 0"),
+        pressure=0.005, materials=ONE_MATERIAL, c=1.0), "k_n = -2.5 kN/mm\\^3 <= 0"),
     (lambda: rough_point("line", -0.1, 0.0, 1.0, 1.0, n=64, lam=3.5, e_extra=5.0),
      "friction coefficient f must be >= 0, got -0.1"),
     (lambda: rough_point("line", 0.3, 0.0, -1.0, 1.0, n=64, lam=3.5, e_extra=5.0),
@@ -335,7 +335,7 @@ def test_tested_pairs_against_their_linearisation(published_summary) -> None:
                                 tangential_direction="combined", cc_basis="mean")
             for t in ("RU1", "SU3")}
     ds = tested_pairs(laws, {"RU1": 0.2, "SU3": 0.6}, problem="uniform", w_hat=1.0,
-                      E=113.8, nu=0.31, c_values=[10.0], n=64, lam=2.0, e_extra=5.0)
+                      materials=ONE_MATERIAL, c_values=[10.0], n=64, lam=2.0, e_extra=5.0)
     b = ds["b"].sel(c=10.0)
     assert b.sel(test="SU3", law="smooth") < b.sel(test="SU3", law="linear") \
         < b.sel(test="SU3", law="measured")

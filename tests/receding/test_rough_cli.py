@@ -12,6 +12,7 @@ import xarray as xr
 
 from contactlab.cli import main
 from contactlab.receding.core.interface import mindlin_ratio
+from contactlab.receding.core.materials import ONE_MATERIAL
 from contactlab.receding.liftoff.rough import rough_point
 from contactlab.schema import schema_default
 
@@ -139,7 +140,7 @@ def test_solve_with_a_tested_pairs_law_is_the_python_route(
     from contactlab.receding.core.measured_law import law_from_summary
     from contactlab.receding.liftoff.line import solve_line
 
-    scale = ["--c", "1", "--load", "0.4", "--E", "113.8", "--nu", "0.31"]
+    scale = ["--c", "1", "--load", "0.4", "--young-layer", "113.8", "--nu-layer", "0.31"]
     base = ["--problem", "line", "--f", "0.5", "--n", "100", *scale]
     tested = ["--interface-from-test", "S3", "--summary", str(published_summary_file)]
     out = _solve_json(capsys, *base, *tested)
@@ -147,7 +148,7 @@ def test_solve_with_a_tested_pairs_law_is_the_python_route(
         summary = ds.load()
     law = law_from_summary(summary, "S3", normal_direction="loading",
                            tangential_direction="combined", cc_basis="mean")
-    measured = law.measured(T=0.4, E=113.8, nu=0.31, c=1.0)
+    measured = law.measured(T=0.4, materials=ONE_MATERIAL, c=1.0)
     python = solve_line(0.5, 100, 3.5, 5.0, interface=measured)
     smooth = solve_line(0.5, 100, 3.5, 5.0)
     assert out["interface"] == "measured" and out["converged"] and out["admissible"]
@@ -227,9 +228,9 @@ def test_rough_pairs_take_the_line_load(tmp_path: Path, published_summary_file: 
         T = 2.0 * ds.attrs["w_hat"] * p
         row = ds.sel(test="S3", c=1.0)
         lam, e = schema_default("receding.line.lambda"), schema_default("receding.line.e")
-        for name, interface in (("measured", law.measured(T=T, E=113.8, nu=0.31, c=1.0)),
-                                ("linear", law.linearised(pressure=p, E=113.8, nu=0.31,
-                                                          c=1.0))):
+        for name, interface in (("measured", law.measured(T=T, materials=ONE_MATERIAL, c=1.0)),
+                                ("linear", law.linearised(pressure=p,
+                                                          materials=ONE_MATERIAL, c=1.0))):
             python = solve_line(law.f, 64, lam, e, interface=interface)
             assert float(row["b"].sel(law=name)) == pytest.approx(python.b, rel=1e-9)
             assert float(row["C"].sel(law=name)) == pytest.approx(interface.C, rel=1e-12)

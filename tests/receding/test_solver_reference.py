@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from solver_reference import GROUPS, PATH, compute
+from solver_reference import GROUPS, PATH, compute, gap_record, liftoff_record
 
 REFERENCE = json.loads(PATH.read_text())
 #: relative tolerance on a, b, K_T (a1, a2, a3 for the gap) and on threshold frictions
@@ -95,3 +95,34 @@ def test_reference_covers_every_regime() -> None:
                                                    if r["admissible"]}
     assert sum(r["converged"] and r["admissible"] for r in lift) >= 15
     assert np.isfinite(REFERENCE["sweeps"]["gap threshold w=2.5"]["f_sep"])
+
+
+#: A layer and a half-plane given explicitly as one material, other than the default's
+#: constants (steel on steel, plane strain): the thesis's dimensionless problem.
+STEEL_ON_STEEL = (210.0, 0.3, 210.0, 0.3)
+
+
+def test_one_material_given_explicitly_gives_the_recorded_answers() -> None:
+    """Equal constants of the layer and the half-plane, passed through the problem objects
+    (``registry()[name].point(..., materials=...)``) as a user's config or options would,
+    reproduce the recorded one-material answers of the gap problem, the line load and a
+    patch (``data/solver_reference.json``, RTOL), with their certificates."""
+    from contactlab.receding.core.materials import Materials
+    from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT
+    from contactlab.receding.liftoff.patch import solve_patch
+    from contactlab.receding.problems import registry
+
+    steel = Materials(*STEEL_ON_STEEL)
+    assert steel.same and (steel.alpha, steel.beta) == (0.0, 0.0)
+    problems = registry()
+    gap = problems["gap"].solve(problems["gap"].point(0.5, 2.5, materials=steel), 100,
+                                stick_zone_limit=STICK_ZONE_LIMIT)
+    line = problems["line"].solve(problems["line"].point(0.5, materials=steel), 500, lam=3.5,
+                                  e=5.0, stick_zone_limit=STICK_ZONE_LIMIT)
+    patch = solve_patch("hertz", 0.3, 1.0, 100, materials=steel)
+    bad = [*compare_point(gap_record(gap), REFERENCE["gap"]["w=2.5 f=0.5 N=100"], "gap"),
+           *compare_point(liftoff_record(line), REFERENCE["line"]["f=0.5 preformed=True"],
+                          "line"),
+           *compare_point(liftoff_record(patch), REFERENCE["patch"]["hertz f=0.3 w=1.0"],
+                          "hertz patch")]
+    assert not bad, "\n".join(bad)

@@ -196,6 +196,53 @@ rule fe_rough_compare:
         "contactlab fe rough-compare {params.args:q} {input:q} --out {output:q} 2> {log:q}"
 
 
+# ---- Two materials (a strip of one on a block of the other): the line load of each pair
+# of fe.materials on its mesh series, against the DDT of the pair's Dundurs parameters
+# (results/fe/materials_compare.nc, shown in report section 53 of receding.smk).
+
+
+rule fe_receding_materials:
+    """One pair of materials (fe.materials.pairs) on one mesh: the line load, far field."""
+    output:
+        result("fe/materials/{pair}_h{h}.nc"),
+    wildcard_constraints:
+        pair=r"[A-Za-z][A-Za-z0-9]*(_[A-Za-z0-9]+)*",
+        h=r"[0-9.e-]+",
+    params:
+        args=lambda wc: command_args(
+            "fe receding", config, **rulehelpers.materials_fe_run(FE, wc.pair, wc.h)
+        ),
+    priority: 10
+    log:
+        logs("fe/materials_{pair}_h{h}.log"),
+    benchmark:
+        logs("benchmarks/fe_materials_{pair}_h{h}.tsv"),
+    threads: 1
+    shell:
+        "contactlab fe receding {params.args:q} --threads {threads:q} --out {output:q}"
+        " 2> {log:q}"
+
+
+rule fe_materials_compare:
+    """results/fe/materials_compare.nc: b, a, K_T of each pair (h -> 0) against the DDT."""
+    input:
+        rulehelpers.materials_fe_runs(FE, RESULTS),
+    output:
+        result("fe/materials_compare.nc"),
+    params:
+        args=lambda wc: command_args("fe materials-compare", config),
+    log:
+        logs("fe/materials_compare.log"),
+    benchmark:
+        logs("benchmarks/fe_materials_compare.tsv"),
+    shell:
+        "contactlab fe materials-compare {params.args:q} {input:q} --out {output:q} 2> {log:q}"
+
+
+if rulehelpers.materials_fe_runs(FE, RESULTS):
+    ALL_TARGETS.append(result("fe/materials_compare.nc"))
+
+
 rule fe_report:
     """Report section: FE against DDT (Figs 8.3-8.19), agreement and convergence, Fig. 3.8."""
     input:

@@ -14,6 +14,7 @@ from contactlab.rulehelpers import (
     gap_profile_point,
     liftoff_profile_name,
     liftoff_profile_point,
+    materials_fe_runs,
     patch_names,
     patch_shape,
     rough_fe_runs,
@@ -437,6 +438,67 @@ ALL_TARGETS.extend(
 REPORT_SECTIONS.append(report_page("52_receding_rough"))
 
 
+# ---- Two materials (a layer on a dissimilar half-plane, receding.materials, which every
+# receding command above takes too): a lift-off problem over Dundurs' beta at fixed alpha
+# and f, the configured pair beside one material, and report section 53 (with the FE pairs
+# of fe.smk, results/fe/materials_compare.nc, when they run).
+
+
+rule receding_beta_sweep:
+    """results/receding/materials/beta_sweep.nc: a, b, K_T and profiles over beta."""
+    output:
+        result("receding/materials/beta_sweep.nc"),
+    params:
+        args=lambda wc: command_args("receding beta-sweep", config),
+    log:
+        logs("receding/beta_sweep.log"),
+    benchmark:
+        logs("benchmarks/receding_beta_sweep.tsv"),
+    shell:
+        "contactlab receding beta-sweep {params.args:q} --out {output:q} 2> {log:q}"
+
+
+rule receding_materials_pair:
+    """results/receding/materials/pair.nc: the configured pair beside one material."""
+    output:
+        result("receding/materials/pair.nc"),
+    params:
+        args=lambda wc: command_args("receding materials-pair", config),
+    log:
+        logs("receding/materials_pair.log"),
+    benchmark:
+        logs("benchmarks/receding_materials_pair.tsv"),
+    shell:
+        "contactlab receding materials-pair {params.args:q} --out {output:q} 2> {log:q}"
+
+
+rule receding_report_materials:
+    """Report section 53: the pair, the coupling over beta and the FE pairs."""
+    input:
+        sweep=result("receding/materials/beta_sweep.nc"),
+        pair=result("receding/materials/pair.nc"),
+        fe=[result("fe/materials_compare.nc")] if materials_fe_runs(config["fe"]) else [],
+    output:
+        **report_section("53_receding_materials"),
+    params:
+        fe=lambda wc, input: ["--fe", *input.fe] if input.fe else [],
+        report_dir=lambda wildcards, output: Path(output.section).parent.parent,
+    log:
+        logs("report/receding_materials.log"),
+    benchmark:
+        logs("benchmarks/receding_report_materials.tsv"),
+    shell:
+        "contactlab receding report-materials --sweep {input.sweep:q}"
+        " --pair {input.pair:q} {params.fe:q}"
+        " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
+
+
+ALL_TARGETS.extend(
+    [result("receding/materials/beta_sweep.nc"), result("receding/materials/pair.nc")]
+)
+REPORT_SECTIONS.append(report_page("53_receding_materials"))
+
+
 # Seconds-long gathers, light solves and reports: on a cluster they run in the
 # Snakemake process itself instead of queueing as jobs of their own.
 localrules:
@@ -453,3 +515,4 @@ localrules:
     receding_rough_gather,
     receding_rough_profile,
     receding_report_rough,
+    receding_report_materials,

@@ -31,6 +31,7 @@ EXAMPLES = """\
   contactlab fe compare --problem uniform --run run.nc --ddt-n 50 --out uniform.nc
   contactlab fe convergence gap_coarse.nc gap_medium.nc --out convergence_gap.nc
   contactlab fe study --problem line line_*.nc --out study_line.nc
+  contactlab fe materials-compare pair_*.nc --out materials_compare.nc
   contactlab fe rough --problem line --compliance 1 --compliance-t 1.2143 --h 0.05 --out r.nc
   contactlab fe rough-compare r.nc --out rough_compare.nc
   contactlab fe asperity --yield-stress 3000 --out results/fe/asperity/sy3000.nc
@@ -68,6 +69,7 @@ def _model(args: argparse.Namespace) -> tuple:
     model = RecedingModel(
         problem=args.problem, w=args.w_hat, f=args.f, young=args.young, poisson=args.poisson,
         edges=args.edges, increments=args.increments,
+        young_half_plane=args.young_half_plane, poisson_half_plane=args.poisson_half_plane,
         **({"farfield_passes": args.farfield_passes} if args.farfield_passes else {}),
     )
     geom = StripBlockGeometry(
@@ -153,6 +155,7 @@ def _compare(args: argparse.Namespace) -> None:
 
     from contactlab.fe.compare import agreement
     from contactlab.fe.ddt import reference
+    from contactlab.fe.study import run_materials
     from contactlab.io import stamp, write_netcdf
 
     with xr.open_dataset(args.run) as fe:
@@ -162,9 +165,10 @@ def _compare(args: argparse.Namespace) -> None:
         raise ValueError(f"{args.run}: a run of the {problem} problem, not --problem "
                          f"{args.problem}")
     w = float(fe.attrs.get("w_hat", 0.0))
+    body = run_materials(fe)
     ref = reference(problem, float(fe.attrs["f"]), w, args.ddt_n, fe["x"].values,
                     args.ddt_file, lam=args.lam, e=args.e, lam_b=args.lam_b,
-                    e_minus_w=args.e_minus_w)
+                    e_minus_w=args.e_minus_w, **({} if body.same else {"materials": body}))
     ds = agreement(fe, ref)
     stamp(
         ds,
@@ -212,6 +216,23 @@ def _study(args: argparse.Namespace) -> None:
         history=args.history,
         inputs=runs,
     )
+    write_netcdf(out, args.out)
+
+
+def _materials_compare(args: argparse.Namespace) -> None:
+    from contactlab.fe.materials import pair_table
+    from contactlab.io import load_datasets, stamp, write_netcdf
+
+    runs = load_datasets(args.runs, "FE run")
+    problems = sorted({str(r.attrs.get("problem")) for r in runs})
+    if problems != ["line"]:
+        raise ValueError(f"fe materials-compare: runs of the {', '.join(problems)} problem; "
+                         "the pairs of materials are compared on the line load")
+    out = pair_table(runs, args.ddt_n, lam=args.lam, e=args.e)
+    stamp(out, title="Two materials: FE (CalculiX) against the distributed dislocations, "
+                     "a, b and K_T per pair",
+          source="contactlab fe receding runs with --young-half-plane; DDT "
+                 "contactlab.receding.core.bimaterial", history=args.history, inputs=runs)
     write_netcdf(out, args.out)
 
 
@@ -312,9 +333,14 @@ def _model_options() -> tuple[Option, ...]:
         Option("--edges", "block far edge free on rollers (Fig. 8.1), encastre, or "
                "displaced as the half-plane under the net load (farfield; line, uniform)",
                choices=("roller", "encastre", "farfield"), key=_by_problem("edges")),
-        Option("--young", "Young's modulus E (results are normalised)", float,
-               unit="N/mm^2", key=_by_problem("young")),
+        Option("--young", "Young's modulus E of the strip (the layer; results are "
+               "normalised)", float, unit="N/mm^2", key=_by_problem("young")),
         Option("--poisson", "Poisson's ratio", POISSON, default=0.3),
+        Option("--young-half-plane", "Young's modulus of the block (the half-plane; "
+               "absent: --young, one material)", positive_float, unit="N/mm^2",
+               default=None),
+        Option("--poisson-half-plane", "Poisson's ratio of the block (absent: --poisson)",
+               POISSON, default=None),
         Option("--layer-rows", "element rows through the strip (default: about 0.4 c/h, "
                ">= 8)", number_in(8, integer=True), default=None),
         Option("--growth", "element growth ratio away from the fine mesh",
@@ -411,6 +437,20 @@ COMMANDS = (
                         key="fe.study.ddt_n"),
                  *_reference(), out_option()),
         run=_study, select="problem"),
+    Command(
+        NAME, "materials-compare", "pairs of materials: FE against the DDT",
+        description="b, a and K_T of line-load runs with two materials (`fe receding "
+                    "--young-half-plane ...`), grouped by pair and extrapolated to h -> 0 "
+                    "over their meshes, beside the distributed-dislocation solution of the "
+                    "pair's Dundurs parameters.",
+        options=(Option("runs", "outputs of `fe receding` (line load)", input_file,
+                        nargs="+"),
+                 Option("--ddt-n", "DDT Gauss-Chebyshev points N (the largest is the "
+                        "reference, the spread over the others its uncertainty)", int,
+                        nargs="+", key="fe.materials.ddt_n"),
+                 *(Option(o.flag, f"DDT: {o.help}", o.type, key=o.key) for o in line_options()),
+                 out_option()),
+        run=_materials_compare),
     Command(
         NAME, "asperity", "elastic-plastic stuck asperity (sec. 3.2.2)",
         description="3D half model of a sphere on a block (C3D10), elastic-perfectly "

@@ -19,6 +19,7 @@ import numpy as np
 import xarray as xr
 
 from contactlab.fe.receding import STICK_SLIP_NAME
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.solution import ContactSolution
 from contactlab.receding.gap.solver import solve_gap
 from contactlab.receding.liftoff.line import solve_line
@@ -52,26 +53,31 @@ class DdtReference:
 
 def solve(problem: str, f: float, w: float, n: int, *, lam: float | None = None,
           e: float | None = None, lam_b: float | None = None,
-          e_minus_w: float | None = None) -> tuple[ContactSolution, str]:
+          e_minus_w: float | None = None,
+          materials: Materials = ONE_MATERIAL) -> tuple[ContactSolution, str]:
     """The receding solution of ``problem`` and a description of the call.
 
     The line load needs ``lam`` and ``e`` (config ``receding.line``), the uniform patch
-    ``lam_b`` and ``e_minus_w`` (config ``receding.patches``; lambda_a follows sec. 7.4).
+    ``lam_b`` and ``e_minus_w`` (config ``receding.patches``; lambda_a follows sec. 7.4);
+    ``materials``: the strip's and the block's (``receding.core.materials``).
     """
+    body = {} if materials.same else {"materials": materials}
+    pair = "" if materials.same else f", {materials.describe()}"
     if problem == "gap":
-        return solve_gap(w, f, n), f"{_name(solve_gap)}(f={f}, w_hat={w}, N={n})"
+        return (solve_gap(w, f, n, **body),
+                f"{_name(solve_gap)}(f={f}, w_hat={w}, N={n}{pair})")
     if problem == "line":
         if lam is None or e is None:
             raise ValueError("the line-load reference needs lambda and e (receding.line)")
-        return (solve_line(f, n, lam, e),
-                f"{_name(solve_line)}(f={f}, N={n}, lambda={lam}, e={e})")
+        return (solve_line(f, n, lam, e, **body),
+                f"{_name(solve_line)}(f={f}, N={n}, lambda={lam}, e={e}{pair})")
     if problem == "uniform":
         if lam_b is None or e_minus_w is None:
             raise ValueError("the patch reference needs lambda_b and e - w "
                              "(receding.patches)")
-        return (solve_patch("uniform", f, w, n, lam_b=lam_b, e=w + e_minus_w),
+        return (solve_patch("uniform", f, w, n, lam_b=lam_b, e=w + e_minus_w, **body),
                 f"{_name(solve_patch)}('uniform', f={f}, w_hat={w}, N={n}, "
-                f"lambda_b={lam_b}, e={w + e_minus_w})")
+                f"lambda_b={lam_b}, e={w + e_minus_w}{pair})")
     raise ValueError(f"no distributed-dislocation solver for problem {problem!r}; "
                      f"the problems are {', '.join(SOLVERS)}")
 

@@ -1,9 +1,11 @@
 """CalculiX input decks for the plane-strain strip-on-block receding-contact models (sec. 8.2).
 
 Elements: linear plane-strain quads and triangles (CPE4, CPE3), both bodies linear
-elastic (E, nu). Interface: surface-to-surface penalty contact, strip bottom = slave,
-block top = master (as the thesis assigns them, sec. 8.1), Coulomb friction with a stick
-slope. Loads (symmetric half models, x = 0 is the plane of symmetry):
+elastic: one material (E, nu) as in the thesis, or the strip (layer) E, nu and the block
+(half-plane) ``young_half_plane``, ``poisson_half_plane`` (``RecedingModel``; a deck of
+one material is written exactly as before). Interface: surface-to-surface penalty
+contact, strip bottom = slave, block top = master (as the thesis assigns them, sec. 8.1),
+Coulomb friction with a stick slope. Loads (symmetric half models, x = 0 is the plane of symmetry):
 
 ``gap``      pressure p on the strip's top for x >= w (Fig. 8.1, the problem of ch. 5);
 ``line``     a line load P at (0, c), half of it on the half model (Fig. 8.7, ch. 6);
@@ -44,6 +46,8 @@ class RecedingModel:
     (:mod:`contactlab.fe.interface_law`): the contact penalty becomes the normal stiffness
     k_n of C and the stick slope the tangential stiffness k_t of C_T; 0 keeps the hard
     penalty (smooth interface) in that direction.
+    ``young``, ``poisson`` are the strip's (the layer's); ``young_half_plane`` and
+    ``poisson_half_plane`` the block's (None: the strip's, one material).
     """
 
     problem: str
@@ -60,6 +64,28 @@ class RecedingModel:
     farfield_forces: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
     compliance: float = 0.0
     compliance_t: float = 0.0
+    young_half_plane: float | None = None
+    poisson_half_plane: float | None = None
+
+    @property
+    def block_young(self) -> float:
+        return self.young if self.young_half_plane is None else self.young_half_plane
+
+    @property
+    def block_poisson(self) -> float:
+        return self.poisson if self.poisson_half_plane is None else self.poisson_half_plane
+
+    @property
+    def materials(self):
+        """The strip's and the block's constants as ``receding.core.materials.Materials``
+        (plane strain, N/mm^2)."""
+        from contactlab.receding.core.materials import Materials
+
+        return Materials(self.young, self.poisson, self.block_young, self.block_poisson)
+
+    @property
+    def two_materials(self) -> bool:
+        return not (self.block_young == self.young and self.block_poisson == self.poisson)
 
     def check(self) -> None:
         if self.problem not in PROBLEMS:
@@ -68,6 +94,8 @@ class RecedingModel:
             raise ValueError(f"edges must be one of {EDGES}, got {self.edges!r}")
         if not (self.f > 0 and self.load > 0 and self.young > 0 and 0 <= self.poisson < 0.5):
             raise ValueError(f"bad friction, load or material in {self}")
+        if not (self.block_young > 0 and 0 <= self.block_poisson < 0.5):
+            raise ValueError(f"bad half-plane material in {self}")
         if self.problem != "line" and self.w <= 0:
             raise ValueError(f"w must be > 0 for the {self.problem} problem, got {self.w}")
         if self.farfield_passes < 1:
@@ -125,11 +153,13 @@ def penalty_defaults(model: RecedingModel, h: float, thickness: float = 1.0
     from contactlab.fe.interface_law import interface_stiffness
 
     if model.compliance > 0:
-        k = interface_stiffness(model.compliance, model.young, model.poisson, thickness)
+        k = interface_stiffness(model.compliance, model.young, model.poisson, thickness,
+                                scale=modulus_scale(model) if model.two_materials else None)
     else:
         k = model.penalty if model.penalty else 50.0 * model.young / h
     if model.compliance_t > 0:
-        lam = interface_stiffness(model.compliance_t, model.young, model.poisson, thickness)
+        lam = interface_stiffness(model.compliance_t, model.young, model.poisson, thickness,
+                                  scale=modulus_scale(model) if model.two_materials else None)
     else:
         lam = model.stick_slope if model.stick_slope else 5.0 * model.young / h
     return float(k), float(lam)
@@ -164,11 +194,11 @@ def _farfield_boundary(mesh: PlaneMesh, model: RecedingModel, thickness: float) 
     xy = np.array([mesh.nodes[n] for n in ids])
     if model.farfield_forces is None:
         ux, uy = flamant_displacements(xy[:, 0], xy[:, 1], model.net_force(thickness),
-                                       model.young, model.poisson, r0=thickness)
+                                       model.block_young, model.block_poisson, r0=thickness)
     else:
         xs, fn, ft = model.farfield_forces
-        ux, uy = halfplane_displacements(xy[:, 0], xy[:, 1], xs, fn, ft, model.young,
-                                         model.poisson, r0=thickness)
+        ux, uy = halfplane_displacements(xy[:, 0], xy[:, 1], xs, fn, ft, model.block_young,
+                                         model.block_poisson, r0=thickness)
     out = ["*BOUNDARY"]
     for n, x, dx, dy in zip(ids, xy[:, 0], ux, uy, strict=True):
         out.append(f"{n}, 1, 1, {0.0 if abs(x) < 1e-12 else dx:.10g}")
@@ -204,10 +234,7 @@ def receding_deck(mesh: PlaneMesh, model: RecedingModel, h: float,
     top = [n for n in mesh.node_sets["STRIP_TOP"] if abs(mesh.nodes[n][0]) < 1e-12]
     out += ["*NSET, NSET=LOADPOINT", id_lines(top)]
     out += ["*ELSET, ELSET=EALL", "STRIP, BLOCK"]
-    out += [
-        "*MATERIAL, NAME=ELASTIC", "*ELASTIC", f"{model.young:.10g}, {model.poisson:.10g}",
-        "*SOLID SECTION, ELSET=EALL, MATERIAL=ELASTIC", "1.",
-    ]
+    out += _material_cards(model)
     out.append("*SURFACE, NAME=SSTRIP, TYPE=ELEMENT")
     out += [f"{e}, S{face}" for e, face in mesh.edges["STRIP_BOTTOM"]]
     out.append("*SURFACE, NAME=SBLOCK, TYPE=ELEMENT")
@@ -246,18 +273,43 @@ def receding_deck(mesh: PlaneMesh, model: RecedingModel, h: float,
     return "\n".join(out)
 
 
+def _material_cards(model: RecedingModel) -> list[str]:
+    """One material for both bodies (the thesis's), or the strip's and the block's."""
+    if not model.two_materials:
+        return ["*MATERIAL, NAME=ELASTIC", "*ELASTIC", f"{model.young:.10g}, {model.poisson:.10g}",
+                "*SOLID SECTION, ELSET=EALL, MATERIAL=ELASTIC", "1."]
+    return ["*MATERIAL, NAME=LAYER", "*ELASTIC", f"{model.young:.10g}, {model.poisson:.10g}",
+            "*MATERIAL, NAME=HALFPLANE", "*ELASTIC",
+            f"{model.block_young:.10g}, {model.block_poisson:.10g}",
+            "*SOLID SECTION, ELSET=STRIP, MATERIAL=LAYER", "1.",
+            "*SOLID SECTION, ELSET=BLOCK, MATERIAL=HALFPLANE", "1."]
+
+
 def kolosov(poisson: float) -> float:
     """Kolosov's constant of plane strain, kappa = 3 - 4 nu."""
     return 3.0 - 4.0 * poisson
 
 
+def modulus_scale(model: RecedingModel) -> float:
+    """1/C* (N/mm^2): 2 mu / (kappa + 1) of one material, and with two the inverse of the
+    composite compliance C* = (kappa1 + 1)/(4 mu1) + (kappa2 + 1)/(4 mu2) that normalises
+    the distributed dislocations (``receding.core.materials``)."""
+    if not model.two_materials:
+        mu = model.young / (2.0 * (1.0 + model.poisson))
+        return 2.0 * mu / (kolosov(model.poisson) + 1.0)
+    return 1.0 / model.materials.compliance
+
+
 def displacement_unit(model: RecedingModel, thickness: float) -> float:
-    """The length (mm) that normalises separation and slip: (kappa + 1) q c / (2 mu).
+    """The length (mm) that normalises separation and slip: (kappa + 1) q c / (2 mu), with
+    two materials C* q c (``modulus_scale``).
 
     q is p for the pressure problems and P/c for the line load (chs 5-7).
     """
-    mu = model.young / (2.0 * (1.0 + model.poisson))
     q = model.load / thickness if model.problem == "line" else model.load
+    if model.two_materials:
+        return q * thickness / modulus_scale(model)
+    mu = model.young / (2.0 * (1.0 + model.poisson))
     return (kolosov(model.poisson) + 1.0) * q * thickness / (2.0 * mu)
 
 

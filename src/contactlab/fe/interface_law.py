@@ -36,12 +36,14 @@ def layer_modulus(young: float, poisson: float) -> float:
 
 
 def interface_stiffness(compliance: float, young: float, poisson: float,
-                        thickness: float) -> float:
+                        thickness: float, scale: float | None = None) -> float:
     """Stiffness per unit area k (N/mm^3) of the dimensionless compliance C:
-    k = (2 mu / (kappa + 1)) / (c C)."""
+    k = (2 mu / (kappa + 1)) / (c C); ``scale`` replaces 2 mu / (kappa + 1) (two
+    materials: 1/C*, ``deck.modulus_scale``)."""
     if not compliance > 0:
         raise ValueError(f"a compliant interface needs C > 0, got {compliance}")
-    return layer_modulus(young, poisson) / (thickness * compliance)
+    modulus = layer_modulus(young, poisson) if scale is None else scale
+    return modulus / (thickness * compliance)
 
 
 def interface_compliance(stiffness: float, young: float, poisson: float,

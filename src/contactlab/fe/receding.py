@@ -197,13 +197,13 @@ def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = ""
         geom.length - model.w * geom.thickness if model.problem == "gap"
         else model.w * geom.thickness)
     carried = float(np.trapezoid(-prof["N"] * traction_unit(model, geom.thickness), x))
+    unit = "C* q c" if model.two_materials else "(kappa+1) q c / (2 mu)"
     ds = xr.Dataset(
         {
             "N": _var(prof["N"], "normal interface traction over the load scale (N/q)"),
             "S": _var(prof["S"], "shear interface traction over the load scale (S/q)"),
-            "separation": _var(prof["separation"],
-                               "separation v2 - v1 over (kappa+1) q c / (2 mu)"),
-            "slip": _var(prof["slip"], "relative slip u2 - u1 over (kappa+1) q c / (2 mu)"),
+            "separation": _var(prof["separation"], f"separation v2 - v1 over {unit}"),
+            "slip": _var(prof["slip"], f"relative slip u2 - u1 over {unit}"),
             "mobilisation": _var(mobilisation(prof["S"], prof["N"], model.f),
                                  "mobilised friction |S| / (f |N|)"),
             "sigma_xy_block": _var(prof["sigma_xy_block"],
@@ -254,4 +254,11 @@ def run_receding(model: RecedingModel, geom: StripBlockGeometry, level: str = ""
         n_tol=N_TOL, slip_tol=SLIP_TOL, solver=f"CalculiX ccx {ccx_version()}",
         converged=int(run.sta["final_time"] >= 1.0 - 1e-9),
     )
+    if model.two_materials:
+        materials = model.materials
+        ds.attrs.update(young_half_plane_N_per_mm2=model.block_young,
+                        poisson_half_plane=model.block_poisson,
+                        dundurs_alpha=materials.alpha, dundurs_beta=materials.beta,
+                        displacement_unit="C* q c, C* = (kappa1 + 1)/(4 mu1) + "
+                                          "(kappa2 + 1)/(4 mu2)")
     return ds

@@ -33,11 +33,25 @@ from contactlab.fe.receding import STICK_SLIP_NAME
 QUANTITIES = ("b", "b_sep", "a", "a_slip", "K_T")
 
 
-def _micro(run: xr.Dataset) -> float:
-    """Normalised elastic micro-slip per unit |S|: 2 mu / ((kappa + 1) c lambda)."""
+def run_materials(run: xr.Dataset):
+    """The strip's and the block's ``receding.core.materials.Materials`` of an FE run (one
+    material unless the run records the block's constants)."""
+    from contactlab.receding.core.materials import Materials
+
     young, nu = float(run.attrs["young_N_per_mm2"]), float(run.attrs["poisson"])
-    mu = young / (2.0 * (1.0 + nu))
+    return Materials(young, nu, float(run.attrs.get("young_half_plane_N_per_mm2", young)),
+                     float(run.attrs.get("poisson_half_plane", nu)))
+
+
+def _micro(run: xr.Dataset) -> float:
+    """Normalised elastic micro-slip per unit |S|: 2 mu / ((kappa + 1) c lambda) (two
+    materials: 1 / (C* c lambda))."""
+    young, nu = float(run.attrs["young_N_per_mm2"]), float(run.attrs["poisson"])
     c = float(run.attrs["strip_thickness_mm"])
+    materials = run_materials(run)
+    if not materials.same:
+        return 1.0 / (materials.compliance * c * float(run.attrs["stick_slope_N_per_mm3"]))
+    mu = young / (2.0 * (1.0 + nu))
     return 2.0 * mu / ((kolosov(nu) + 1.0) * c * float(run.attrs["stick_slope_N_per_mm3"]))
 
 
@@ -58,8 +72,9 @@ def run_quantities(run: xr.Dataset) -> dict[str, float]:
 
 
 def ddt_quantities(problem: str, f: float, w: float, ns: list[int],
-                   **settings: float | None) -> tuple[np.ndarray, np.ndarray]:
-    """(values[quantity, N], converged[N]) of the DDT solutions (b_sep repeats b, a_slip a)."""
+                   **settings) -> tuple[np.ndarray, np.ndarray]:
+    """(values[quantity, N], converged[N]) of the DDT solutions (b_sep repeats b, a_slip a);
+    ``settings`` as :func:`contactlab.fe.ddt.solve` (``materials`` included)."""
     out = np.full((len(QUANTITIES), len(ns)), np.nan)
     conv = np.zeros(len(ns), dtype=bool)
     name = STICK_SLIP_NAME[problem]
@@ -147,6 +162,12 @@ def study(runs: list[xr.Dataset], h_ref: float, length: float, ddt_n: int,
             res[key].append(rows[key])
 
     ns = sorted({int(ddt_n), *map(int, ddt_check)})
+    materials = {run_materials(r) for r in runs}
+    if len(materials) > 1:
+        raise ValueError("the FE study's runs must all be of one pair of materials")
+    body = materials.pop()
+    if not body.same:
+        settings = {**settings, "materials": body}
     ddt, ddt_conv = ddt_quantities(problem, f, w, ns, **settings)
     ref_j = ns.index(int(ddt_n))
     ddt_ref = ddt[:, ref_j]
@@ -211,6 +232,7 @@ def study(runs: list[xr.Dataset], h_ref: float, length: float, ddt_n: int,
         depth_over_length=float(runs[0].attrs["block_depth_mm"])
         / float(runs[0].attrs["strip_length_mm"]),
         solver=runs[0].attrs.get("solver", "ccx"),
+        **({} if body.same else body.attrs()),
         farfield_passes=int(max(int(r.attrs.get("farfield_passes", 1)) for r in runs
                                 if r.attrs["edges"] == "farfield")) if "farfield" in edges else 0,
         all_converged=int(all(map(all, conv_mesh)) and all(map(all, conv_dom))

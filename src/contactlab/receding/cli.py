@@ -15,7 +15,15 @@ import argparse
 from contactlab.command import Command, Group, Option
 from contactlab.receding.gap import cli as gap_cli
 from contactlab.receding.liftoff import cli as liftoff_cli
-from contactlab.receding.options import NAME, PAIRS, line_options, patch_options
+from contactlab.receding.materials import cli as materials_cli
+from contactlab.receding.options import (
+    NAME,
+    PAIRS,
+    line_options,
+    material_options,
+    materials_of,
+    patch_options,
+)
 from contactlab.receding.problems import names, registry
 from contactlab.receding.rough import cli as rough_cli
 from contactlab.receding.rough.cli import SUMMARY
@@ -34,6 +42,8 @@ EXAMPLES = """\
   contactlab receding patch-profile --problem uniform --f 0.3 --w-hat 1 --out p.nc
   contactlab receding solve --problem line --f 0.5 --interface-compliance 1 --json
   contactlab receding solve --problem line --f 0.5 --interface-from-test S3 --c 1 --load 0.4
+  contactlab receding solve --problem line --f 0.5 --young-layer 210 --nu-layer 0.29
+  contactlab receding beta-sweep --problem line --f 0.5 --alpha -0.5 --beta -0.2 0 --out b.nc
   contactlab receding rough-sweep --problem line --f 0.5 --C 0 0.1 1 --out rough.nc
   contactlab receding rough-profile --problem uniform --w-hat 1 --f 0.3 --C 1 --out rp.nc
   contactlab receding rough-pairs --summary results/stiffness/summary.nc --out pairs.nc
@@ -60,7 +70,9 @@ def _solve(args: argparse.Namespace) -> None:
     problem = registry()[args.problem]
     if not args.f >= 0:  # f = 0 where it has no meaning: the solver says why
         raise ValueError(f"--f {args.f:g}: the friction coefficient must be >= 0")
-    interface, info = interface_of(args) if "linear" in problem.interfaces else (None, {})
+    materials = materials_of(args)
+    interface, info = (interface_of(args, materials) if "linear" in problem.interfaces
+                       else (None, {}))
     check_memory("--n", args.n, problem.memory(args.n, interface))
     shape = (tuple(args.table_x), tuple(args.table_p)) if problem.shape else None
     if shape is not None:
@@ -68,7 +80,7 @@ def _solve(args: argparse.Namespace) -> None:
 
         make_load("table", table={"x": list(shape[0]), "p": list(shape[1])})
     point = problem.point(args.f, getattr(args, "w_hat", None), shape=shape,
-                          interface=interface)
+                          interface=interface, materials=materials)
     settings = {k: getattr(args, k) for k in problem.settings}
     start = time.perf_counter()
     sol = problem.solve(point, args.n, None, **settings)
@@ -76,10 +88,14 @@ def _solve(args: argparse.Namespace) -> None:
     below = interface is not None and problem.interface_of(point) is not interface
     if interface is not None:
         summary["below_resolution"] = below
+    if not materials.same:
+        summary.update(materials.attrs())
     if args.json:
         print(json.dumps({**summary, **info}))
         return
     lines = [*problem.report_lines(sol, summary), *interface_lines(info)]
+    if not materials.same:
+        lines.insert(1, f"  two materials         {materials.describe()}")
     if below:
         from contactlab.receding.core.interface import RESOLVED_COMPLIANCE
 
@@ -119,11 +135,9 @@ def _interface_options() -> tuple[Option, ...]:
         Option("--pressure", "pressure a linearised law takes its stiffness at (default: "
                "the test's max normal load over its nominal area)", float, unit="kN/mm^2",
                default=None, only=rough),
-        Option("--E", "Young's modulus of the layer (a tested pair's law)", float,
-               unit="kN/mm^2", key={p: f"{PAIRS}.E" for p in rough}, only=rough),
-        Option("--nu", "Poisson's ratio of the layer: Mindlin's m of C_T when not given, "
-               "and a tested pair's law", float,
-               key=dict.fromkeys(rough, "receding.rough.nu"), only=rough),
+        Option("--nu", "Poisson's ratio of Mindlin's m = 2(1 - nu)/(2 - nu), C_T = C/m when "
+               "not given", float, key=dict.fromkeys(rough, "receding.rough.nu"),
+               only=rough),
         *(Option(flag, help, choices=choices, key={p: f"{pairs[p]}.{key}" for p in rough},
                  only=rough)
           for flag, key, help, choices in (
@@ -165,7 +179,7 @@ def _solve_command() -> Command:
             Option("--stick-zone-limit", "stick zone (units of c) below which an unresolved "
                    "one is solved in its limit of zero width; 0: never", float,
                    key=_by_problem("stick_zone_limit")),
-            *_interface_options(),
+            *_interface_options(), *material_options(),
             Option("--json", "print one JSON object", kind="flag", default=False),
         ),
         run=_solve, select="problem")
@@ -179,4 +193,4 @@ GROUP = Group(
                 "distributed dislocations (thesis chs 4-7): the gap problem (ch. 5), the "
                 "line load (ch. 6) and pressure patches (ch. 7).",
     examples=EXAMPLES, commands=(SOLVE, *gap_cli.COMMANDS, *liftoff_cli.COMMANDS,
-                                          *rough_cli.COMMANDS))
+                                          *rough_cli.COMMANDS, *materials_cli.COMMANDS))

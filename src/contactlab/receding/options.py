@@ -11,6 +11,7 @@ LINE = "receding.line"
 PATCHES = "receding.patches"
 ROUGH = "receding.rough"
 PAIRS = f"{ROUGH}.pairs"
+MATERIALS = "receding.materials"
 STICK_ZONE = ("stick zone (units of c) below which an unresolved one is solved in its limit "
               "of zero width; 0: never")
 REFINE = "largest N to which a point failing the contact checks is re-solved (--n: none)"
@@ -56,3 +57,32 @@ def robustness(section: str, continuation: bool = True) -> tuple[Option, ...]:
         options += (Option("--continuation", CONTINUATION, kind="switch",
                            key=f"{section}.continuation"),)
     return options
+
+
+def material_options(section: str = MATERIALS, only: tuple[str, ...] | None = None,
+                     ) -> tuple[Option, ...]:
+    """The layer's and the half-plane's elastic constants (one material by default)."""
+    return (
+        Option("--young-layer", "Young's modulus E1 of the layer", float, unit="kN/mm^2",
+               key=f"{section}.young_layer", only=only),
+        Option("--nu-layer", type=float, key=f"{section}.nu_layer", only=only),
+        Option("--young-half-plane", "Young's modulus E2 of the half-plane", float,
+               unit="kN/mm^2", key=f"{section}.young_half_plane", only=only),
+        Option("--nu-half-plane", type=float, key=f"{section}.nu_half_plane", only=only),
+        Option("--plane", choices=("strain", "stress"), key=f"{section}.plane", only=only),
+    )
+
+
+def materials_of(args: object) -> object:
+    """The ``core.materials.Materials`` of the options of :func:`material_options`; a bad
+    value raises ValueError naming the option."""
+    from contactlab.receding.core.materials import Materials
+
+    values = {name: getattr(args, name) for name in (
+        "young_layer", "nu_layer", "young_half_plane", "nu_half_plane", "plane")}
+    try:
+        return Materials(**values)
+    except ValueError as exc:
+        flag = next((f"--{n.replace('_', '-')}" for n in values if str(exc).startswith(n)),
+                    "--young-layer/--nu-layer/--young-half-plane/--nu-half-plane")
+        raise ValueError(f"{flag}: {exc}") from None

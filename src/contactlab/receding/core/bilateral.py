@@ -20,6 +20,11 @@ Eq. (5.2) is correct as printed. Eqs (6.6)-(6.7) (a line load) are correct. Eqs
 correct but unsimplified: (7.1) reduces to -(1/pi)[arctan(w-x) + arctan(w+x) + (w-x)/((w-x)^2+1)
 + (w+x)/((w+x)^2+1)] and (7.2) to (1/pi)[1/((x-w)^2+1) - 1/((x+w)^2+1)]; the gap problem's
 tractions are the uniform state (-p, 0) minus the patch's (tested).
+
+Two materials (a layer bonded to a dissimilar half-plane, ``bimaterial``): the uniform
+pressure still gives (-p, 0) at the interface, and a patch's tractions are the closed
+forms above plus the integral of the tabulated remainder of the line-load field
+(``InterfaceKernels.line_load_integral``), so ``gap_bilateral`` takes ``materials``.
 """
 
 from __future__ import annotations
@@ -29,6 +34,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from contactlab.receding.core.bimaterial import interface_kernels
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.quadrature import legendre, legendre_semi_infinite
 
 #: Pressure or shear load along the surface: a constant or a vectorised function of x_hat.
@@ -119,10 +126,13 @@ def gap_patches(w: float) -> list[Patch]:
     return [Patch(-np.inf, -w), Patch(w, np.inf)]
 
 
-def gap_bilateral(x: np.ndarray, w: float) -> tuple[np.ndarray, np.ndarray]:
+def gap_bilateral(x: np.ndarray, w: float, materials: Materials = ONE_MATERIAL,
+                  ) -> tuple[np.ndarray, np.ndarray]:
     """Closed-form bilateral tractions of the gap problem, eqs (5.1)-(5.2) (corrected (5.1)).
 
-    Returns (sigma_xy^b / p, sigma_yy^b / p) at x_hat for pressure p on |x_hat| >= w_hat.
+    Returns (sigma_xy^b / p, sigma_yy^b / p) at x_hat for pressure p on |x_hat| >= w_hat;
+    two materials add minus the patch |xi| < w of the line-load remainder,
+    -(A(x + w) - A(x - w)) with A its integral from 0 (module docstring).
     """
     x = np.asarray(x, dtype=float)
     shear = np.zeros_like(x)
@@ -131,6 +141,11 @@ def gap_bilateral(x: np.ndarray, w: float) -> tuple[np.ndarray, np.ndarray]:
         q = a * a + 1.0
         normal += (a / q - (0.5 * np.pi - np.arctan(a))) / np.pi
         shear += sign / (np.pi * q)
+    if not materials.same:
+        kernels = interface_kernels(materials)
+        upper, lower = kernels.line_load_integral(x + w), kernels.line_load_integral(x - w)
+        shear -= upper[0] - lower[0]
+        normal -= upper[1] - lower[1]
     return shear, normal
 
 

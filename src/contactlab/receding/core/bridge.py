@@ -19,7 +19,10 @@ remainder that vanishes at x0. The same solutions converge (b = 2.1326, 2.1304, 
 Tractions (eq. 4.1): the Cauchy part of a Gaussian is Dawson's function,
 (1/pi) PV int exp(-(xi - x0)^2/d^2) / (x - xi) dxi = (2/sqrt(pi)) D((x - x0)/d);
 the regular parts of the kernels (App. B.1, smooth on the scale c) by Gauss-Hermite
-quadrature; the integral in closed form through erf.
+quadrature; the integral in closed form through erf. Two materials (``materials``): the
+Cauchy part times c0 = 1/(1 - beta^2), the bounded parts those of ``bimaterial`` and the
+local term of the delta parts, c_beta l(x) (climb -> shear) or -c_beta l(x) (glide ->
+normal).
 """
 
 from __future__ import annotations
@@ -29,7 +32,9 @@ from functools import lru_cache
 
 import numpy as np
 
-from contactlab.receding.core.kernels import Kind, regular_pair
+from contactlab.receding.core.bimaterial import interface_kernels
+from contactlab.receding.core.kernels import Kind
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 
 #: Gauss-Hermite nodes of the regular parts (smooth on the scale c >> d)
 _HERMITE = 40
@@ -49,6 +54,7 @@ class Bridge:
     x0: float
     d: float
     parity: int
+    materials: Materials = ONE_MATERIAL
 
     def __post_init__(self) -> None:
         if not (np.isfinite(self.x0) and self.x0 > 0 and np.isfinite(self.d) and self.d > 0):
@@ -62,14 +68,23 @@ class Bridge:
 
         u, wu = _hermite(_HERMITE)
         xi = centre + self.d * u
-        shear, normal = regular_pair(self.kind, x[:, None] - xi[None, :])
+        kernels = interface_kernels(self.materials)
+        shear, normal = kernels.regular_pair(self.kind, x[:, None] - xi[None, :])
         weights = self.d * wu / np.pi
         shear, normal = shear @ weights, normal @ weights
         cauchy = 2.0 / np.sqrt(np.pi) * dawsn((x - centre) / self.d)
+        if kernels.cauchy != 1.0:
+            cauchy *= kernels.cauchy
         if self.kind == "glide":
             shear += cauchy
         else:
             normal += cauchy
+        if kernels.coupling:
+            local = kernels.coupling * np.exp(-((x - centre) / self.d) ** 2)
+            if self.kind == "glide":
+                normal -= local
+            else:
+                shear += local
         return shear, normal
 
     def influence(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

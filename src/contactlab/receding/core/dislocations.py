@@ -39,6 +39,14 @@ Green's functions are smooth on the scale c and use plain Gauss-Chebyshev sums.
 
 The relative displacement of the layer over the half-plane (tangential slip for glide,
 separation for climb) is ``-int_{-inf}^{x} B_bar dxi`` in units of (kappa+1) p c / (2 mu).
+
+Two materials (``materials``, default one): the kernels are those of ``bimaterial``, the
+Cauchy part scaled by c0 = 1/(1 - beta^2), the bounded parts App. B.1's plus the tabulated
+remainders, and the delta parts of H_yxy = -H_xyy add the local terms c_beta B_bar(x)
+(climb -> shear) and -c_beta B_bar(x) (glide -> normal) at every point x of the interval
+(and of its image), B_bar(x) = sqrt(1 - t^2) phi(t) from the interpolant. Densities are
+then in units of C* p and displacements of C* p c (``materials``); for one material
+C* = (kappa + 1)/(2 mu) and nothing changes.
 """
 
 from __future__ import annotations
@@ -48,7 +56,9 @@ from functools import lru_cache
 
 import numpy as np
 
-from contactlab.receding.core.kernels import Kind, even_part, regular_pair
+from contactlab.receding.core.bimaterial import InterfaceKernels, interface_kernels
+from contactlab.receding.core.kernels import Kind
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.quadrature import (
     bounded_rule,
     cauchy_matrix,
@@ -73,6 +83,7 @@ class DensityInterval:
     parity: int = 0
     mapping: str = "linear"
     lam: float = np.nan
+    materials: Materials = ONE_MATERIAL
 
     def __post_init__(self) -> None:
         if self.kind not in ("glide", "climb"):
@@ -92,6 +103,11 @@ class DensityInterval:
             raise ValueError("an infinite map needs lo = -inf, hi = inf, lam > 0, no image")
         if self.mapping not in ("semi-infinite", "infinite") and not np.isfinite(self.hi):
             raise ValueError("an infinite interval needs mapping='semi-infinite'")
+
+    @property
+    def kernels(self) -> InterfaceKernels:
+        """The Green's functions of the layer on the half-plane (``bimaterial``)."""
+        return interface_kernels(self.materials)
 
     # ---- the map T: [-1, 1] -> [lo, hi]
     @property
@@ -159,12 +175,33 @@ class DensityInterval:
         rule = bounded_rule(self.n)
         d = x[:, None] - self.nodes[None, :]
         scale = self.weights[None, :] / np.pi
-        shear, normal = regular_pair(self.kind, d)
+        kernels = self.kernels
+        shear, normal = kernels.regular_pair(self.kind, d)
         shear *= scale
         normal *= scale
-        # the Cauchy part 1/d belongs to H_xxy (glide shear) and H_yyy (climb normal)
-        (shear if self.kind == "glide" else normal)[...] += self._cauchy(x, d, rule)
+        # the Cauchy part c0/d belongs to H_xxy (glide shear) and H_yyy (climb normal)
+        cauchy = self._cauchy(x, d, rule)
+        if kernels.cauchy != 1.0:
+            cauchy *= kernels.cauchy
+        (shear if self.kind == "glide" else normal)[...] += cauchy
+        if kernels.coupling:
+            # the delta parts of H_yxy = -H_xyy: the density at the point itself
+            local = kernels.coupling * self._density_matrix(x)
+            if self.kind == "glide":
+                normal -= local
+            else:
+                shear += local
         return shear, normal
+
+    def _weight_at(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(t, sqrt(1 - t^2)) at the points x (t = -2, weight 0 where x has no preimage)."""
+        t = np.nan_to_num(self.preimage(x), nan=-2.0)
+        return t, np.sqrt(np.clip(1.0 - t * t, 0.0, None))
+
+    def _density_matrix(self, x: np.ndarray) -> np.ndarray:
+        """(len(x), N): B_bar at the points x from the nodal values (zero off the interval)."""
+        t, root = self._weight_at(x)
+        return root[:, None] * interpolation_matrix(t, self.n)
 
     def _cauchy(self, x: np.ndarray, d: np.ndarray, rule) -> np.ndarray:
         """(1/pi) int B_bar/(x - xi) dxi as a matrix on phi (see the module docstring)."""
@@ -214,16 +251,23 @@ class DensityInterval:
 
     def normal_influence(self, x: np.ndarray) -> np.ndarray:
         """The normal-traction matrix of ``influence`` alone. For a glide density it is the
-        regular kernel H_xyy (App. B.1, no Cauchy part), so no transform is needed."""
+        bounded kernel H_xyy (App. B.1, no Cauchy part; with two materials its delta part
+        too), so no transform is needed."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
         if self.kind == "climb":
             return self.influence(x)[1]
         scale = self.weights[None, :] / np.pi
-        out = even_part(x[:, None] - self.nodes[None, :])  # H_xyy = -H_yxy
+        kernels = self.kernels
+        out = kernels.even_part(x[:, None] - self.nodes[None, :])  # H_xyy = -H_yxy
         if self.parity:
-            image = even_part(-x[:, None] - self.nodes[None, :])
+            image = kernels.even_part(-x[:, None] - self.nodes[None, :])
             out += self.parity * _KERNEL_PARITY[("glide", "normal")] * image
         out *= -scale
+        if kernels.coupling:
+            local = self._density_matrix(x)
+            if self.parity:
+                local += self.parity * self._density_matrix(-x)
+            out -= kernels.coupling * local
         return out
 
     def collocation_influence(self) -> tuple[np.ndarray, np.ndarray]:
@@ -233,7 +277,7 @@ class DensityInterval:
         x = self.collocation
         if self.mapping != "semi-infinite":
             return self.influence(x)
-        shear, normal = _own_at_collocation(self.kind, self.n, self.lam)
+        shear, normal = _own_at_collocation(self.kind, self.n, self.lam, self.materials)
         if not self.parity:
             return shear.copy(), normal.copy()
         ms, mn = self._own(-x)
@@ -248,8 +292,7 @@ class DensityInterval:
         phi = np.asarray(phi, dtype=float)
 
         def own(points: np.ndarray) -> np.ndarray:
-            t = np.nan_to_num(self.preimage(points), nan=-2.0)
-            root = np.sqrt(np.clip(1.0 - t * t, 0.0, None))
+            t, root = self._weight_at(points)
             return root * (interpolation_matrix(t, self.n) @ phi)
 
         out = own(x)
@@ -290,9 +333,11 @@ def _add(out: np.ndarray, other: np.ndarray, sign: int, reverse: bool = False) -
 
 
 @lru_cache(maxsize=16)
-def _own_at_collocation(kind: Kind, n: int, lam: float) -> tuple[np.ndarray, np.ndarray]:
+def _own_at_collocation(kind: Kind, n: int, lam: float, materials: Materials = ONE_MATERIAL,
+                        ) -> tuple[np.ndarray, np.ndarray]:
     """Own (no image) influence of a semi-infinite density at its collocation points."""
-    interval = DensityInterval(kind, 0.0, np.inf, n, mapping="semi-infinite", lam=lam)
+    interval = DensityInterval(kind, 0.0, np.inf, n, mapping="semi-infinite", lam=lam,
+                               materials=materials)
     shear, normal = interval._own(interval.collocation)
     shear.setflags(write=False)
     normal.setflags(write=False)

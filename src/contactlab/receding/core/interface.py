@@ -18,7 +18,10 @@ with the dimensionless compliance numbers
 
 k_n, k_t the interface's normal and tangential stiffness per unit area (pressure per unit
 closure or tangential displacement). C = C_T = 0 is the smooth interface. Plane strain:
-2 mu / (kappa + 1) = E / (4 (1 - nu^2)) (:func:`modulus_scale`). Without a measured
+2 mu / (kappa + 1) = E / (4 (1 - nu^2)). A layer and a half-plane of two materials
+(``core.materials``) put the composite compliance C* in place of (kappa + 1) / (2 mu),
+in the displacements' unit and in C = 1 / (C* c k_n), C_T = 1 / (C* c k_t)
+(:func:`compliance_number`). Without a measured
 tangential stiffness C_T = C / m with the Mindlin ratio m = k_t / k_n = 2 (1 - nu) /
 (2 - nu) (:func:`mindlin_ratio`).
 
@@ -55,6 +58,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from contactlab.receding.core.materials import Materials
+
 INTERFACES = ("smooth", "linear", "measured")
 
 #: Compliance numbers below this are not resolved by the solvers: the interface is solved
@@ -68,15 +73,6 @@ INTERFACES = ("smooth", "linear", "measured")
 RESOLVED_COMPLIANCE = 1e-12
 
 
-def modulus_scale(E: float, nu: float) -> float:
-    """2 mu / (kappa + 1) in plane strain, E / (4 (1 - nu^2)) (units of E)."""
-    if not (np.isfinite(E) and E > 0):
-        raise ValueError(f"Young's modulus E must be positive, got {E}")
-    if not (np.isfinite(nu) and -1.0 < nu < 0.5):
-        raise ValueError(f"Poisson's ratio nu must lie in (-1, 0.5), got {nu}")
-    return E / (4.0 * (1.0 - nu * nu))
-
-
 def mindlin_ratio(nu: float) -> float:
     """k_t / k_n = 2 (1 - nu) / (2 - nu) (Mindlin's ratio of tangential to normal
     compliance of a contact), the default of C_T = C / m."""
@@ -85,15 +81,16 @@ def mindlin_ratio(nu: float) -> float:
     return 2.0 * (1.0 - nu) / (2.0 - nu)
 
 
-def compliance_number(E: float, nu: float, c: float, stiffness: float,
+def compliance_number(materials: Materials, c: float, stiffness: float,
                       name: str = "k_n") -> float:
-    """C = (2 mu / (kappa + 1)) / (c k) for a layer of thickness c [mm] on an interface of
-    stiffness k [kN/mm^3] per unit area (E in kN/mm^2): dimensionless."""
+    """C = 1 / (C* c k) for a layer of thickness c [mm] on an interface of stiffness k
+    [kN/mm^3] per unit area, C* the composite compliance of ``materials`` (E in kN/mm^2;
+    one material: (2 mu / (kappa + 1)) / (c k)): dimensionless."""
     if not (np.isfinite(c) and c > 0):
         raise ValueError(f"layer thickness c must be positive, got {c}")
     if not (np.isfinite(stiffness) and stiffness > 0):
         raise ValueError(f"interface stiffness {name} must be positive, got {stiffness}")
-    return modulus_scale(E, nu) / (c * stiffness)
+    return materials.modulus / (c * stiffness)
 
 
 def _check_number(name: str, value: float) -> float:

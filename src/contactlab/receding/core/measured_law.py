@@ -9,7 +9,9 @@ nominal area (eqs 2.4, 2.7):
     k_n(p) = beta_n (p + p0),  p0 = -P0 / An,      k_t0(p) = Cc k_n(p),   slip at f p
 
 (p the nominal pressure in kN/mm^2; see ``core.interface`` for the sign of P0). It gives
-the dimensionless interface of a receding contact of a layer (E, nu, thickness c) loaded
+the dimensionless interface of a receding contact of a layer of thickness c on a
+half-plane (their elastic constants ``core.materials.Materials``, whose composite
+compliance C* scales the compliance numbers: C = 1 / (C* c k_n)) loaded
 with T (the load per thickness, kN/mm^2: P/c for a line load P, 2 w p / c for a patch of
 half-width w and pressure p):
 
@@ -33,6 +35,7 @@ from contactlab.receding.core.interface import (
     linear_interface,
     measured_interface,
 )
+from contactlab.receding.core.materials import Materials
 
 
 @dataclass(frozen=True)
@@ -85,24 +88,25 @@ class StiffnessLaw:
                 "edge of every receding contact meets (p -> 0); use the law linearised at a "
                 "stated pressure instead")
 
-    def measured(self, *, T: float, E: float, nu: float, c: float) -> Interface:
+    def measured(self, *, T: float, materials: Materials, c: float) -> Interface:
         """The dimensionless measured law (eqs 2.4, 2.7: k_n = beta_n (p + p0), k_t0 =
-        Cc k_n) of a layer (E [kN/mm^2], nu, c [mm]) under the load per thickness T
-        [kN/mm^2]: C, C_T = C/Cc at p = T, pi0 = p0/T."""
+        Cc k_n) of a layer of thickness c [mm] on a half-plane (``materials``, E in
+        kN/mm^2) under the load per thickness T [kN/mm^2]: C, C_T = C/Cc at p = T,
+        pi0 = p0/T."""
         self._check_edge()
         if not (np.isfinite(T) and T > 0):
             raise ValueError(f"load per thickness T must be positive, got {T}")
-        C = compliance_number(E, nu, c, float(self.k_n(T)))
+        C = compliance_number(materials, c, float(self.k_n(T)))
         return measured_interface(C, C / self.cc, self.p0 / T)
 
-    def linearised(self, *, pressure: float, E: float, nu: float, c: float) -> Interface:
+    def linearised(self, *, pressure: float, materials: Materials, c: float) -> Interface:
         """The linear law with the stiffness at ``pressure`` [kN/mm^2]: C at k_n(pressure),
         C_T at Cc k_n(pressure)."""
         k = float(self.k_n(pressure))
         if not k > 0:
             raise ValueError(f"{self.source + ': ' if self.source else ''}normal stiffness "
                              f"k_n = {k:.4g} kN/mm^3 <= 0 at p = {pressure} kN/mm^2")
-        C = compliance_number(E, nu, c, k)
+        C = compliance_number(materials, c, k)
         return linear_interface(C, C / self.cc)
 
 

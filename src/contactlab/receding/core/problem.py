@@ -15,8 +15,9 @@ problem through the problem objects and nothing else:
 
 - the interface law, :class:`contactlab.receding.core.interface.Interface` (smooth,
   linear or measured; ``None`` here: smooth);
-- the materials, :class:`Materials`: the layer's and the half-plane's elastic constants;
-  the default, one material for both, is the thesis's (ch. 4), whose dimensionless
+- the materials, :class:`contactlab.receding.core.materials.Materials`: the layer's and
+  the half-plane's elastic constants (Dundurs' alpha and beta, the composite compliance
+  C*); the default, one material for both, is the thesis's (ch. 4), whose dimensionless
   solution needs no constants at all;
 - the loading, :class:`Loading`: the load factors applied to the problem's load shape,
   one factor for today's monotonic proportional load (the solution is then independent of
@@ -33,6 +34,8 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
+
 
 @dataclass(frozen=True)
 class Variable:
@@ -44,41 +47,6 @@ class Variable:
     dtype: str = "float64"
     units: str = "1"
     kind: str = "value"
-
-
-@dataclass(frozen=True)
-class Elastic:
-    """Young's modulus E [kN/mm^2] and Poisson's ratio nu of one body."""
-
-    E: float
-    nu: float
-
-    def __post_init__(self) -> None:
-        if not (math.isfinite(self.E) and self.E > 0):
-            raise ValueError(f"Young's modulus E must be positive, got {self.E}")
-        if not (math.isfinite(self.nu) and -1.0 < self.nu < 0.5):
-            raise ValueError(f"Poisson's ratio nu must lie in (-1, 0.5), got {self.nu}")
-
-
-@dataclass(frozen=True)
-class Materials:
-    """The elastic constants of the layer and of the half-plane (plane strain).
-
-    ``half_plane`` None (the default) is the layer's material: the thesis's problems
-    (ch. 4), whose dimensionless answers need no elastic constant (``layer`` then only
-    scales a physical interface law, ``core.measured_law``)."""
-
-    layer: Elastic | None = None
-    half_plane: Elastic | None = None
-
-    @property
-    def same(self) -> bool:
-        """Layer and half-plane of one material."""
-        return self.half_plane is None or self.half_plane == self.layer
-
-
-#: One material for the layer and the half-plane (the thesis's problems).
-SAME = Materials()
 
 
 @dataclass(frozen=True)
@@ -115,8 +83,12 @@ class Point:
     w_hat: float | None = None
     shape: tuple[tuple[float, ...], tuple[float, ...]] | None = None
     interface: Any = None
-    materials: Materials = SAME
+    materials: Materials = ONE_MATERIAL
     loading: Loading = PROPORTIONAL
+
+
+#: A continuation axis followed outwards from its value nearest zero (``Continuation``).
+OUTWARD = 0
 
 
 @dataclass(frozen=True)
@@ -124,10 +96,12 @@ class Continuation:
     """How a sweep continues a problem from point to point (``core.sweep``).
 
     ``axes``: the sweep's axes along which a solved point seeds the next, each with the
-    direction it is followed in (+1 ascending, -1 descending), in the order their seeds
-    are tried; ``shift``: axes whose step moves a seed (a patch's a - w and b - w vary
-    slowly with w, Fig. 7.10); ``quick``: a seed is tried by one search from it, without
-    the problem's fallbacks (else by the full solve); ``retry_cold``: a point that no seed
+    direction it is followed in (+1 ascending, -1 descending, :data:`OUTWARD` from the
+    value nearest zero out to both ends: the positive side ascending, then the negative
+    side descending), in the order their seeds are tried; ``shift``: axes whose step
+    moves a seed (a patch's a - w and b - w vary slowly with w, Fig. 7.10); ``quick``: a
+    seed is tried by one search from it, without the problem's fallbacks (else by the
+    full solve); ``retry_cold``: a point that no seed
     solved is solved cold; ``keep`` ``better`` (the better attempt: converged, admissible,
     smaller contact check) or ``last`` (the last attempt); ``accept`` ``good`` (converged
     and admissible) or ``converged``: what ends the attempts at a point and lets it seed;
@@ -208,7 +182,7 @@ class RecedingProblem:
     # ---- points
     def point(self, f: float, w_hat: float | None = None, *,
               shape: tuple[tuple[float, ...], tuple[float, ...]] | None = None,
-              interface: Any = None, materials: Materials = SAME,
+              interface: Any = None, materials: Materials = ONE_MATERIAL,
               loading: Loading = PROPORTIONAL) -> Point:
         """A point of this problem, its inputs checked (ValueError naming the value)."""
         if not (math.isfinite(f) and f >= 0):
@@ -223,9 +197,9 @@ class RecedingProblem:
         if kind not in self.interfaces:
             raise ValueError(f"{self.title}: no {kind} interface (this problem is solved on "
                              f"a {', '.join(self.interfaces)} interface)")
-        if not materials.same:
-            raise ValueError(f"{self.title}: a layer and a half-plane of different "
-                             "materials are not solved yet (one material, thesis ch. 4)")
+        if not isinstance(materials, Materials):
+            raise ValueError(f"{self.title}: materials must be a core.materials.Materials, "
+                             f"got {materials!r}")
         if not loading.proportional:
             raise ValueError(f"{self.title}: load histories are not solved yet (one "
                              "proportional load, thesis ch. 4)")

@@ -7,7 +7,7 @@ keeps every point: solved and certified (the contact checks of ``core.solution``
 ``CHECK_TOL``), or flagged with its numbers. How it gets there is the problem's
 :class:`~contactlab.receding.core.problem.Continuation`:
 
-1. Along each of its ``axes`` the last point that solved (``accept``) seeds the next
+1. Along each of its ``axes`` the nearest point that solved (``accept``) seeds the next
    (moved by the step of a ``shift`` axis); a point tries its seeds in turn (``quick``: one
    search from the seed) until one is accepted, then, if ``retry_cold``, the problem's
    cold solve; ``keep`` says which attempt stays.
@@ -34,7 +34,7 @@ import numpy as np
 import xarray as xr
 
 from contactlab.progress import Progress
-from contactlab.receding.core.problem import Point, RecedingProblem
+from contactlab.receding.core.problem import OUTWARD, Point, RecedingProblem
 from contactlab.receding.core.solution import flag_attrs, refine_in_n, regime_attrs
 
 LOG = logging.getLogger(__name__)
@@ -112,13 +112,22 @@ class Sweep:
         return trial if self.problem.quality(trial) < self.problem.quality(best) else best
 
     # ---- the steps
+    def _axis_order(self, name: str, values: np.ndarray) -> np.ndarray:
+        """The indices of one axis in the order of solution: a seed axis in its direction
+        (``Continuation.axes``), any other as given."""
+        direction = self.policy.axes.get(name)
+        if direction is None:
+            return np.arange(values.size)
+        if direction == OUTWARD:
+            ascending = np.argsort(values, kind="stable")
+            start = int(np.argmin(np.abs(values[ascending])))
+            return np.concatenate([ascending[start:], ascending[:start][::-1]])
+        return np.argsort(values)[::-1] if direction < 0 else np.argsort(values)
+
     def order(self) -> list[tuple[int, ...]]:
         """Grid indices in the order of solution: each seed axis in its direction."""
-        ranges = []
-        for name, values in zip(self.names, self.values, strict=True):
-            direction = self.policy.axes.get(name, 0)
-            ranges.append(np.argsort(values)[::-1] if direction < 0 else
-                          np.argsort(values) if direction > 0 else np.arange(values.size))
+        ranges = [self._axis_order(name, values)
+                  for name, values in zip(self.names, self.values, strict=True)]
         return [tuple(int(k) for k in index) for index in np.array(
             np.meshgrid(*ranges, indexing="ij")).reshape(len(ranges), -1).T]
 
@@ -126,22 +135,20 @@ class Sweep:
         """Position of each value along its axis in the order of solution."""
         ranks = []
         for name, values in zip(self.names, self.values, strict=True):
-            direction = self.policy.axes.get(name, 0)
-            order = (np.argsort(values)[::-1] if direction < 0 else np.argsort(values)
-                     if direction > 0 else np.arange(values.size))
             rank = np.empty(values.size, dtype=int)
-            rank[order] = np.arange(values.size)
+            rank[self._axis_order(name, values)] = np.arange(values.size)
             ranks.append(rank)
         return ranks
 
     def candidates(self, index: tuple[int, ...], ranks: list[np.ndarray]) -> list[Any]:
-        """Seeds of ``index``: along each seed axis, the nearest point solved before it
-        that passes a seed."""
+        """Seeds of ``index``: along each seed axis, the point solved before it nearest in
+        value (the last solved one on a monotone axis) that passes a seed."""
         seeds = []
         for name in self.policy.axes:
             k = self.names.index(name)
             before = np.flatnonzero(ranks[k] < ranks[k][index[k]])
-            for j in before[np.argsort(ranks[k][before])[::-1]]:
+            distance = np.abs(self.values[k][before] - self.values[k][index[k]])
+            for j in before[np.lexsort((-ranks[k][before], distance))]:
                 other = list(index)
                 other[k] = int(j)
                 sol = self.grid[tuple(other)]

@@ -2,8 +2,8 @@
 ``gap-profile``, ``report-gap``.
 
 Declared here, grouped by :mod:`contactlab.receding.cli`, which also owns ``receding
-solve``. Options fed from the config (``receding.gap``) take the schema's defaults when
-not given.
+solve``. Options fed from the config (``receding.gap``, the materials of
+``receding.materials``) take the schema's defaults when not given.
 """
 
 from __future__ import annotations
@@ -19,7 +19,13 @@ from contactlab.cliutil import (
     section_outputs,
 )
 from contactlab.command import Command, Option
-from contactlab.receding.options import GAP, NAME, robustness
+from contactlab.receding.options import (
+    GAP,
+    NAME,
+    material_options,
+    materials_of,
+    robustness,
+)
 from contactlab.receding.problems import registry
 
 SOURCE = ("distributed dislocations, thesis ch. 5 (eqs 5.1-5.28, App. B.1); "
@@ -38,7 +44,7 @@ def _sweep(args: argparse.Namespace) -> None:
     ds = sweep_dataset(np.asarray(args.w_hat), np.asarray(args.f), args.n,
                        thresholds=not args.no_thresholds,
                        stick_zone_limit=args.stick_zone_limit, refine_max_n=args.refine_max_n,
-                       continuation=args.continuation)
+                       continuation=args.continuation, materials=materials_of(args))
     log_summary(ds, f"gap sweep N = {args.n}", time.perf_counter() - start)
     stamp(ds, title=f"Gap problem (thesis ch. 5): transition points over (f, w/c), N = {args.n}",
           source=SOURCE,
@@ -60,6 +66,7 @@ def _regimes(args: argparse.Namespace) -> None:
     import xarray as xr
 
     from contactlab.io import stamp, write_netcdf
+    from contactlab.receding.core.materials import Materials
     from contactlab.receding.core.solution import regime_attrs
     from contactlab.receding.gap.solver import REGIMES, separation_onset
 
@@ -74,10 +81,12 @@ def _regimes(args: argparse.Namespace) -> None:
     regime = sweep["regime"].copy()
     regime.attrs = regime_attrs(REGIMES, f"solution regime at N = {sweep.attrs['N']}")
     ds["regime"] = regime
-    ds["w_onset"] = ((), separation_onset(), {
+    materials = Materials.of_result(sweep.attrs)
+    ds["w_onset"] = ((), separation_onset(materials), {
         "long_name": "w/c above which separation occurs for small enough f (N(0) = 0 in "
                      "the frictionless limit, Fourier solution)", "units": "1"})
-    ds.attrs = {"f_min": sweep.attrs.get("f_min", np.nan), "N": sweep.attrs["N"]}
+    ds.attrs = {"f_min": sweep.attrs.get("f_min", np.nan), "N": sweep.attrs["N"],
+                **materials.result_attrs()}
     stamp(ds, title="Gap problem (thesis ch. 5): solution regimes (Fig. 5.4)", source=SOURCE,
           history=args.history)
     write_netcdf(ds, args.out)
@@ -91,7 +100,7 @@ def _profile(args: argparse.Namespace) -> None:
 
     ds = profile_dataset(args.w_hat, args.f, args.n, args.x_max, args.points,
                          stick_zone_limit=args.stick_zone_limit,
-                         refine_max_n=args.refine_max_n)
+                         refine_max_n=args.refine_max_n, materials=materials_of(args))
     stamp(ds, title=f"Gap problem (thesis ch. 5): interface profiles at w/c = {args.w_hat}, "
                     f"f = {args.f}", source=SOURCE,
           history=args.history)
@@ -117,7 +126,8 @@ COMMANDS = (
                  Option("--n", N_HELP, int, key=f"{GAP}.n"),
                  Option("--no-thresholds", "skip f_stick/f_sep per w/c", kind="flag",
                         default=False),
-                 *robustness(GAP), out_option("netCDF output (one chunk)")),
+                 *robustness(GAP), *material_options(),
+                 out_option("netCDF output (one chunk)")),
         run=_sweep),
     gather_command(NAME, "gap-gather", "gap-sweep", "w/c", _gather),
     Command(
@@ -137,7 +147,7 @@ COMMANDS = (
                  Option("--x-max", "profile on x/c in [-x_max, x_max]", float,
                         key=f"{GAP}.profile_x_max"),
                  Option("--points", "points of the profile", int, default=601),
-                 *robustness(GAP, continuation=False), out_option()),
+                 *robustness(GAP, continuation=False), *material_options(), out_option()),
         run=_profile),
     Command(
         NAME, "report-gap", "report section of the gap problem",

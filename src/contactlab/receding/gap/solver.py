@@ -47,6 +47,7 @@ from scipy import optimize
 
 from contactlab.receding.core.bilateral import gap_bilateral
 from contactlab.receding.core.dislocations import DensityInterval
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.quadrature import bounded_rule
 from contactlab.receding.core.solution import (
     admissible,
@@ -79,7 +80,7 @@ def check_gap_inputs(w: float, f: float, n: int) -> None:
     check_points(n, 4)
 
 
-def stick_friction(w: float) -> tuple[float, float]:
+def stick_friction(w: float, materials: Materials = ONE_MATERIAL) -> tuple[float, float]:
     """Least f for stick everywhere, max_x |sigma_xy^b / sigma_yy^b|, and where it occurs.
 
     Returns (f_stick, x_hat of the maximum). The bilateral normal traction is compressive
@@ -89,7 +90,7 @@ def stick_friction(w: float) -> tuple[float, float]:
         raise ValueError(f"w_hat must be positive, got {w}")
 
     def ratio(x: np.ndarray) -> np.ndarray:
-        s, n = gap_bilateral(np.asarray(x, dtype=float), w)
+        s, n = gap_bilateral(np.asarray(x, dtype=float), w, materials)
         return np.abs(s / n)
 
     grid = np.linspace(0.0, w + 8.0, 2001)
@@ -103,22 +104,23 @@ def stick_friction(w: float) -> tuple[float, float]:
     return float(-best.fun), float(best.x)
 
 
-def bilateral_slip_zone(w: float, f: float) -> tuple[float, float] | None:
+def bilateral_slip_zone(w: float, f: float, materials: Materials = ONE_MATERIAL,
+                        ) -> tuple[float, float] | None:
     """The part of x > 0 where the bilateral tractions violate |S| <= f|N| (None if none).
 
     Just below f_stick the zone is narrower than the search grid (0.006 c); it is then
     bracketed around the point of the largest |S/N| by root finding."""
     grid = np.linspace(0.0, w + 40.0, 8001)
-    s, n = gap_bilateral(grid, w)
+    s, n = gap_bilateral(grid, w, materials)
     bad = np.abs(s) > f * np.abs(n)
     if bad.any():
         return float(grid[bad][0]), float(grid[bad][-1])
-    f_stick, x_stick = stick_friction(w)
+    f_stick, x_stick = stick_friction(w, materials)
     if not f < f_stick:
         return None
 
     def excess(x: float) -> float:
-        sx, nx = gap_bilateral(np.array([x]), w)
+        sx, nx = gap_bilateral(np.array([x]), w, materials)
         return float(abs(sx[0]) - f * abs(nx[0]))
 
     step = 2.0 * (grid[1] - grid[0])
@@ -172,12 +174,14 @@ class GapSolution:
     flags: tuple[str, ...] = ()
     #: log10(a1/c) of a limit solution by matching (``core.limit``); NaN otherwise
     log10_a1: float = np.nan
+    #: the layer's and the half-plane's materials (``core.materials``; one: the thesis's)
+    materials: Materials = ONE_MATERIAL
 
     # ---- fields
     def tractions(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Total shear S(x)/p and normal N(x)/p, eqs (5.3)-(5.4) and (5.13)-(5.14)."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        s, n = gap_bilateral(x, self.w)
+        s, n = gap_bilateral(x, self.w, self.materials)
         s, n = self.p * s, self.p * n
         for interval, phi in zip(self.intervals, self.phis, strict=True):
             ms, mn = interval.influence(x)
@@ -247,7 +251,8 @@ class GapSolution:
 
 
 def _slip_system(w: float, f: float, n: int, a1: float, a2: float,
-                 p: float = 1.0) -> tuple[LinearSystem, DensityInterval]:
+                 p: float = 1.0, materials: Materials = ONE_MATERIAL,
+                 ) -> tuple[LinearSystem, DensityInterval]:
     """Eqs (5.11)-(5.12): N + 1 collocation rows S - f N = 0 on [a1, a2] and the closure.
 
     The glide density lives on [a1, a2] with a geometric (log) map and its even image on
@@ -257,10 +262,10 @@ def _slip_system(w: float, f: float, n: int, a1: float, a2: float,
     With the log map a1 converges in N down to ~1e-70 (N = 100 vs 200 agree to 10 %);
     below that only "a1 ~ 0" is meaningful, flagged by the contact checks between nodes.
     """
-    glide = _slip_glide(a1, a2, n)
+    glide = _slip_glide(a1, a2, n, materials)
     xk = glide.collocation
     ms, mn = glide.influence(xk)
-    sb, nb = gap_bilateral(xk, w)
+    sb, nb = gap_bilateral(xk, w, materials)
     sb, nb = p * sb, p * nb
     matrix = np.vstack([ms - f * mn, glide.weights[None, :]])
     rhs = np.concatenate([-(sb - f * nb), [0.0]])
@@ -268,9 +273,10 @@ def _slip_system(w: float, f: float, n: int, a1: float, a2: float,
     return LinearSystem(matrix, rhs, leftover=[n // 2, n + 1]), glide
 
 
-def _slip_glide(a1: float, a2: float, n: int) -> DensityInterval:
+def _slip_glide(a1: float, a2: float, n: int,
+                materials: Materials = ONE_MATERIAL) -> DensityInterval:
     """The glide density of the slip regime on [a1, a2] (log map) with its even image."""
-    return DensityInterval("glide", a1, a2, n, parity=+1, mapping="log")
+    return DensityInterval("glide", a1, a2, n, parity=+1, mapping="log", materials=materials)
 
 
 #: log a1 is kept above this (a1 ~ 1e-304) so that a1 stays a normal double
@@ -283,7 +289,8 @@ def _slip_params(p: np.ndarray) -> tuple[float, float]:
 
 
 def solve_slip(w: float, f: float, n: int = 100,
-               guess: tuple[float, float] | None = None, p: float = 1.0) -> GapSolution:
+               guess: tuple[float, float] | None = None, p: float = 1.0,
+               materials: Materials = ONE_MATERIAL) -> GapSolution:
     """Slip without separation (§5.2.1): find a1, a2 and B_x on [a1, a2].
 
     Unknowns of the root finder: (log a1, log(a2 - a1)), so that a1 stays positive at any
@@ -294,14 +301,14 @@ def solve_slip(w: float, f: float, n: int = 100,
     to f = 0) the slip branch has no resolved root here; ``solve_gap`` then solves it in
     its limit a1 -> 0 (``solve_slip_at_limit``).
     """
-    zone = bilateral_slip_zone(w, f)
+    zone = bilateral_slip_zone(w, f, materials)
     if zone is None:
         raise ValueError(f"no slip at w_hat={w}, f={f}: the bilateral solution sticks")
     lo, hi = zone
 
     def assemble(params: np.ndarray, size: int = n) -> LinearSystem:
         a1, a2 = _slip_params(params)
-        return _slip_system(w, f, size, a1, a2, p)[0]
+        return _slip_system(w, f, size, a1, a2, p, materials)[0]
 
     def valid(params: np.ndarray) -> bool:
         a1, a2 = _slip_params(params)
@@ -310,7 +317,7 @@ def solve_slip(w: float, f: float, n: int = 100,
         return bool(resolved and a1 <= lo + tol and a2 >= hi - tol)
 
     seed, jacobian = (None, None) if guess is not None else _coarse_seed(
-        n, lambda: solve_slip(w, f, COARSE_N, None, p),
+        n, lambda: solve_slip(w, f, COARSE_N, None, p, materials),
         lambda s: (s.a1, s.a2), lambda q: assemble(q, COARSE_N))
     guesses = [] if seed is None else [seed]
     if guess is not None and np.all(np.isfinite(guess)) and guess[1] > guess[0] > 0:
@@ -321,9 +328,9 @@ def solve_slip(w: float, f: float, n: int = 100,
         guesses.append(np.array([np.log(a1), np.log(a2 - a1)]))
     root = find_transitions(assemble, guesses, valid=valid, jacobian=jacobian)
     a1, a2 = _slip_params(root.params)
-    system, glide = _slip_system(w, f, n, a1, a2, p) if root.system is None else (
-        root.system, _slip_glide(a1, a2, n))
-    sol = _from_root("slip", w, f, n, root, system, p)
+    system, glide = _slip_system(w, f, n, a1, a2, p, materials) if root.system is None else (
+        root.system, _slip_glide(a1, a2, n, materials))
+    sol = _from_root("slip", w, f, n, root, system, p, materials)
     sol.a1, sol.a2 = a1, a2
     sol.intervals = [glide]
     sol.phis = [root.phi]
@@ -387,7 +394,8 @@ def _coarse_seed(n: int, solve_coarse: Callable[[], GapSolution],
 
 
 def _from_root(regime: str, w: float, f: float, n: int, root: RootResult,
-               system: LinearSystem, p: float) -> GapSolution:
+               system: LinearSystem, p: float,
+               materials: Materials = ONE_MATERIAL) -> GapSolution:
     """A solution with the residuals of every equation of ``system`` at the root."""
     if root.phi.size == system.matrix.shape[1]:
         residual = float(np.max(np.abs(system.matrix @ root.phi - system.rhs)))
@@ -396,28 +404,30 @@ def _from_root(regime: str, w: float, f: float, n: int, root: RootResult,
     return GapSolution(
         w=w, f=f, n=n, regime=regime, residual=residual, leftover=root.residual,
         converged=root.converged, nfev=root.nfev, message="; ".join(root.history), p=p,
+        materials=materials,
     )
 
 
 # --------------------------------------------------------------------------- separation
 
 
-def _separation_system(w: float, f: float, n: int, b: float, a3: float, p: float = 1.0):
+def _separation_system(w: float, f: float, n: int, b: float, a3: float, p: float = 1.0,
+                       materials: Materials = ONE_MATERIAL):
     """Eqs (5.25)-(5.28) for the climb density on [-b, b] and glide density on [-a3, a3].
 
     Rows: N + 1 climb collocations (N = 0), N + 1 glide collocations (S = H sign f N),
     glide closure (5.27), climb closure (5.28). Returns (matrix, rhs, leftover rows,
     climb interval, glide interval); the leftovers are the two t = 0 rows and the closures.
     """
-    climb, glide = _separation_intervals(b, a3, n)
+    climb, glide = _separation_intervals(b, a3, n, materials)
     xc = climb.collocation
     xg = glide.collocation
     points = np.concatenate([xc, xg])
     cs, cn = climb.influence(points)
     gs, gn = glide.influence(points)
     m = n + 1
-    nb_c = p * gap_bilateral(xc, w)[1]
-    sb_g, nb_g = gap_bilateral(xg, w)
+    nb_c = p * gap_bilateral(xc, w, materials)[1]
+    sb_g, nb_g = gap_bilateral(xg, w, materials)
     sb_g, nb_g = p * sb_g, p * nb_g
     # (5.18): N = 0 on the separation zone
     rows_c = np.hstack([cn[:m], gn[:m]])
@@ -437,10 +447,11 @@ def _separation_system(w: float, f: float, n: int, b: float, a3: float, p: float
     return matrix, rhs, leftover, climb, glide
 
 
-def _separation_intervals(b: float, a3: float, n: int) -> tuple[DensityInterval,
-                                                                  DensityInterval]:
+def _separation_intervals(b: float, a3: float, n: int, materials: Materials = ONE_MATERIAL,
+                          ) -> tuple[DensityInterval, DensityInterval]:
     """The climb density on [-b, b] and the glide density on [-a3, a3] (linear maps)."""
-    return DensityInterval("climb", -b, b, n), DensityInterval("glide", -a3, a3, n)
+    return (DensityInterval("climb", -b, b, n, materials=materials),
+            DensityInterval("glide", -a3, a3, n, materials=materials))
 
 
 def separation_guess(w: float, f: float) -> tuple[float, float] | None:
@@ -462,7 +473,8 @@ def _sep_params(p: np.ndarray) -> tuple[float, float]:
 
 
 def solve_separation(w: float, f: float, n: int = 100,
-                     guess: tuple[float, float] | None = None, p: float = 1.0) -> GapSolution:
+                     guess: tuple[float, float] | None = None, p: float = 1.0,
+                     materials: Materials = ONE_MATERIAL) -> GapSolution:
     """Slip and separation (§5.2.2): find b, a3 and B_y on [-b, b], B_x on [-a3, a3].
 
     N must be even (the collocation point t = 0 is used to keep the system symmetric).
@@ -471,12 +483,12 @@ def solve_separation(w: float, f: float, n: int = 100,
     """
     if n % 2:
         raise ValueError(f"the separation case needs an even N, got {n}")
-    zone = bilateral_slip_zone(w, f)
+    zone = bilateral_slip_zone(w, f, materials)
     hi = zone[1] if zone is not None else w
 
     def assemble(params: np.ndarray, size: int = n) -> LinearSystem:
         b, a3 = _sep_params(params)
-        matrix, rhs, leftover, _, _ = _separation_system(w, f, size, b, a3, p)
+        matrix, rhs, leftover, _, _ = _separation_system(w, f, size, b, a3, p, materials)
         return LinearSystem(matrix, rhs, leftover, targets=[0, 2])
 
     def valid(params: np.ndarray) -> bool:
@@ -484,7 +496,7 @@ def solve_separation(w: float, f: float, n: int = 100,
         return b > 1e-4 and a3 >= hi - 0.05
 
     seed, jacobian = (None, None) if guess is not None else _coarse_seed(
-        n, lambda: solve_separation(w, f, COARSE_N, None, p),
+        n, lambda: solve_separation(w, f, COARSE_N, None, p, materials),
         lambda s: (s.b, s.a3), lambda q: assemble(q, COARSE_N))
     guesses = [] if seed is None else [seed]
     if guess is not None and np.all(np.isfinite(guess)) and guess[1] > guess[0] > 0:
@@ -500,11 +512,11 @@ def solve_separation(w: float, f: float, n: int = 100,
     root = find_transitions(assemble, guesses, valid=valid, jacobian=jacobian)
     b, a3 = _sep_params(root.params)
     if root.system is None:
-        matrix, rhs, leftover, climb, glide = _separation_system(w, f, n, b, a3, p)
+        matrix, rhs, leftover, climb, glide = _separation_system(w, f, n, b, a3, p, materials)
         system = LinearSystem(matrix, rhs, leftover)
     else:
-        system, (climb, glide) = root.system, _separation_intervals(b, a3, n)
-    sol = _from_root("slip_separation", w, f, n, root, system, p)
+        system, (climb, glide) = root.system, _separation_intervals(b, a3, n, materials)
+    sol = _from_root("slip_separation", w, f, n, root, system, p, materials)
     sol.b, sol.a3 = b, a3
     sol.intervals = [climb, glide]
     sol.phis = [root.phi[:n], root.phi[n:]]
@@ -514,9 +526,11 @@ def solve_separation(w: float, f: float, n: int = 100,
 # --------------------------------------------------------------------------- any regime
 
 
-def solve_stick(w: float, f: float, n: int = 100, p: float = 1.0) -> GapSolution:
+def solve_stick(w: float, f: float, n: int = 100, p: float = 1.0,
+                materials: Materials = ONE_MATERIAL) -> GapSolution:
     """The bilateral solution, valid when f >= stick_friction(w)."""
-    sol = GapSolution(w=w, f=f, n=n, regime="stick", message="bilateral solution", p=p)
+    sol = GapSolution(w=w, f=f, n=n, regime="stick", message="bilateral solution", p=p,
+                      materials=materials)
     sol.evaluate_checks()
     return sol
 
@@ -532,7 +546,8 @@ def _separation_likely(w: float, f: float) -> bool:
 
 
 def solve_gap(w: float, f: float, n: int = 100, guess: GapSolution | None = None,
-              p: float = 1.0, stick_zone_limit: float = STICK_ZONE_LIMIT) -> GapSolution:
+              p: float = 1.0, stick_zone_limit: float = STICK_ZONE_LIMIT,
+              materials: Materials = ONE_MATERIAL) -> GapSolution:
     """The solution at (w_hat, f) in whichever regime satisfies the contact conditions.
 
     Stick if f >= f_stick(w); otherwise slip without separation if that solution keeps
@@ -546,14 +561,17 @@ def solve_gap(w: float, f: float, n: int = 100, guess: GapSolution | None = None
     ``stick_zone_limit`` (units of c; 0 never uses the limit). A neighbour solved in the
     limit sends the slip regime straight to the limit (a1 only shrinks further along a
     sweep towards f_sep or f = 0).
+
+    ``materials``: the layer's and the half-plane's (``core.materials``); the limit
+    a1 -> 0 is derived for one material and is not used with two.
     """
     check_gap_inputs(w, f, n)
     if not (np.isfinite(p) and p > 0):
         raise ValueError(f"pressure p must be positive, got {p}")
     if not (np.isfinite(stick_zone_limit) and stick_zone_limit >= 0):
         raise ValueError(f"stick_zone_limit must be >= 0, got {stick_zone_limit}")
-    if f >= stick_friction(w)[0]:
-        return solve_stick(w, f, n, p)
+    if f >= stick_friction(w, materials)[0]:
+        return solve_stick(w, f, n, p, materials)
     slip_guess = sep_guess = None
     at_limit = guess is not None and LIMIT_FLAG in guess.flags
     if guess is not None and guess.regime == "slip" and not at_limit:
@@ -566,7 +584,7 @@ def solve_gap(w: float, f: float, n: int = 100, guess: GapSolution | None = None
         first_separation = guess.regime == "slip_separation"
     order = ("separation", "slip") if first_separation else ("slip", "separation")
     tried: list[GapSolution] = []
-    limit_ok = stick_zone_limit > 0
+    limit_ok = stick_zone_limit > 0 and materials.same
 
     def in_compression(sol: GapSolution) -> bool:
         return sol.converged and centre_normal(sol) <= 0.0
@@ -588,7 +606,7 @@ def solve_gap(w: float, f: float, n: int = 100, guess: GapSolution | None = None
             if at_limit and limit_ok:
                 candidates.append(limit(guess.a2))
             if not (candidates and candidates[-1].converged):
-                sol = solve_slip(w, f, n, slip_guess, p)
+                sol = solve_slip(w, f, n, slip_guess, p, materials)
                 candidates.append(sol)
                 if in_compression(sol):
                     sol.evaluate_checks()
@@ -612,7 +630,7 @@ def solve_gap(w: float, f: float, n: int = 100, guess: GapSolution | None = None
                 return best
             tried.extend(candidates)
         else:
-            sol = solve_separation(w, f, n, sep_guess, p)
+            sol = solve_separation(w, f, n, sep_guess, p, materials)
             if sol.converged:
                 sol.evaluate_checks()
                 return sol
@@ -630,7 +648,7 @@ def centre_normal(sol: GapSolution) -> float:
     return float(sol.tractions(np.array([0.0]))[1][0]) / sol.p
 
 
-def frictionless_centre_normal(w: float) -> float:
+def frictionless_centre_normal(w: float, materials: Materials = ONE_MATERIAL) -> float:
     """N(0)/p in the limit f -> 0 (frictionless interface, full contact), by Fourier transform.
 
     With S = 0 everywhere a glide density on the whole line cancels the bilateral shear.
@@ -641,20 +659,43 @@ def frictionless_centre_normal(w: float) -> float:
     (1/pi) int_0^inf 4 k^2 sin(kw) e^{-3k} / D(k) dk. Separation is possible for small f
     only where this limit is tensile; it changes sign at w_hat = 1.51116 (the thesis
     reports no separation for w_hat <= 1.5).
+
+    Two materials (``core.bimaterial``): S = 0 gives B_x(k) = -pi S_b(k) / H_xxy(k) and
+    the normal traction -H_xyy(k) S_b(k) / H_xxy(k), with H_xxy = -i pi h_xxy, H_xyy =
+    -pi e (its delta part included) and the gap loading's shear S_b(k) = -(the patch's) =
+    2 i sin(kw) s(k)/k (k > 0), s the line load's shear transform: N(0) of the glide
+    density is -(2/pi) int_0^inf e(k) s(k) sin(kw) / (k h_xxy(k)) dk, for one material
+    (e = -2 k^2 e^{-2k}, s = k e^{-k}, h_xxy = D) the integral above.
     """
     from scipy.integrate import quad
 
-    def integrand(k: float) -> float:
-        d = -np.expm1(-2.0 * k) + np.exp(-2.0 * k) * (2.0 * k - 2.0 * k * k)
-        return 4.0 * k * k * np.sin(k * w) * np.exp(-3.0 * k) / d if k > 0 else 0.0
+    if materials.same:
+        def integrand(k: float) -> float:
+            d = -np.expm1(-2.0 * k) + np.exp(-2.0 * k) * (2.0 * k - 2.0 * k * k)
+            return 4.0 * k * k * np.sin(k * w) * np.exp(-3.0 * k) / d if k > 0 else 0.0
+    else:
+        from contactlab.receding.core.bimaterial import (
+            dislocation_transforms,
+            line_load_transforms,
+        )
+
+        alpha, beta = materials.alpha_beta
+
+        def integrand(k: float) -> float:
+            if k <= 0:
+                return 0.0
+            h, _, e = dislocation_transforms(k, alpha, beta)
+            s, _ = line_load_transforms(k, alpha, beta)
+            return -2.0 * e * s * np.sin(k * w) / (k * h)
 
     glide = quad(integrand, 0.0, 60.0, limit=400, epsabs=1e-13)[0] / np.pi
-    return float(gap_bilateral(np.array([0.0]), w)[1][0] + glide)
+    return float(gap_bilateral(np.array([0.0]), w, materials)[1][0] + glide)
 
 
-def separation_onset() -> float:
+def separation_onset(materials: Materials = ONE_MATERIAL) -> float:
     """w_hat above which separation occurs for small enough f (root of the f -> 0 limit)."""
-    return float(optimize.brentq(frictionless_centre_normal, 1.0, 3.0, xtol=1e-10))
+    return float(optimize.brentq(lambda w: frictionless_centre_normal(w, materials), 1.0, 3.0,
+                                 xtol=1e-10))
 
 
 @dataclass
@@ -684,7 +725,8 @@ class SeparationThreshold:
 
 
 def separation_friction(w: float, n: int = 100, f_min: float = 0.02, step: float = 0.1,
-                        xtol: float = 1e-3, tension_tol: float = 1e-4) -> SeparationThreshold:
+                        xtol: float = 1e-3, tension_tol: float = 1e-4,
+                        materials: Materials = ONE_MATERIAL) -> SeparationThreshold:
     """f_sep(w): the largest f with separation.
 
     No separation at any f if the frictionless limit keeps the centre in compression
@@ -696,7 +738,7 @@ def separation_friction(w: float, n: int = 100, f_min: float = 0.02, step: float
     :class:`SeparationThreshold`). The thesis (Fig. 5.4) reports the largest f with
     separation in steps of 0.01.
     """
-    f_stick = stick_friction(w)[0]
+    f_stick = stick_friction(w, materials)[0]
     solves = 0
 
     def result(**kw) -> SeparationThreshold:
@@ -705,7 +747,7 @@ def separation_friction(w: float, n: int = 100, f_min: float = 0.02, step: float
         base.update(kw)
         return SeparationThreshold(**base)
 
-    limit = frictionless_centre_normal(w)
+    limit = frictionless_centre_normal(w, materials)
     if limit <= 0.0:
         return result(converged=True, n_centre=limit)
 
@@ -713,13 +755,13 @@ def separation_friction(w: float, n: int = 100, f_min: float = 0.02, step: float
         return s.converged and centre_normal(s) <= -tension_tol
 
     f = f_stick * (1.0 - 1e-3)
-    sol = solve_slip(w, f, n)
+    sol = solve_slip(w, f, n, materials=materials)
     solves += 1
     if not sol.converged:
         return result()
     while True:
         f_next = max(f - step, f_min)
-        nxt = solve_slip(w, f_next, n, (sol.a1, sol.a2))
+        nxt = solve_slip(w, f_next, n, (sol.a1, sol.a2), materials=materials)
         solves += 1
         if not compressed(nxt):
             break
@@ -730,7 +772,7 @@ def separation_friction(w: float, n: int = 100, f_min: float = 0.02, step: float
     lo, hi = f_next, f  # separation side, slip side
     while hi - lo > xtol:
         mid = 0.5 * (lo + hi)
-        trial = solve_slip(w, mid, n, (sol.a1, sol.a2))
+        trial = solve_slip(w, mid, n, (sol.a1, sol.a2), materials=materials)
         solves += 1
         if compressed(trial):
             hi, sol = mid, trial
@@ -744,7 +786,7 @@ def separation_friction(w: float, n: int = 100, f_min: float = 0.02, step: float
         fx = lo - 0.01 * k
         if fx <= 0 or len(fs) == 3:
             break
-        sep = solve_separation(w, fx, n, guess)
+        sep = solve_separation(w, fx, n, guess, materials=materials)
         solves += 1
         if sep.converged:
             fs.append(fx)

@@ -13,6 +13,7 @@ import xarray as xr
 
 from contactlab.progress import track
 from contactlab.receding.core.bilateral import gap_bilateral
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.solution import CHECK_TOL
 from contactlab.receding.core.sweep import Sweep, check_refine, record_variables
 from contactlab.receding.gap.solver import (
@@ -29,30 +30,33 @@ ONE = "1"
 
 
 def _sweep(w_values: np.ndarray, f_values: np.ndarray, n: int, stick_zone_limit: float,
-           refine_max_n: int, continuation: bool) -> Sweep:
-    """The engine's sweep of the gap problem on (f, w/c)."""
+           refine_max_n: int, continuation: bool, materials: Materials) -> Sweep:
+    """The engine's sweep of the gap problem on (f, w/c) in the body of ``materials``."""
     return Sweep(GAP, {"f": f_values, "w_hat": w_values},
                  lambda index: GAP.point(float(f_values[index[0]]),
-                                         float(w_values[index[1]])),
+                                         float(w_values[index[1]]), materials=materials),
                  n, settings={"stick_zone_limit": stick_zone_limit},
                  refine_max_n=refine_max_n, continuation=continuation,
                  what=f"gap sweep N = {n}")
 
 
 def sweep_friction(w: float, f_values: np.ndarray, n: int,
-                   stick_zone_limit: float = STICK_ZONE_LIMIT) -> list[GapSolution]:
+                   stick_zone_limit: float = STICK_ZONE_LIMIT,
+                   materials: Materials = ONE_MATERIAL) -> list[GapSolution]:
     """Solutions at one w_hat for every f (any order in, same order out), by continuation
     along f (the engine's first step, ``core.sweep``)."""
     f_values = np.asarray(f_values, dtype=float)
-    sweep = _sweep(np.array([float(w)]), f_values, n, stick_zone_limit, n, False)
+    sweep = _sweep(np.array([float(w)]), f_values, n, stick_zone_limit, n, False, materials)
     sweep.solve_all()
     return list(sweep.grid[:, 0])
 
 
 def sweep_dataset(w_values: np.ndarray, f_values: np.ndarray, n: int,
                   thresholds: bool = True, *, stick_zone_limit: float = STICK_ZONE_LIMIT,
-                  refine_max_n: int | None = None, continuation: bool = True) -> xr.Dataset:
-    """Solutions on the grid (f, w_hat) at N points and, per w_hat, f_stick and f_sep.
+                  refine_max_n: int | None = None, continuation: bool = True,
+                  materials: Materials = ONE_MATERIAL) -> xr.Dataset:
+    """Solutions on the grid (f, w_hat) at N points and, per w_hat, f_stick and f_sep, in
+    the body of ``materials`` (the layer's and the half-plane's).
 
     The sweep engine (``core.sweep``) with the gap problem's continuation
     (``problems.gap``): each w_hat is swept down in f from solved neighbours; with
@@ -69,14 +73,15 @@ def sweep_dataset(w_values: np.ndarray, f_values: np.ndarray, n: int,
             check_gap_inputs(float(w), float(f), n)
     refine_max_n = check_refine(n, refine_max_n)
     records = _sweep(w_values, f_values, n, stick_zone_limit, refine_max_n,
-                     continuation).run()
+                     continuation, materials).run()
     ds = xr.Dataset(record_variables(GAP, records, ("f", "w_hat")),
                     coords=_coords(w_values, f_values),
                     attrs={"N": int(n), "check_tol": CHECK_TOL,
                            "stick_zone_limit": stick_zone_limit,
-                           "refine_max_n": refine_max_n, "continuation": int(continuation)})
+                           "refine_max_n": refine_max_n, "continuation": int(continuation),
+                           **materials.result_attrs()})
     if thresholds:
-        ds = ds.merge(threshold_dataset(w_values, n))
+        ds = ds.merge(threshold_dataset(w_values, n, materials=materials))
     return ds
 
 
@@ -88,11 +93,12 @@ def _coords(w_values, f_values) -> dict:
     }
 
 
-def threshold_dataset(w_values: np.ndarray, n: int, f_min: float = 0.02) -> xr.Dataset:
+def threshold_dataset(w_values: np.ndarray, n: int, f_min: float = 0.02,
+                      materials: Materials = ONE_MATERIAL) -> xr.Dataset:
     """f_stick(w) (eqs 5.1-5.2) and f_sep(w) (slip branch, N(0) = 0) for the regime map."""
-    rows = [separation_friction(float(w), n, f_min=f_min)
+    rows = [separation_friction(float(w), n, f_min=f_min, materials=materials)
             for w in track(w_values, f"gap thresholds N = {n}: f_sep(w)", unit="w/c values")]
-    x_stick = [stick_friction(float(w))[1] for w in w_values]
+    x_stick = [stick_friction(float(w), materials)[1] for w in w_values]
     dims = ("w_hat",)
     return xr.Dataset(
         {
@@ -113,7 +119,7 @@ def threshold_dataset(w_values: np.ndarray, n: int, f_min: float = 0.02) -> xr.D
                 "units": ONE}),
             "n_centre_at_f_slip_last": (dims, [r.n_centre for r in rows], {
                 "long_name": "N(0)/p of the slip solution at f_slip_last", "units": ONE}),
-            "n_centre_frictionless": (dims, [frictionless_centre_normal(float(w))
+            "n_centre_frictionless": (dims, [frictionless_centre_normal(float(w), materials)
                                              for w in w_values], {
                 "long_name": "N(0)/p in the limit f -> 0 (Fourier solution); > 0 means "
                              "separation for small enough f", "units": ONE}),
@@ -126,14 +132,16 @@ def threshold_dataset(w_values: np.ndarray, n: int, f_min: float = 0.02) -> xr.D
 
 def profile_dataset(w: float, f: float, n: int, x_max: float, points: int, *,
                     stick_zone_limit: float = STICK_ZONE_LIMIT,
-                    refine_max_n: int | None = None) -> xr.Dataset:
+                    refine_max_n: int | None = None,
+                    materials: Materials = ONE_MATERIAL) -> xr.Dataset:
     """Tractions, densities and relative displacements along the interface (Figs 5.6-5.8),
-    of the solution refined in N up to ``refine_max_n`` if it fails the contact checks."""
-    sol = GAP.solve_refined(GAP.point(f, w), n, n if refine_max_n is None
+    of the solution refined in N up to ``refine_max_n`` if it fails the contact checks, in
+    the body of ``materials``."""
+    sol = GAP.solve_refined(GAP.point(f, w, materials=materials), n, n if refine_max_n is None
                             else max(n, int(refine_max_n)), stick_zone_limit=stick_zone_limit)
     x = np.linspace(-x_max, x_max, points)
     s, nn = sol.tractions(x)
-    sb, nb = gap_bilateral(x, w)
+    sb, nb = gap_bilateral(x, w, materials)
     unit_d = "2 mu / ((kappa + 1) p)"
     unit_g = "2 mu / ((kappa + 1) p c)"
     variables = {
@@ -153,6 +161,7 @@ def profile_dataset(w: float, f: float, n: int, x_max: float, points: int, *,
                                 "units": ONE})},
     )
     ds.attrs.update(_solution_attrs(sol))
+    ds.attrs.update(materials.result_attrs())
     return ds
 
 

@@ -3,8 +3,8 @@
 Declared here, grouped by :mod:`contactlab.receding.cli`: ``line-sweep``, ``line-gather``,
 ``line-profile``, ``patch-sweep``, ``patch-gather``, ``patch-profile``,
 ``report-line-patch``.
-Options fed from the config (``receding.line``, ``receding.patches``) take the schema's
-defaults when not given.
+Options fed from the config (``receding.line``, ``receding.patches``, the materials of
+``receding.materials``) take the schema's defaults when not given.
 """
 
 from __future__ import annotations
@@ -28,6 +28,8 @@ from contactlab.receding.options import (
     PATCHES,
     f_values,
     line_options,
+    material_options,
+    materials_of,
     n_option,
     patch_options,
     robustness,
@@ -45,14 +47,14 @@ LAWS = names(family="patch", shape=False)
 
 def solve_problem(args: argparse.Namespace, problem: str, chaise: bool = False) -> Any:
     """The solution of ``problem`` with the command's options (N, the maps and preformed
-    density, the stick-zone limit, f and w/c), refined in N up to ``--refine-max-n`` while
-    it fails a contact check; ``chaise``: the bounded-bounded-only model of Chaise et al.
-    instead of the preformed one."""
+    density, the stick-zone limit, f and w/c, the materials), refined in N up to
+    ``--refine-max-n`` while it fails a contact check; ``chaise``: the bounded-bounded-only
+    model of Chaise et al. instead of the preformed one."""
     spec = registry()[problem]
     check_memory("--n", args.n, spec.memory(args.n))
     if args.refine_max_n > args.n:
         check_memory("--refine-max-n", args.refine_max_n, spec.memory(args.refine_max_n))
-    point = spec.point(args.f, getattr(args, "w_hat", None))
+    point = spec.point(args.f, getattr(args, "w_hat", None), materials=materials_of(args))
     settings = {k: getattr(args, k) for k in spec.settings}
     return spec.solve_refined(point, args.n, args.refine_max_n, preformed=not chaise,
                               **settings)
@@ -77,7 +79,7 @@ def _line_sweep(args: argparse.Namespace) -> None:
     start = time.perf_counter()
     ds = sweep_line(np.asarray(args.f), args.n, args.lam, args.e, chaise=args.chaise,
                     stick_zone_limit=args.stick_zone_limit, refine_max_n=args.refine_max_n,
-                    continuation=args.continuation)
+                    continuation=args.continuation, materials=materials_of(args))
     _log_time(ds, start)
     stamp(ds, title=f"Line load on a layer (thesis ch. 6): a, b, K_T over f, N = {args.n}",
           source=SOURCE, history=args.history)
@@ -97,7 +99,8 @@ def _patch_sweep(args: argparse.Namespace) -> None:
     start = time.perf_counter()
     ds = sweep_patch(args.problem, np.asarray(args.f), np.asarray(args.w_hat), args.n,
                      args.lam_b, args.e_minus_w, shape, stick_zone_limit=args.stick_zone_limit,
-                     refine_max_n=args.refine_max_n, continuation=args.continuation)
+                     refine_max_n=args.refine_max_n, continuation=args.continuation,
+                     materials=materials_of(args))
     _log_time(ds, start)
     if shape is not None:
         ds.attrs.update(table_x_over_w=np.asarray(shape["x"], dtype=float),
@@ -154,7 +157,8 @@ COMMANDS = (
                     "on a layer over friction coefficients f (ch. 6, Figs 6.3, 7.6).",
         options=(f_values(), n_option(LINE), *line_options(),
                  Option("--chaise", CHAISE, kind="switch", key=f"{LINE}.chaise"),
-                 *robustness(LINE), out_option("netCDF output (one chunk)")),
+                 *robustness(LINE), *material_options(),
+                 out_option("netCDF output (one chunk)")),
         run=_line_sweep),
     gather_command(NAME, "line-gather", "line-sweep", "f", _gather),
     Command(
@@ -168,7 +172,7 @@ COMMANDS = (
                  Option("--x-max", "profile on 0 <= x/c <= x_max", float,
                         key=f"{LINE}.profile_x_max"),
                  Option("--points", "points of the profile", int, default=481),
-                 *robustness(LINE, continuation=False), out_option()),
+                 *robustness(LINE, continuation=False), *material_options(), out_option()),
         run=_line_profile),
     Command(
         NAME, "patch-sweep", "pressure patch (ch. 7) over (f, w/c)",
@@ -181,7 +185,7 @@ COMMANDS = (
                         nargs="+", only=names(shape=True)),
                  f_values(), Option("--w-hat", "patch half-widths w/c", float, nargs="+"),
                  n_option(PATCHES), *patch_options(), *robustness(PATCHES),
-                 out_option("netCDF output (one chunk)")),
+                 *material_options(), out_option("netCDF output (one chunk)")),
         run=_patch_sweep, select="problem"),
     gather_command(NAME, "patch-gather", "patch-sweep", "f", _gather),
     Command(
@@ -195,7 +199,8 @@ COMMANDS = (
                  Option("--x-max", "profile on 0 <= x/c <= w/c + x_max", float,
                         key=f"{PATCHES}.profile_x_max"),
                  Option("--points", "points of the profile", int, default=481),
-                 *robustness(PATCHES, continuation=False), out_option()),
+                 *robustness(PATCHES, continuation=False), *material_options(),
+                 out_option()),
         run=_patch_profile),
     Command(
         NAME, "report-line-patch", "report section of chs 6-7",

@@ -56,6 +56,7 @@ import numpy as np
 from contactlab.receding.core.bridge import Bridge
 from contactlab.receding.core.dislocations import DensityInterval
 from contactlab.receding.core.interface import Interface
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.quadrature import bounded_rule, cumulative_matrix
 from contactlab.receding.core.solution import contact_checks
 from contactlab.receding.core.solve import LinearSystem
@@ -176,16 +177,18 @@ def _row_cumulative(nk: int) -> np.ndarray:
     return out
 
 
-def geometry(interface: Interface, a: float, b: float, nk: int) -> CompliantGeometry:
+def geometry(interface: Interface, a: float, b: float, nk: int,
+             materials: Materials = ONE_MATERIAL) -> CompliantGeometry:
     """The added unknowns of ``interface`` for transition points (a, b) (a = 0: none for
-    the stick zone, e.g. f = 0)."""
+    the stick zone, e.g. f = 0) in the body of ``materials``."""
     stick = bridge_a = contact = bridge_b = None
     if interface.tangential and a > 0:
-        stick = DensityInterval("glide", -a, a, nk)
-        bridge_a = Bridge("glide", a, BRIDGE_WIDTH * min(a, b - a), +1)
+        stick = DensityInterval("glide", -a, a, nk, materials=materials)
+        bridge_a = Bridge("glide", a, BRIDGE_WIDTH * min(a, b - a), +1, materials)
     if interface.normal:
-        contact = DensityInterval("climb", -b, b, nk)
-        bridge_b = Bridge("climb", b, BRIDGE_WIDTH * min(b - a if a > 0 else b, 1.0), -1)
+        contact = DensityInterval("climb", -b, b, nk, materials=materials)
+        bridge_b = Bridge("climb", b, BRIDGE_WIDTH * min(b - a if a > 0 else b, 1.0), -1,
+                          materials)
     return CompliantGeometry(interface, nk, stick, bridge_a, contact, bridge_b)
 
 

@@ -21,6 +21,7 @@ import numpy as np
 from contactlab.blas import single_thread
 from contactlab.receding.core.dislocations import DensityInterval
 from contactlab.receding.core.interface import SMOOTH, Interface
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.quadrature import interpolation_matrix
 from contactlab.receding.core.solve import LinearSystem, find_transitions
 from contactlab.receding.liftoff.compliant import Linearisation, extend, geometry
@@ -32,37 +33,41 @@ from contactlab.receding.liftoff.solver import (
     LiftoffSolution,
     base_tractions,
     check_liftoff_inputs,
+    map_scale,
 )
 
 
-def _intervals(n: int, b: float, lam_a: float, lam_b: float) -> tuple[DensityInterval,
-                                                                      DensityInterval]:
-    """The whole-line glide density and the climb density on [b, inf)."""
-    glide = DensityInterval("glide", -np.inf, np.inf, n, mapping="infinite", lam=lam_a)
+def _intervals(n: int, b: float, lam_a: float, lam_b: float,
+               materials: Materials = ONE_MATERIAL) -> tuple[DensityInterval, DensityInterval]:
+    """The whole-line glide density and the climb density on [b, inf) (maps stretched for a
+    stiffer layer, ``solver.map_scale``)."""
+    glide = DensityInterval("glide", -np.inf, np.inf, n, mapping="infinite",
+                            lam=map_scale(lam_a, materials), materials=materials)
     climb = DensityInterval("climb", b, np.inf, n, parity=-1, mapping="semi-infinite",
-                            lam=lam_b)
+                            lam=map_scale(lam_b, materials), materials=materials)
     return glide, climb
 
 
 def assemble_frictionless(load: Load, n: int, b: float, lam_a: float, lam_b: float, e: float,
                           preformed: bool = True, interface: Interface = SMOOTH,
-                          state: Linearisation | None = None):
+                          state: Linearisation | None = None,
+                          materials: Materials = ONE_MATERIAL):
     """The rows of the module docstring for fixed b: (LinearSystem, glide, climb); a
     compliant ``interface`` adds its contact zone (``compliant``; no stick zone at f = 0,
     so C_T does not enter)."""
-    glide, climb = _intervals(n, b, lam_a, lam_b)
+    glide, climb = _intervals(n, b, lam_a, lam_b, materials)
     xb, xa = climb.collocation, glide.collocation
     m = n + 1
     gn_b = glide.normal_influence(xb)
     gs_a, _ = glide.influence(xa)
     cn_b = climb.collocation_influence()[1]
     cs_a, _ = climb.influence(xa)
-    sb_a, _ = load.bilateral(xa)
-    _, nb_b = load.bilateral(xb)
+    sb_a, _ = load.bilateral(xa, materials)
+    _, nb_b = load.bilateral(xb, materials)
     cols_n, cols_s = [gn_b, cn_b], [gs_a, cs_a]
     rhs_n, rhs_s = -nb_b, -sb_a
     if preformed:
-        pre = Preformed(load, b, e)
+        pre = Preformed(load, b, e, materials)
         _, pn = pre.stresses(xb)
         ps, _ = pre.stresses(xa)
         cols_n.append(pn[:, 1:2])
@@ -77,9 +82,10 @@ def assemble_frictionless(load: Load, n: int, b: float, lam_a: float, lam_b: flo
     centre = n // 2
     system = LinearSystem(matrix, rhs, leftover=[centre, m + centre], targets=[0])
     if interface.normal:
-        pre = Preformed(load, b, e) if preformed else None
-        system = extend(system, geometry(interface, 0.0, b, n),
-                        lambda x, shear: base_tractions(load, glide, climb, pre, x, shear),
+        pre = Preformed(load, b, e, materials) if preformed else None
+        system = extend(system, geometry(interface, 0.0, b, n, materials),
+                        lambda x, shear: base_tractions(load, glide, climb, pre, x, shear,
+                                                        materials),
                         normal_rows=slice(0, m), normal_points=xb, shear_rows=slice(m, 2 * m),
                         shear_points=xa, friction=np.zeros(m), state=state)
     return system, glide, climb
@@ -88,10 +94,12 @@ def assemble_frictionless(load: Load, n: int, b: float, lam_a: float, lam_b: flo
 def solve_frictionless(load: Load, n: int, lam_a: float, lam_b: float, e: float,
                        problem: str = "", preformed: bool = True,
                        guess: float | None = None,
-                       interface: Interface = SMOOTH) -> LiftoffSolution:
+                       interface: Interface = SMOOTH,
+                       materials: Materials = ONE_MATERIAL) -> LiftoffSolution:
     """f = 0: find b (and K_T) with S = 0 everywhere (see module docstring); a compliant
     ``interface`` without a ``guess`` starts from the smooth b and follows the compliance
-    up (the steps of ``solver.COMPLIANCE_STEPS``)."""
+    up (the steps of ``solver.COMPLIANCE_STEPS``); ``materials``: the layer's and the
+    half-plane's."""
     check_liftoff_inputs(0.0, n, lam_a, lam_b, e, load)
     interface = interface if interface.normal else SMOOTH  # C_T alone: no stick zone
     start = time.perf_counter()
@@ -101,11 +109,12 @@ def solve_frictionless(load: Load, n: int, lam_a: float, lam_b: float, e: float,
         b = float(np.exp(min(p[0], 4.0)))
         if b >= e - 0.25:
             raise ValueError("b too close to e")
-        return assemble_frictionless(load, n, b, lam_a, lam_b, e, preformed, law, state)[0]
+        return assemble_frictionless(load, n, b, lam_a, lam_b, e, preformed, law, state,
+                                     materials)[0]
 
     b0 = [guess] if guess else []
     if interface.normal and not guess:
-        b0 = [_compliance_seed(load, lam_a, lam_b, e, preformed, interface)]
+        b0 = [_compliance_seed(load, lam_a, lam_b, e, preformed, interface, materials)]
     b0 += [1.35 + 0.5 * load.w, 1.2 + load.w, 1.6 + 0.3 * load.w]
     root = find_transitions(system, [np.array([np.log(v)]) for v in b0], tol=1e-11,
                             accept=1e-8)
@@ -113,23 +122,24 @@ def solve_frictionless(load: Load, n: int, lam_a: float, lam_b: float, e: float,
     sol = LiftoffSolution(problem=problem or load.law, load=load, f=0.0, n=n, lam_a=lam_a,
                           lam_b=lam_b, e=e, preformed_used=preformed, regime="frictionless",
                           a=0.0, b=b, nfev=root.nfev, message="; ".join(root.history),
-                          interface=interface)
+                          interface=interface, materials=materials)
     if root.system is not None:  # the root finder's own system at the root
-        sol.record(root, root.system, *_intervals(n, b, lam_a, lam_b))
+        sol.record(root, root.system, *_intervals(n, b, lam_a, lam_b, materials))
     else:
         with single_thread():
             sysm, glide, climb = assemble_frictionless(load, n, b, lam_a, lam_b, e, preformed,
-                                                       interface, Linearisation())
+                                                       interface, Linearisation(), materials)
         sol.record(root, sysm, glide, climb)
     sol.seconds = time.perf_counter() - start
     return sol
 
 
 def _compliance_seed(load: Load, lam_a: float, lam_b: float, e: float, preformed: bool,
-                     interface: Interface) -> float:
+                     interface: Interface, materials: Materials = ONE_MATERIAL) -> float:
     """b of ``interface`` at f = 0 and N = COARSE_N, from the smooth b through the
     compliances of ``COMPLIANCE_STEPS`` (the last b found where a step fails)."""
-    smooth = solve_frictionless(load, COARSE_N, lam_a, lam_b, e, preformed=preformed)
+    smooth = solve_frictionless(load, COARSE_N, lam_a, lam_b, e, preformed=preformed,
+                                materials=materials)
     b = smooth.b if smooth.converged else 1.35 + 0.5 * load.w
     for level in [v for v in COMPLIANCE_STEPS if v < interface.C] + [interface.C]:
         law = interface.scaled(level / interface.C)
@@ -139,7 +149,7 @@ def _compliance_seed(load: Load, lam_a: float, lam_b: float, e: float, preformed
             if step_b >= e - 0.25:
                 raise ValueError("b too close to e")
             return assemble_frictionless(load, COARSE_N, step_b, lam_a, lam_b, e, preformed,
-                                         law, Linearisation())[0]
+                                         law, Linearisation(), materials)[0]
 
         root = find_transitions(system, [np.array([np.log(b)])], tol=1e-11, accept=1e-8)
         if not root.converged:

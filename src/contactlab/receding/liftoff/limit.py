@@ -40,6 +40,7 @@ from contactlab.blas import single_thread
 from contactlab.receding.core.dislocations import DensityInterval
 from contactlab.receding.core.interface import SMOOTH, Interface
 from contactlab.receding.core.limit import LogDensity, SingularGlide
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.quadrature import interpolation_matrix
 from contactlab.receding.core.solve import LinearSystem, find_transitions
 from contactlab.receding.liftoff.compliant import Linearisation, extend, geometry
@@ -196,6 +197,10 @@ def try_limit(sol: LiftoffSolution, lam_a: float, lam_b: float, stick_zone_limit
     the stick zone to at least about C_T c."""
     if not (0 < sol.f < LIMIT_FRICTION and stick_zone_limit > 0):
         return None
+    if not sol.materials.same:
+        sol.message += ("; stick-zone limit not used: its log-singular densities are "
+                        "derived for one material (App. B.1)")
+        return None
     if sol.interface.C_T >= stick_zone_limit:
         sol.message += (f"; stick-zone limit not used: C_T = {sol.interface.C_T:g} >= "
                         f"stick_zone_limit {stick_zone_limit:g}")
@@ -215,7 +220,8 @@ def try_limit(sol: LiftoffSolution, lam_a: float, lam_b: float, stick_zone_limit
 
 def below_resolution(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
                      problem: str, preformed: bool, a_expected: float, b_guess: float,
-                     stick_zone_limit: float) -> LiftoffSolution | None:
+                     stick_zone_limit: float, materials: Materials = ONE_MATERIAL,
+                     ) -> LiftoffSolution | None:
     """The stick-zone limit of a point whose resolved equations have no root, found before
     any resolved search (else None).
 
@@ -226,8 +232,9 @@ def below_resolution(load: Load, f: float, n: int, lam_a: float, lam_b: float, e
     fallbacks then solve this limit from ``b_guess`` (``try_limit``). Here it is solved at
     once, with the same arguments, so the answer is the same. Elsewhere (the limit not
     converged, or matching puts a above ``stick_zone_limit``) the caller goes on as
-    before."""
-    if not (preformed and 0 < f < LIMIT_FRICTION and stick_zone_limit > 0
+    before. Two ``materials``: None (the limit is one material's, ``try_limit``; the seed
+    tables too)."""
+    if not (materials.same and preformed and 0 < f < LIMIT_FRICTION and stick_zone_limit > 0
             and a_expected < stick_zone_limit):
         return None
     crit = critical_friction(load, n, lam_a, lam_b, e, guess=(0.07, b_guess))

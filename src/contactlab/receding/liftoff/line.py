@@ -36,6 +36,7 @@ from collections.abc import Callable
 import numpy as np
 
 from contactlab.receding.core.interface import SMOOTH, Interface
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.solution import check_friction
 from contactlab.receding.liftoff.limit import (
     STICK_ZONE_LIMIT,
@@ -47,6 +48,8 @@ from contactlab.receding.liftoff.loading import make_load
 from contactlab.receding.liftoff.solver import (
     COARSE_N,
     LiftoffSolution,
+    coarse_points,
+    contrast_seed,
     critical_friction,
     solve_compliant,
     solve_liftoff,
@@ -94,9 +97,11 @@ def compliant_guess(f: float, C: float) -> tuple[float, float]:
 def solve_line(f: float, n: int, lam: float, e: float,
                guess: tuple[float, float] | None = None, preformed: bool = True,
                stick_zone_limit: float = STICK_ZONE_LIMIT,
-               interface: Interface = SMOOTH) -> LiftoffSolution:
+               interface: Interface = SMOOTH,
+               materials: Materials = ONE_MATERIAL) -> LiftoffSolution:
     """Line load at friction f (see module docstring); ``preformed=False`` is the
-    bounded-bounded-only model of Chaise et al.
+    bounded-bounded-only model of Chaise et al.; ``materials`` the layer's and the
+    half-plane's (``core.materials``; the stick-zone limit is for one material only).
 
     Below the critical friction (no resolved root) the stick zone is solved in its limit
     a -> 0 (``limit``: regime ``no_stick``, converged, a = 0) where matching puts a below
@@ -114,22 +119,30 @@ def solve_line(f: float, n: int, lam: float, e: float,
 
         return solve_frictionless(load, n, lam, lam, e, problem=problem, preformed=preformed,
                                   guess=None if guess is None else guess[1],
-                                  interface=interface)
+                                  interface=interface, materials=materials)
     if not interface.smooth:
         sol = solve_compliant(load, f, n, lam, lam, e, preformed, problem, interface, guess,
                               lambda: solve_line(f, COARSE_N, lam, e, None, preformed,
-                                                 stick_zone_limit),
-                              compliant_guess(f, interface.C))
+                                                 stick_zone_limit, materials=materials),
+                              compliant_guess(f, interface.C), materials)
         return sol if sol.converged else try_limit(sol, lam, lam, stick_zone_limit) or sol
-    if guess is not None and guess[0] == 0 and stick_zone_limit > 0:
+    if guess is not None and guess[0] == 0 and stick_zone_limit > 0 and materials.same:
         lim = solve_no_stick(load, f, n, lam, lam, e, problem, preformed, guess[1])
         if lim.converged and lim.log10_a < np.log10(stick_zone_limit):
             return lim
         guess = None
+    if guess is None and not materials.same:
+        coarse = min(n, coarse_points(materials))
+        guess = contrast_seed(
+            lambda: solve_line(f, coarse, lam, e, None, preformed, stick_zone_limit),
+            lambda body, seed: solve_liftoff(load, f, coarse, lam, lam, e, preformed, seed,
+                                             problem, checks=False, continuous=False,
+                                             seed_only=True, materials=body),
+            materials)
     seeds = [guess] if guess is not None else []
     a0, b0 = line_guess(f)
     lim = below_resolution(load, f, n, lam, lam, e, problem, preformed, a0, b0,
-                           stick_zone_limit)
+                           stick_zone_limit, materials)
     if lim is not None:
         return lim
     # the Chaise model separates a little further out (b about 6 % larger)
@@ -137,12 +150,13 @@ def solve_line(f: float, n: int, lam: float, e: float,
     sol = None
     for seed in seeds:
         sol = solve_liftoff(load, f, n, lam, lam, e, preformed, seed, problem,
-                            continuous=False)
+                            continuous=False, materials=materials)
         if sol.converged:
             return sol
     assert sol is not None
     return fallbacks(sol, lambda: solve_liftoff(load, f, n, lam, lam, e, preformed, seeds[-1],
-                                                problem, continuous=True),
+                                                problem, continuous=True,
+                                                materials=materials),
                      lam, lam, stick_zone_limit, b0)
 
 
@@ -164,7 +178,8 @@ def fallbacks(sol: LiftoffSolution, continuous: Callable[[], LiftoffSolution], l
 def flag_no_stick(sol: LiftoffSolution, lam_a: float, lam_b: float) -> LiftoffSolution:
     """Mark an unconverged solution below the critical friction as regime ``no_stick``."""
     if sol.f < 0.2 and sol.preformed_used:
-        crit = critical_friction(sol.load, sol.n, lam_a, lam_b, sol.e)
+        crit = critical_friction(sol.load, sol.n, lam_a, lam_b, sol.e,
+                                 materials=sol.materials)
         if crit["converged"] and sol.f < crit["f_critical"]:
             sol.regime = "no_stick"
             sol.a = sol.b = sol.K_T = np.nan

@@ -46,6 +46,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from contactlab.receding.core.bimaterial import interface_kernels
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.quadrature import gauss_legendre
 
 LAWS = ("line", "uniform", "hertz", "punch", "table")
@@ -104,11 +106,17 @@ class Load:
         return np.where(inside, out, 0.0)
 
     # ---- fields from the quadrature rule
-    def bilateral(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """(sigma_xy^b / T, sigma_yy^b / T) at (x_hat, 0): Flamant summed over the load."""
+    def bilateral(self, x: np.ndarray, materials: Materials = ONE_MATERIAL,
+                  ) -> tuple[np.ndarray, np.ndarray]:
+        """(sigma_xy^b / T, sigma_yy^b / T) at (x_hat, 0): Flamant summed over the load, or
+        with two materials the line-load field of the bonded layer and half-plane
+        (``bimaterial``; analytic in the same strip, so the same rule)."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
         d = x[:, None] - self.nodes[None, :]
-        s, n = _flamant_line(d)
+        if materials.same:
+            s, n = _flamant_line(d)
+        else:
+            s, n = interface_kernels(materials).line_load(d)
         return s @ self.weights, n @ self.weights
 
     def remote_g(self, x: np.ndarray) -> np.ndarray:

@@ -20,6 +20,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from contactlab.receding.core.interface import SMOOTH, Interface
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.solution import check_friction
 from contactlab.receding.liftoff.limit import (
     STICK_ZONE_LIMIT,
@@ -33,6 +34,8 @@ from contactlab.receding.liftoff.seeds import patch_seeds
 from contactlab.receding.liftoff.solver import (
     COARSE_N,
     LiftoffSolution,
+    coarse_points,
+    contrast_seed,
     solve_compliant,
     solve_liftoff,
 )
@@ -65,7 +68,8 @@ def default_lambdas(w: float) -> tuple[float, float]:
 
 
 def _continuation(load: Load, f: float, n: int, lam_a: float, lam_b: float, e_extra: float,
-                  preformed: bool) -> tuple[float, float] | None:
+                  preformed: bool, materials: Materials = ONE_MATERIAL,
+                  ) -> tuple[float, float] | None:
     """(a, b) reached by continuation in w from the line load at a coarse N, each step's
     seed moved with the patch edge (a - w and b - w change slowly with w, Fig. 7.10)."""
     from contactlab.receding.liftoff.solver import COARSE_N
@@ -79,7 +83,7 @@ def _continuation(load: Load, f: float, n: int, lam_a: float, lam_b: float, e_ex
         la, lb = (lam_a, lam_b) if w == load.w else default_lambdas(w)
         sol = solve_liftoff(step_load, f, min(n, COARSE_N), la, lb, w + e_extra, preformed,
                             (a + w - previous, b + w - previous), checks=False,
-                            continuous=False)
+                            continuous=False, materials=materials)
         if not sol.converged:
             return None
         a, b, previous = sol.a, sol.b, w
@@ -98,7 +102,8 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
                 e: float | None = None, table: Mapping[str, Sequence[float]] | None = None,
                 guess: tuple[float, float] | None = None, preformed: bool = True,
                 stick_zone_limit: float = STICK_ZONE_LIMIT,
-                interface: Interface = SMOOTH) -> LiftoffSolution:
+                interface: Interface = SMOOTH,
+                materials: Materials = ONE_MATERIAL) -> LiftoffSolution:
     """A pressure patch at friction f and half-width w_hat (see module docstring).
 
     ``law`` is uniform/hertz/punch (aliases: constant, A1, A2, A3) or ``table`` with
@@ -106,7 +111,8 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
     root is found: the stick-zone limit at low f (``limit``, below ``stick_zone_limit``),
     then the continuous slip rule (``solver``), as for the line load (``line.fallbacks``).
     A ``guess`` with a = 0 (a neighbour in the stick-zone limit) goes to the limit first.
-    ``interface``: a compliant (rough) interface, as in ``line.solve_line``.
+    ``interface``: a compliant (rough) interface, as in ``line.solve_line``;
+    ``materials``: the layer's and the half-plane's, as there.
     """
     check_friction(f, zero=True)
     load = make_load(law, w_hat, table)
@@ -120,7 +126,7 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
         return solve_frictionless(load, n, lam_a, lam_b, e, problem=load.law,
                                   preformed=preformed,
                                   guess=None if guess is None else guess[1],
-                                  interface=interface)
+                                  interface=interface, materials=materials)
     if not interface.smooth:
         # the patch's smooth seed moved as the line load's transition points move with C
         a_p, b_p = patch_guess(load.law, f, load.w)
@@ -129,33 +135,45 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
         sol = solve_compliant(load, f, n, lam_a, lam_b, e, preformed, load.law, interface,
                               guess, lambda: solve_patch(law, f, w_hat, COARSE_N, lam_a,
                                                          lam_b, e, table, None, preformed,
-                                                         stick_zone_limit),
-                              (a_p + a_c - a_l, b_p + b_c - b_l))
+                                                         stick_zone_limit,
+                                                         materials=materials),
+                              (a_p + a_c - a_l, b_p + b_c - b_l), materials)
         return sol if sol.converged else try_limit(sol, lam_a, lam_b,
                                                    stick_zone_limit) or sol
-    if guess is not None and guess[0] == 0 and stick_zone_limit > 0:
+    if guess is not None and guess[0] == 0 and stick_zone_limit > 0 and materials.same:
         lim = solve_no_stick(load, f, n, lam_a, lam_b, e, load.law, preformed, guess[1])
         if lim.converged and lim.log10_a < np.log10(stick_zone_limit):
             return lim
         guess = None
+    if guess is None and not materials.same:
+        coarse = min(n, coarse_points(materials))
+        guess = contrast_seed(
+            lambda: solve_patch(law, f, w_hat, coarse, lam_a, lam_b, e, table, None,
+                                preformed, stick_zone_limit),
+            lambda body, seed: solve_liftoff(load, f, coarse, lam_a, lam_b, e, preformed,
+                                             seed, load.law, checks=False, continuous=False,
+                                             seed_only=True, materials=body),
+            materials)
     guess = patch_guess(load.law, f, load.w) if guess is None else guess
     # the line load's stick zone screens (the patch table's offsets stop at its lowest f)
     lim = below_resolution(load, f, n, lam_a, lam_b, e, load.law, preformed,
-                           line_guess(f)[0], guess[1], stick_zone_limit)
+                           line_guess(f)[0], guess[1], stick_zone_limit, materials)
     if lim is not None:
         return lim
     sol = solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, load.law,
-                        continuous=False)
+                        continuous=False, materials=materials)
     seed = guess
     if not sol.converged:
-        seed = _continuation(load, f, n, lam_a, lam_b, e - load.w, preformed) or guess
+        seed = _continuation(load, f, n, lam_a, lam_b, e - load.w, preformed,
+                             materials) or guess
         if seed is not guess:
             sol = solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, seed, load.law,
-                                continuous=False)
+                                continuous=False, materials=materials)
     if sol.converged:
         return sol
     return fallbacks(sol, lambda: solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, seed,
-                                                load.law, continuous=True),
+                                                load.law, continuous=True,
+                                                materials=materials),
                      lam_a, lam_b, stick_zone_limit, guess[1])
 
 

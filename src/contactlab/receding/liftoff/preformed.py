@@ -45,6 +45,16 @@ is smooth (A is C^1 with breaks of A'' only at b and e, which are panel ends). T
 smooth integrals use composite Gauss-Legendre panels graded geometrically towards x on
 [b, e] and [e, max(x, e)], and a mapped rule on the tail. Checked against an independent
 adaptive principal-value quadrature (scipy ``quad`` with the Cauchy weight) at many points.
+
+Two materials (``materials``): far from the contact the layer is free and straight while
+the half-plane's surface sinks like Flamant's -(kappa2 + 1) P ln|x| / (4 pi mu2) under the
+load it carries, so the separation's slope tends to k_l + (kappa2 + 1) P / (4 pi mu2 x):
+in the normalisation of C* (``core.materials``) the load part of the remote form is
+(1 + alpha) g(x), twice the half-plane's share of C* times g (for one material
+(kappa + 1)/(4 mu) / ((kappa + 1)/(2 mu)) = 1/2, i.e. g itself, eqs 6.4, 7.14). The
+kernels are those of ``core.bimaterial``: the Cauchy parts (and so the principal values
+of the constants) times c0, App. B.1's bounded parts plus the remainders, and the delta
+part of H_yxy, the local shear c_beta A_y(x).
 """
 
 from __future__ import annotations
@@ -54,6 +64,8 @@ from functools import cached_property
 
 import numpy as np
 
+from contactlab.receding.core.bimaterial import InterfaceKernels, interface_kernels
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.quadrature import gauss_legendre
 from contactlab.receding.liftoff.loading import Load
 
@@ -110,6 +122,7 @@ class Preformed:
     load: Load
     b: float
     e: float
+    materials: Materials = ONE_MATERIAL
 
     def __post_init__(self) -> None:
         if not (0.0 <= self.b < self.e):
@@ -117,11 +130,26 @@ class Preformed:
         if self.e <= self.load.w:
             raise ValueError(f"e = {self.e} must lie beyond the load (w = {self.load.w})")
 
+    @property
+    def share(self) -> float:
+        """The factor of the load part of the remote form: 1 + alpha (module docstring)."""
+        return 1.0 if self.materials.same else 2.0 * self.materials.half_plane_share
+
+    def remote_g(self, x: np.ndarray) -> np.ndarray:
+        """The load part of the remote climb form at |x| > w: g(x) times ``share``."""
+        g = self.load.remote_g(x)
+        return g if self.materials.same else self.share * g
+
+    @cached_property
+    def kernels(self) -> InterfaceKernels:
+        """The Green's functions of the layer on the half-plane (``core.bimaterial``)."""
+        return interface_kernels(self.materials)
+
     @cached_property
     def coefficients(self) -> np.ndarray:
         """[[R1, R2] of the load part, [R1, R2] of the K part] (2, 2)."""
-        g = float(self.load.remote_g(np.array([self.e]))[0])
-        dg = float(self.load.remote_g_prime(np.array([self.e]))[0])
+        g = float(self.remote_g(np.array([self.e]))[0])
+        dg = self.share * float(self.load.remote_g_prime(np.array([self.e]))[0])
         return np.array([cubic_coefficients(self.b, self.e, g, dg),
                          cubic_coefficients(self.b, self.e, -1.0, 0.0)])
 
@@ -135,7 +163,7 @@ class Preformed:
         out[mid] = (h * h)[:, None] * r[:, 0][None, :] + (h**3)[:, None] * r[:, 1][None, :]
         far = x > self.e
         if far.any():
-            out[far, 0] = self.load.remote_g(x[far])
+            out[far, 0] = self.remote_g(x[far])
             out[far, 1] = -1.0
         return out
 
@@ -153,7 +181,7 @@ class Preformed:
         out = (h**3 / 3.0)[:, None] * r[:, 0][None, :] + (h**4 / 4.0)[:, None] * r[:, 1][None, :]
         far = x > self.e
         if far.any():
-            out[far, 0] += self.load.remote_g_integral(self.e, x[far])
+            out[far, 0] += self.share * self.load.remote_g_integral(self.e, x[far])
             out[far, 1] += -(x[far] - self.e)
         return out
 
@@ -199,7 +227,13 @@ class Preformed:
         ip = 1.0 / (4.0 + dp * dp)
         regular = d * iq * iq * (-4.0 - 64.0 * iq) - (1.0 / dp - dp * ip * (
             1.0 + ip * (4.0 + 64.0 * ip)))  # (H_yyy - C)(d) - H_yyy(d + 2 xi)
+        kernels = self.kernels
+        c0 = kernels.cauchy
+        if not kernels.one_material:
+            regular += _two_material_normal(kernels, d, dp, iq)
         w4 = om[None, :] * 4.0 * iq
+        if c0 != 1.0:
+            w4 *= c0  # the Cauchy part c0 C
         normal = (om[None, :] * regular) @ p1
         # near [b, e]: -sum om Q 4/q, Q = R1 (h + hx) + R2 (h^2 + h hx + hx^2) per basis;
         # farther off (P continued there would grow like the distance cubed) the plain
@@ -220,11 +254,13 @@ class Preformed:
         out = None
         if shear:
             kernel = 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
+            if not kernels.one_material:
+                kernel += kernels.remainder("even", d) - kernels.remainder("even", dp)
             out = (om[None, :] * kernel) @ p1
         # beyond e
         near = ax <= e
         for rows, nodes, weights in self._beyond(ax, near):
-            n_r, s_r = _beyond_sums(ax[rows], nodes, weights, self.load, a_x[rows], shear)
+            n_r, s_r = _beyond_sums(ax[rows], nodes, weights, self, a_x[rows], shear)
             normal[rows] += n_r
             if out is not None and s_r is not None:
                 out[rows] += s_r
@@ -233,6 +269,8 @@ class Preformed:
             at_b = np.where(hx != 0.0, 0.5 * np.log(hx * hx / (hx * hx + 4.0)), 0.0)
             he = ax - e
             at_e = np.where(he != 0.0, 0.5 * np.log(he * he / (he * he + 4.0)), 0.0)
+        if c0 != 1.0:
+            at_b, at_e = c0 * at_b, c0 * at_e
         p_x[~close] = 0.0  # no P(x) taken off on [b, e] there
         normal += p_x * at_b[:, None]
         jump = a_x - p_x
@@ -240,6 +278,8 @@ class Preformed:
         if not shear:
             return None, normal / np.pi
         assert out is not None
+        if kernels.coupling:  # the delta part of H_yxy: pi c_beta A(x), in units of pi
+            out += np.pi * kernels.coupling * a_x
         sign = np.where(x < 0, -1.0, 1.0)[:, None]
         return sign * out / np.pi, normal / np.pi
 
@@ -274,12 +314,23 @@ def _cubic_rule(b: float, e: float) -> tuple[np.ndarray, np.ndarray]:
     return nodes.ravel(), (half[:, None] * wu[None, :]).ravel()
 
 
-def _beyond_sums(ax: np.ndarray, nodes: np.ndarray, weights: np.ndarray, load: Load,
+def _two_material_normal(kernels: InterfaceKernels, d: np.ndarray, dp: np.ndarray,
+                         iq: np.ndarray) -> np.ndarray:
+    """What two materials add to (H_yyy - c0 C)(d) - H_yyy(d + 2 xi), the bounded part of
+    the normal kernel with its image: H_yyy = c0 C + c0 d/(d^2 + 4) + (App. B.1's bounded
+    part) + R_c (``core.bimaterial``), at d and at d + 2 xi."""
+    return ((kernels.cauchy - 1.0) * (d * iq - 1.0 / dp) + kernels.remainder("climb", d)
+            - kernels.remainder("climb", dp))
+
+
+def _beyond_sums(ax: np.ndarray, nodes: np.ndarray, weights: np.ndarray, pre: Preformed,
                  a_x: np.ndarray, shear: bool) -> tuple[np.ndarray, np.ndarray | None]:
     """pi sigma_yy^A and pi sigma_xy^A (or None) of A_y beyond e at the points ax, from the
-    nodes and weights (one row shared, or one per point) where A = [g, -1]: the Cauchy
-    part against A(x), (A(xi) - A(x)) C(x - xi), and the regular parts."""
-    g = load.remote_g(nodes.ravel()).reshape(nodes.shape)
+    nodes and weights (one row shared, or one per point) where A = [g, -1] (g the load
+    part of ``pre``'s remote form): the Cauchy part against A(x), (A(xi) - A(x)) C(x - xi),
+    and the regular parts, in the kernels of ``pre``'s materials."""
+    g = pre.remote_g(nodes.ravel()).reshape(nodes.shape)
+    kernels = pre.kernels
     d = ax[:, None] - nodes
     dp = ax[:, None] + nodes
     iq = 1.0 / (4.0 + d * d)
@@ -287,7 +338,11 @@ def _beyond_sums(ax: np.ndarray, nodes: np.ndarray, weights: np.ndarray, load: L
     cp = 4.0 * iq / d  # C(d) = 4 / (d (d^2 + 4)); nodes lie beyond e or off x
     regular = d * iq * iq * (-4.0 - 64.0 * iq) - (1.0 / dp - dp * ip * (
         1.0 + ip * (4.0 + 64.0 * ip)))
+    if not kernels.one_material:
+        regular += _two_material_normal(kernels, d, dp, iq)
     w_c = weights * cp
+    if kernels.cauchy != 1.0:
+        w_c *= kernels.cauchy
     w_t = w_c + weights * regular
     total_c = w_c.sum(axis=1)
     normal = np.stack([np.einsum("mk,mk->m", w_t, np.broadcast_to(g, w_t.shape)),
@@ -296,6 +351,8 @@ def _beyond_sums(ax: np.ndarray, nodes: np.ndarray, weights: np.ndarray, load: L
     out = None
     if shear:
         w_s = weights * 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
+        if not kernels.one_material:
+            w_s += weights * (kernels.remainder("even", d) - kernels.remainder("even", dp))
         out = np.stack([np.einsum("mk,mk->m", w_s, np.broadcast_to(g, w_s.shape)),
                         -w_s.sum(axis=1)], axis=1)
     return normal, out

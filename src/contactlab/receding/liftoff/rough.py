@@ -21,7 +21,8 @@ fails is solved cold (continuation from the smooth solution, ``solver.compliance
 a converged point that misses a contact check is solved again at 2N, 4N, ... up to
 ``refine_max_n`` (``core.solution.refine_in_n``). No point is dropped: each is kept with
 its numbers and flags. Lengths in c, tractions in T (the load per thickness), relative
-displacements in (kappa + 1) T c / (2 mu).
+displacements in (kappa + 1) T c / (2 mu), or C* T c in a body of two materials
+(``core.materials``), which every function here takes (``materials``).
 """
 
 from __future__ import annotations
@@ -39,6 +40,7 @@ from contactlab.receding.core.interface import (
     measured_interface,
     resolved,
 )
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.measured_law import StiffnessLaw
 from contactlab.receding.core.problem import Point
 from contactlab.receding.core.solution import CHECK_TOL, refine_in_n
@@ -71,23 +73,26 @@ def settings(problem: str, lam: float, e_extra: float) -> dict[str, float]:
     return {"lam_b": lam, "e_minus_w": e_extra, "stick_zone_limit": STICK_ZONE_LIMIT}
 
 
-def rough_point_of(problem: str, f: float, w_hat: float, interface: Interface) -> Point:
-    """The point of ``problem`` at (f, w/c) on ``interface`` (w/c ignored for the line
-    load)."""
+def rough_point_of(problem: str, f: float, w_hat: float, interface: Interface,
+                   materials: Materials = ONE_MATERIAL) -> Point:
+    """The point of ``problem`` at (f, w/c) on ``interface`` in the body of ``materials``
+    (w/c ignored for the line load)."""
     spec = liftoff_problem(problem)
-    return spec.point(f, w_hat if spec.widths else None, interface=interface)
+    return spec.point(f, w_hat if spec.widths else None, interface=interface,
+                      materials=materials)
 
 
 def solve_rough(problem: str, f: float, w_hat: float, interface: Interface, *, n: int,
                 lam: float, e_extra: float, guess: tuple[float, float] | None = None,
-                ) -> LiftoffSolution:
+                materials: Materials = ONE_MATERIAL) -> LiftoffSolution:
     """``problem`` (line, uniform, hertz or punch) at friction f and half-width w_hat
     (ignored for the line load) on ``interface``.
 
     ``lam``: the map scale of the line load (both densities, sec. 6.4) or lambda_b of a
     patch, whose lambda_a is the thesis's (``patch.default_lambdas``, sec. 7.4);
-    ``e_extra``: e - w (e for the line load); ``guess``: (a, b) of a neighbour."""
-    point = rough_point_of(problem, f, w_hat, interface)
+    ``e_extra``: e - w (e for the line load); ``guess``: (a, b) of a neighbour;
+    ``materials``: the layer's and the half-plane's."""
+    point = rough_point_of(problem, f, w_hat, interface, materials)
     return registry()[problem].solve(point, n, guess, **settings(problem, lam, e_extra))
 
 
@@ -101,7 +106,7 @@ def solution_record(sol: LiftoffSolution, start: float = np.nan) -> dict[str, fl
 
 def rough_point(problem: str, f: float, w_hat: float, C: float, C_T: float, *, n: int,
                 lam: float, e_extra: float, refine_max_n: int | None = None,
-                ) -> dict[str, float | str]:
+                materials: Materials = ONE_MATERIAL) -> dict[str, float | str]:
     """The stick point a, contact extent b and remote slope K_T of ``problem`` at
     (f, w/c) on the linear interface (C, C_T), with the contact checks and certificates
     (``solution_record``), refined in N up to ``refine_max_n`` if a check fails.
@@ -110,12 +115,14 @@ def rough_point(problem: str, f: float, w_hat: float, C: float, C_T: float, *, n
     with T the load per thickness (P/c for the line load, 2 w p / c for a uniform patch
     of pressure p), C = (2 mu/(kappa + 1)) / (c k_n), C_T = (2 mu/(kappa + 1)) / (c k_t)."""
     interface = linear_interface(C, C_T)
-    sol = solve_rough(problem, f, w_hat, interface, n=n, lam=lam, e_extra=e_extra)
+    sol = solve_rough(problem, f, w_hat, interface, n=n, lam=lam, e_extra=e_extra,
+                      materials=materials)
     start = np.nan
     if refine_max_n is not None and refine_max_n > n:
         sol, start = refine_in_n(
             lambda m, seed: solve_rough(problem, f, w_hat, interface, n=m, lam=lam,
-                                        e_extra=e_extra, guess=(seed.a, seed.b)),
+                                        e_extra=e_extra, guess=(seed.a, seed.b),
+                                        materials=materials),
             sol, refine_max_n)
     rec: dict[str, float | str] = {"problem": problem, "f": float(f),
                                    "w_hat": float(w_hat) if registry()[problem].widths
@@ -151,7 +158,7 @@ def _interface(kind: str, C: float, ratio: float, pi0: float | None) -> Interfac
 def sweep_rough(problem: str, f_values: Sequence[float], C_values: Sequence[float], *,
                 ct_ratios: Sequence[float], w_values: Sequence[float] | None, n: int,
                 lam: float, e_extra: float, refine_max_n: int, interface: str = "linear",
-                pi0: float | None = None) -> xr.Dataset:
+                pi0: float | None = None, materials: Materials = ONE_MATERIAL) -> xr.Dataset:
     """``problem`` over the compliance: dims (f, ct_ratio, C) for the line load and
     (f, w_hat, ct_ratio, C) for a patch (``w_values``), C_T = ct_ratio * C: the lift-off
     problems of chs 6-7 (eqs 6.3-6.32, 7.1-7.39) on a compliant interface.
@@ -160,7 +167,8 @@ def sweep_rough(problem: str, f_values: Sequence[float], C_values: Sequence[floa
     p0/T = ``pi0``, C and C_T at p = T). C = 0 is the smooth interface (solved by the
     thesis's method, exactly today's answers). See the module docstring for the order of
     solution, the seeds and the refinement; every parameter is an attribute or a
-    coordinate of the result."""
+    coordinate of the result. ``materials``: the layer's and the half-plane's (the
+    compliance numbers then in C*: C = 1/(C* c k_n))."""
     spec = liftoff_problem(problem)
     if interface not in ("linear", "measured"):
         raise ValueError(f"interface must be linear or measured, got {interface!r}")
@@ -180,7 +188,7 @@ def sweep_rough(problem: str, f_values: Sequence[float], C_values: Sequence[floa
         f, *w, k, m = index
         law = _interface(interface, float(C_values[m]), float(ratios[k]), pi0)
         return spec.point(float(f_values[f]), float(w_list[w[0]]) if w else None,
-                          interface=law)
+                          interface=law, materials=materials)
 
     compliant = spec.compliant()
     records = Sweep(compliant, axes, point_at, n, settings=settings(problem, lam, e_extra),
@@ -209,6 +217,7 @@ def sweep_rough(problem: str, f_values: Sequence[float], C_values: Sequence[floa
     if patch:
         ds["lambda_a"] = (("w_hat",), np.array([default_lambdas(float(w))[0] for w in w_list]),
                           {"long_name": "map scale lambda_a of [a, inf)", "units": ONE})
+    ds.attrs.update(materials.result_attrs())
     ds.attrs.update(summary_attrs(ds))
     return ds
 
@@ -238,12 +247,15 @@ def gather_rough(paths: Sequence[str]) -> xr.Dataset:
 
 
 def rough_profile(problem: str, f: float, w_hat: float, interface: Interface, *, n: int,
-                  lam: float, e_extra: float, x_max: float, points: int) -> xr.Dataset:
+                  lam: float, e_extra: float, x_max: float, points: int,
+                  materials: Materials = ONE_MATERIAL) -> xr.Dataset:
     """Interface tractions, relative displacements and the interface law on
     0 <= x <= w + x_max (w = 0 for the line load), beside the smooth solution (suffix
-    ``_smooth``) of the same problem."""
-    rough = solve_rough(problem, f, w_hat, interface, n=n, lam=lam, e_extra=e_extra)
-    smooth = solve_rough(problem, f, w_hat, SMOOTH, n=n, lam=lam, e_extra=e_extra)
+    ``_smooth``) of the same problem, in the body of ``materials``."""
+    rough = solve_rough(problem, f, w_hat, interface, n=n, lam=lam, e_extra=e_extra,
+                        materials=materials)
+    smooth = solve_rough(problem, f, w_hat, SMOOTH, n=n, lam=lam, e_extra=e_extra,
+                         materials=materials)
     w = float(w_hat) if liftoff_problem(problem).widths else 0.0
     x = np.linspace(0.0, w + x_max, points)
     unit_g = "times 2 mu / ((kappa + 1) T c)"
@@ -283,7 +295,7 @@ def rough_profile(problem: str, f: float, w_hat: float, interface: Interface, *,
                      "lambda": lam, "e_minus_w": e_extra, "x_max": x_max,
                      **interface.attrs(),
                      "below_resolution": int(resolved(interface) is not interface),
-                     "resolved_compliance": RESOLVED_COMPLIANCE})
+                     "resolved_compliance": RESOLVED_COMPLIANCE, **materials.result_attrs()})
     for suffix, sol in (("", rough), ("_smooth", smooth)):
         ds.attrs.update({f"{k}{suffix}": v for k, v in (
             ("a", sol.a), ("b", sol.b), ("K_T", sol.K_T), ("converged", int(sol.converged)),
@@ -299,13 +311,15 @@ LAWS = ("smooth", "linear", "measured")
 
 
 def tested_pairs(laws: Mapping[str, StiffnessLaw], pressures: Mapping[str, float], *,
-                 problem: str, w_hat: float, E: float, nu: float,
+                 problem: str, w_hat: float, materials: Materials,
                  c_values: Sequence[float], n: int, lam: float, e_extra: float,
                  linearised_only: Sequence[str] = ()) -> xr.Dataset:
-    """a, b, K_T of a layer (E [kN/mm^2], nu, thickness c [mm]) pressed by a patch of
+    """a, b, K_T of a layer of thickness c [mm] on a half-plane (``materials``, E in
+    kN/mm^2; the compliance numbers C = 1/(C* c k_n), C* their composite compliance)
+    pressed by a patch of
     half-width w = w_hat c and mean pressure p [kN/mm^2] (``pressures`` per test), or by
-    the line load P = 2 w p that carries the same load, onto a half-plane of the same
-    material through each tested pair's interface (``laws``, e.g.
+    the line load P = 2 w p that carries the same load, through each tested pair's
+    interface (``laws``, e.g.
     ``core.measured_law.law_from_summary``), at the pair's f: dims (test, c, law) with
     law ``smooth`` (the thesis's interface), ``linear`` (the stiffness at p, k_n(p) and
     Cc k_n(p)) and ``measured`` (the law of eqs 2.4, 2.7 with T = 2 w p / c; NaN with
@@ -330,9 +344,10 @@ def tested_pairs(laws: Mapping[str, StiffnessLaw], pressures: Mapping[str, float
     def solve(f: float, interface: Interface, seed: tuple[float, float] | None
               ) -> LiftoffSolution:
         sol = solve_rough(problem, f, w_hat, interface, n=n, lam=lam, e_extra=e_extra,
-                          guess=seed)
+                          guess=seed, materials=materials)
         if not sol.converged and seed is not None:
-            sol = solve_rough(problem, f, w_hat, interface, n=n, lam=lam, e_extra=e_extra)
+            sol = solve_rough(problem, f, w_hat, interface, n=n, lam=lam, e_extra=e_extra,
+                              materials=materials)
         return sol
 
     for i, test in enumerate(tests):
@@ -344,12 +359,12 @@ def tested_pairs(laws: Mapping[str, StiffnessLaw], pressures: Mapping[str, float
             c = float(c_arr[j])
             interfaces: dict[str, Interface | None] = {
                 "smooth": SMOOTH,
-                "linear": law.linearised(pressure=p, E=E, nu=nu, c=c)}
+                "linear": law.linearised(pressure=p, materials=materials, c=c)}
             if test in linearised_only:
                 interfaces["measured"], refused[i, j] = None, "linearised only (config)"
             else:
                 try:
-                    interfaces["measured"] = law.measured(T=T, E=E, nu=nu, c=c)
+                    interfaces["measured"] = law.measured(T=T, materials=materials, c=c)
                 except ValueError as exc:
                     interfaces["measured"], refused[i, j] = None, str(exc)
             for k, name in enumerate(LAWS):
@@ -387,7 +402,9 @@ def tested_pairs(laws: Mapping[str, StiffnessLaw], pressures: Mapping[str, float
                       {"long_name": "mean pressure of the patch", "units": "kN/mm2"})
     ds["source"] = ("test", np.array([laws[t].source for t in tests], dtype=str),
                     {"long_name": "where the law was taken from"})
-    ds.attrs.update({"problem": problem, "w_hat": w_hat, "E_kN_mm2": E, "nu": nu, "N": n,
+    ds.attrs.update({"problem": problem, "w_hat": w_hat, "E_kN_mm2": materials.young_layer,
+                     "nu": materials.nu_layer, "N": n,
                      "lambda": lam, "e_minus_w": e_extra,
-                     "linearised_only": " ".join(t for t in tests if t in linearised_only)})
+                     "linearised_only": " ".join(t for t in tests if t in linearised_only),
+                     **materials.result_attrs()})
     return ds

@@ -85,6 +85,7 @@ import numpy as np
 from contactlab.blas import single_thread
 from contactlab.receding.core.dislocations import DensityInterval
 from contactlab.receding.core.interface import SMOOTH, Interface
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.quadrature import interpolation_matrix, legendre
 from contactlab.receding.core.solution import (
     admissible,
@@ -116,6 +117,57 @@ REGIMES = ("slip_separation", "no_stick", "frictionless")
 CONTINUOUS_FLAG = "continuous_slip_rule"
 #: N of the first, coarse solve of the N-continuation
 COARSE_N = 64
+#: the same with two materials (``coarse_points``)
+COARSE_N_TWO = 128
+#: first step and smallest step in t of the continuation in the contrast (``contrast_seed``)
+CONTRAST_STEP = 0.25
+CONTRAST_MIN_STEP = 1.0 / 64.0
+
+
+def coarse_points(materials: Materials = ONE_MATERIAL) -> int:
+    """N of the coarse solve: COARSE_N for one material; COARSE_N_TWO for two, whose
+    discrete equations have spurious roots at N = 64 (line load, f = 0.5: a soft layer,
+    alpha = -0.83, gives b = 0.99 and K_T = 0.58 there from the stock guesses, b = 1.221
+    and K_T = 0.091 from N = 100 up; a stiffer layer's lengths stretch the maps,
+    ``map_scale``)."""
+    return COARSE_N if materials.same else COARSE_N_TWO
+
+
+def contrast_seed(first: Callable[[], LiftoffSolution],
+                  step: Callable[[Materials, tuple[float, float]], LiftoffSolution],
+                  materials: Materials) -> tuple[float, float] | None:
+    """(a, b) of a problem in the body of ``materials`` by continuation in the contrast:
+    ``first()`` solves it for one material, then ``step(m, seed)`` for the bodies
+    ``materials.toward(t)`` from the last (a, b), t rising to 1 in steps of
+    CONTRAST_STEP, halved where a step finds no root with a lifting layer (K_T > 0) on the
+    same branch (``_continues``) and grown by half after a success (to CONTRAST_STEP at
+    most); None below CONTRAST_MIN_STEP. A cold solve with two
+    materials starts here: from the one-material guesses the discrete equations of a
+    strong contrast have other roots (``coarse_points``), which this path avoids (a soft
+    layer's uniform patch, alpha = -0.83, w/c = 2.5, f = 0.3: a moves from 1.10 to 1.94;
+    four equal steps lose the root, eight keep it)."""
+    sol = first()
+    if not (sol.converged and sol.a > 0):
+        return None
+    seed, slope, t, dt = (sol.a, sol.b), sol.K_T, 0.0, CONTRAST_STEP
+    while t < 1.0:
+        trial = min(1.0, t + dt)
+        sol = step(materials.toward(trial), seed)
+        if sol.converged and sol.a > 0 and sol.K_T > 0 and _continues(sol, seed, slope):
+            seed, slope, t = (sol.a, sol.b), sol.K_T, trial
+            dt = min(1.5 * dt, CONTRAST_STEP)
+        elif dt / 2.0 < CONTRAST_MIN_STEP:
+            return None
+        else:
+            dt /= 2.0
+    return seed
+
+
+def _continues(sol: LiftoffSolution, seed: tuple[float, float], slope: float) -> bool:
+    """A step of the contrast continuation stays on its branch: b within 25 % and K_T within
+    50 % of the last step's (a spurious root jumps: a soft layer's uniform patch, w/c = 1,
+    f = 0.5, reached b = 5.5 and K_T = 0.004 from b = 2.04, K_T = 0.047 in one step)."""
+    return abs(sol.b - seed[1]) <= 0.25 * seed[1] and abs(sol.K_T - slope) <= 0.5 * slope
 
 
 @dataclass
@@ -157,6 +209,8 @@ class LiftoffSolution:
     compliant: CompliantPart | None = None
     #: residual certificates beyond the contact checks (equilibrium, end conditions)
     certificates: dict[str, float] = field(default_factory=dict)
+    #: the layer's and the half-plane's materials (``core.materials``; one: the thesis's)
+    materials: Materials = ONE_MATERIAL
     #: why the solver refused the point (empty where it did not): a stick zone that the
     #: discretisation does not resolve on a compliant interface (``solve_compliant``)
     refusal: str = ""
@@ -174,7 +228,7 @@ class LiftoffSolution:
     def preformed(self) -> Preformed | None:
         if not self.preformed_used or not np.isfinite(self.b):
             return None
-        return Preformed(self.load, self.b, self.e)
+        return Preformed(self.load, self.b, self.e, self.materials)
 
     @property
     def _k(self) -> float:
@@ -184,7 +238,7 @@ class LiftoffSolution:
     def tractions(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(S(x), N(x)) / T: shear and normal traction on the half-plane at (x, 0)."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        s, n = self.load.bilateral(x)
+        s, n = self.load.bilateral(x, self.materials)
         pre = self.preformed
         if pre is not None:
             ps, pn = pre.stresses(x)
@@ -202,7 +256,7 @@ class LiftoffSolution:
     def normal_traction(self, x: np.ndarray) -> np.ndarray:
         """N(x) / T: the normal part of ``tractions`` without evaluating any shear kernel."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        n = self.load.bilateral(x)[1]
+        n = self.load.bilateral(x, self.materials)[1]
         pre = self.preformed
         if pre is not None:
             n = n + pre.normal_stress(x) @ np.array([1.0, self._k])
@@ -311,8 +365,10 @@ class LiftoffSolution:
 
     def remote_slip_record(self) -> dict[str, float]:
         """``remote_slip_error``, ``_lhs``, ``_rhs`` of :meth:`remote_slip`, NaN unless the
-        solution converged with the preformed density (the relation needs K)."""
-        rel = self.remote_slip() if (self.converged and self.preformed_used) else {}
+        solution converged with the preformed density (the relation needs K) in one
+        material (the relation's far-field coefficients, Table 6.1, are App. B.1's)."""
+        usable = self.converged and self.preformed_used and self.materials.same
+        rel = self.remote_slip() if usable else {}
         return {f"remote_slip_{key}": rel.get(key, np.nan) for key in ("error", "lhs", "rhs")}
 
     # ---- contact checks between the nodes
@@ -333,7 +389,8 @@ class LiftoffSolution:
             self.residual = float(np.max(np.abs(system.matrix @ root.phi - system.rhs)))
             if not self.interface.smooth:
                 base = gs + n + (1 if self.preformed_used else 0)
-                geom = geometry(self.interface, max(self.a, 0.0), self.b, self.n)
+                geom = geometry(self.interface, max(self.a, 0.0), self.b, self.n,
+                                self.materials)
                 self.compliant = CompliantPart(geom, root.phi[base:base + geom.size])
         self.leftover = root.residual
         self.converged = root.converged
@@ -393,28 +450,47 @@ class LiftoffSolution:
 # --------------------------------------------------------------------------- assembly
 
 
-def _intervals(a: float, b: float, n: int, lam_a: float, lam_b: float):
-    glide = DensityInterval("glide", a, np.inf, n, parity=+1, mapping="semi-infinite", lam=lam_a)
-    climb = DensityInterval("climb", b, np.inf, n, parity=-1, mapping="semi-infinite", lam=lam_b)
+def map_scale(lam: float, materials: Materials = ONE_MATERIAL) -> float:
+    """The scale of the semi-infinite maps (sec. 6.4) in the body of ``materials``: lam
+    times max(1, (1 + alpha)/(1 - alpha)). A stiffer layer spreads the densities further:
+    the thin-layer expansions of the kernels (``core.bimaterial``), 4k/(1 - alpha) -
+    8 (1 + alpha) k^2/(1 - alpha)^2 + ... for glide, put the layer's shear-lag length at
+    (1 + alpha)/(1 - alpha) times one material's (the same ratio for bending), and with
+    lam = 3.5 steel on Ti-6Al-4V (alpha = 0.28) gave b = 1.958, 2.035, 2.012 at N = 100,
+    200, 400 against 2.0209 +- 2e-4 with the stretched map. One material: lam itself."""
+    if materials.same:
+        return lam
+    alpha = materials.alpha
+    return lam * max(1.0, (1.0 + alpha) / (1.0 - alpha))
+
+
+def _intervals(a: float, b: float, n: int, lam_a: float, lam_b: float,
+               materials: Materials = ONE_MATERIAL):
+    glide = DensityInterval("glide", a, np.inf, n, parity=+1, mapping="semi-infinite",
+                            lam=map_scale(lam_a, materials), materials=materials)
+    climb = DensityInterval("climb", b, np.inf, n, parity=-1, mapping="semi-infinite",
+                            lam=map_scale(lam_b, materials), materials=materials)
     return glide, climb
 
 
 def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam_b: float,
              e: float, preformed: bool = True, drop: int | None = None,
              continuous: bool = False, interface: Interface = SMOOTH,
-             state: Linearisation | None = None):
+             state: Linearisation | None = None, materials: Materials = ONE_MATERIAL):
     """The full discretised system for fixed (a, b): (LinearSystem, glide, climb).
 
     ``continuous``: the friction term f N on every shear row instead of those with x < b
     (the continuous slip rule of the module docstring). ``interface``: a compliant
     interface adds the unknowns and rows of ``compliant`` (N_k = N), ``state`` the
     measured law's last linearisation; the smooth interface assembles the thesis's system.
+    ``materials``: the layer's and the half-plane's (kernels, bilateral tractions and the
+    preformed density of ``core.bimaterial``; one material: the thesis's).
 
     Columns: phi_x (N), phi_y (N) and, with the preformed density, K. Rows: N + 1 normal
     rows on [b, inf), N + 1 shear rows on [a, inf) and, with the preformed density, the
     condition B_yc(e) = 0. Leftover: the row nearest t = 0 of each collocation set.
     """
-    glide, climb = _intervals(a, b, n, lam_a, lam_b)
+    glide, climb = _intervals(a, b, n, lam_a, lam_b, materials)
     xb = climb.collocation
     xa = glide.collocation
     m = n + 1
@@ -430,8 +506,8 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
     rows_n[:, n:2 * n] = climb.collocation_influence()[1]
     gs_a, gn_a = glide.collocation_influence()
     cs_a, cn_a = climb.influence(xa)
-    rhs[:m] = -load.bilateral(xb)[1]
-    sb, nb_a = load.bilateral(xa)
+    rhs[:m] = -load.bilateral(xb, materials)[1]
+    sb, nb_a = load.bilateral(xa, materials)
     # H(b - x) f on the shear rows; ``continuous``: f on every row (N = 0 beyond b)
     h = np.full_like(xa, f) if continuous else np.where(xa < b, f, 0.0)
     hc = h[:, None]
@@ -441,7 +517,7 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
     rows_s[:, n:2 * n] += cs_a
     rhs[m:2 * m] = -(sb + h * nb_a)
     if preformed:
-        pre = Preformed(load, b, e)
+        pre = Preformed(load, b, e, materials)
         pn_b = pre.normal_stress(xb)
         ps, pn = pre.stresses(xa)
         rows_n[:, 2 * n] = pn_b[:, 1]
@@ -457,20 +533,22 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
     system = LinearSystem(matrix, rhs, leftover=[centre, m + centre])
     if interface.smooth:
         return system, glide, climb
-    pre = Preformed(load, b, e) if preformed else None
-    system = extend(system, geometry(interface, a, b, n),
-                    lambda x, shear: base_tractions(load, glide, climb, pre, x, shear),
+    pre = Preformed(load, b, e, materials) if preformed else None
+    system = extend(system, geometry(interface, a, b, n, materials),
+                    lambda x, shear: base_tractions(load, glide, climb, pre, x, shear,
+                                                    materials),
                     normal_rows=slice(0, m), normal_points=xb, shear_rows=slice(m, 2 * m),
                     shear_points=xa, friction=h, state=state)
     return system, glide, climb
 
 
 def base_tractions(load: Load, glide, climb: DensityInterval, pre: Preformed | None,
-                   x: np.ndarray, shear: bool = True) -> tuple[Any, np.ndarray, Any, np.ndarray]:
+                   x: np.ndarray, shear: bool = True, materials: Materials = ONE_MATERIAL,
+                   ) -> tuple[Any, np.ndarray, Any, np.ndarray]:
     """(S, N, s_known, n_known) at x: the traction matrices of the columns [phi_x, phi_y,
     K] (K with the preformed density) and the tractions of the load and of the preformed
     density's load part (units of T); S and s_known None unless ``shear``."""
-    s0, n0 = load.bilateral(x)
+    s0, n0 = load.bilateral(x, materials)
     if not shear:
         normal = [glide.normal_influence(x), climb.normal_influence(x)]
         if pre is not None:
@@ -510,7 +588,8 @@ def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: f
                   preformed: bool = True, guess: tuple[float, float] | None = None,
                   problem: str = "", checks: bool = True,
                   continuous: bool | None = None, seed_only: bool = False,
-                  interface: Interface = SMOOTH) -> LiftoffSolution:
+                  interface: Interface = SMOOTH,
+                  materials: Materials = ONE_MATERIAL) -> LiftoffSolution:
     """Solve for (a, b, K_T) and the densities at friction f > 0 (see module docstring);
     ``checks=False`` skips the contact checks (for solutions that only seed others);
     ``seed_only`` searches from ``guess`` alone (no stock guesses).
@@ -519,13 +598,14 @@ def solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: f
     continuous one (flag ``continuous_slip_rule``); True or False uses that form only.
     ``interface``: a compliant interface (``compliant``); without a ``guess`` its cold
     solve starts from the smooth solution and follows the compliance up
-    (``compliance_seed``)."""
+    (``compliance_seed``). ``materials``: the layer's and the half-plane's."""
     forms = [False, True] if continuous is None else [bool(continuous)]
     if not interface.smooth and guess is None:
-        guess = compliance_seed(load, f, lam_a, lam_b, e, preformed, interface)
+        guess = compliance_seed(load, f, lam_a, lam_b, e, preformed, interface,
+                                materials=materials)
     for form in forms:
         sol = _solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, problem, checks,
-                             form, seed_only, interface)[0]
+                             form, seed_only, interface, materials=materials)[0]
         if form:
             sol.flags = (*sol.flags, CONTINUOUS_FLAG)
         if sol.converged:
@@ -537,6 +617,7 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
                    preformed: bool, guess: tuple[float, float] | None, problem: str,
                    checks: bool = True, continuous: bool = False, seed_only: bool = False,
                    interface: Interface = SMOOTH, seed_jacobian: np.ndarray | None = None,
+                   materials: Materials = ONE_MATERIAL,
                    ) -> tuple[LiftoffSolution, np.ndarray | None]:
     """``solve_liftoff`` and the secant Jacobian of its root in (log a, log(b - a)) (None
     if there is none), which seeds the root finder of the next N of the continuation.
@@ -556,33 +637,36 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
         if preformed and b >= e - 0.25:
             raise ValueError("b too close to e")
         return assemble(load, f, n, a, b, lam_a, lam_b, e, preformed,
-                        continuous=continuous, interface=interface, state=state)[0]
+                        continuous=continuous, interface=interface, state=state,
+                        materials=materials)[0]
 
     w = load.w
     fine_only = False
     coarse = jacobian = None
-    if n > COARSE_N and (guess is None or n > 2.5 * COARSE_N):
+    coarse_n = coarse_points(materials)
+    if n > coarse_n and (guess is None or n > 2.5 * coarse_n):
         # N-continuation: the transition points converge slowly but smoothly in N, so a
-        # cheap solve at COARSE_N is a close first guess for the fine root finder; if even
+        # cheap solve at coarse_n is a close first guess for the fine root finder; if even
         # the coarse problem has no root, the fine one is not tried (flagged instead).
         # The leftover rows grow like N, and so does the Jacobian of the root finder:
         # J/N at the line-load root (f = 0.5) is within 2 % between N = 250 and 500 but
         # one entry is 4x off at N = 64, so the fine Newton starts from the coarse secant
-        # Jacobian times N/COARSE_N, or (large N) from differences at N/2 times 2.
-        coarse, jacobian = _solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed,
+        # Jacobian times N/coarse_n, or (large N) from differences at N/2 times 2.
+        coarse, jacobian = _solve_liftoff(load, f, coarse_n, lam_a, lam_b, e, preformed,
                                           guess, problem, False, continuous, seed_only,
-                                          interface)
+                                          interface, materials=materials)
         if jacobian is not None:
-            jacobian = jacobian * (n / COARSE_N)
+            jacobian = jacobian * (n / coarse_n)
         if coarse.converged:
             guess = (coarse.a, coarse.b)
             fine_only = True
             half = 2 * (n // 4)
-            if half > 2 * COARSE_N:
+            if half > 2 * coarse_n:
                 mid = difference_jacobian(
                     lambda p: assemble(load, f, half, *_params(p), lam_a, lam_b, e,
                                        preformed, continuous=continuous,
-                                       interface=interface, state=Linearisation())[0],
+                                       interface=interface, state=Linearisation(),
+                                       materials=materials)[0],
                     np.array([np.log(coarse.a), np.log(coarse.b - coarse.a)]))
                 jacobian = jacobian if mid is None else mid * (n / half)
     guesses = []
@@ -601,7 +685,7 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
         a, b = _params(p)
         return bool(a > 1e-8 and b > a)
 
-    if n > 2.5 * COARSE_N and not fine_only:
+    if n > 2.5 * coarse_n and not fine_only:
         guesses = []  # the coarse problem failed: report that, do not search at full N
     if not guesses and coarse is None:
         guesses = [np.array([np.log(0.25), np.log(1.5)])]
@@ -610,21 +694,23 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
                                 maxfev=60 if fine_only else 200,
                                 jacobian=jacobian if fine_only else None)
     else:
-        root = coarse_failure(coarse)
+        root = coarse_failure(coarse, coarse_n)
     a, b = _params(root.params)
     sol = LiftoffSolution(problem=problem or load.law, load=load, f=f, n=n, lam_a=lam_a,
                           lam_b=lam_b, e=e, preformed_used=preformed, a=a, b=b,
                           nfev=root.nfev, message="; ".join(root.history),
-                          interface=interface)
+                          interface=interface, materials=materials)
     if root.system is not None:  # the root finder's own system at the root
-        sol.record(root, root.system, *_intervals(a, b, n, lam_a, lam_b), checks=checks)
+        sol.record(root, root.system, *_intervals(a, b, n, lam_a, lam_b, materials),
+                   checks=checks)
         sol.seconds = time.perf_counter() - start
+        _reject_sinking(sol)
         return sol, root.jacobian
     try:
         with single_thread():
             sysm, glide, climb = assemble(load, f, n, a, b, lam_a, lam_b, e, preformed,
                                           continuous=continuous, interface=interface,
-                                          state=Linearisation())
+                                          state=Linearisation(), materials=materials)
     except (ValueError, np.linalg.LinAlgError, FloatingPointError):
         sol.message += "; no valid transition points"
         sol.regime = "failed"
@@ -633,7 +719,18 @@ def _solve_liftoff(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: 
         return sol, None
     sol.record(root, sysm, glide, climb, checks=checks)
     sol.seconds = time.perf_counter() - start
+    _reject_sinking(sol)
     return sol, None
+
+
+def _reject_sinking(sol: LiftoffSolution) -> None:
+    """With two materials a root with K_T <= 0 (the layer's ends would sink into the
+    half-plane) is not a solution: the discrete equations of a strong contrast have such
+    roots (``coarse_points``), which the contact checks on [0, b + 8] do not always see."""
+    if sol.converged and sol.preformed_used and not sol.materials.same and not sol.K_T > 0:
+        sol.converged = False
+        sol.regime = "failed"
+        sol.message += f"; rejected: K_T = {sol.K_T:.3g} <= 0 (a sinking layer)"
 
 
 #: compliance numbers (the larger of C, C_T) the cold solve of a compliant interface
@@ -643,13 +740,14 @@ COMPLIANCE_STEPS = (0.01, 0.1, 0.3, 1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1e3, 3e3
 
 def compliance_seed(load: Load, f: float, lam_a: float, lam_b: float, e: float,
                     preformed: bool, interface: Interface,
-                    smooth: tuple[float, float] | None = None) -> tuple[float, float] | None:
-    """(a, b) of ``interface`` at N = COARSE_N, reached from the smooth solution
+                    smooth: tuple[float, float] | None = None,
+                    materials: Materials = ONE_MATERIAL) -> tuple[float, float] | None:
+    """(a, b) of ``interface`` at N = ``coarse_points``, reached from the smooth solution
     (``smooth``, or a cold smooth solve) through the compliances of COMPLIANCE_STEPS
     below the target's, each step seeding the next; None if a step finds no root."""
     if smooth is None:
-        first = solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed, None,
-                              checks=False, continuous=False)
+        first = solve_liftoff(load, f, coarse_points(materials), lam_a, lam_b, e, preformed,
+                              None, checks=False, continuous=False, materials=materials)
         if not first.converged:
             return None
         smooth = (first.a, first.b)
@@ -657,8 +755,9 @@ def compliance_seed(load: Load, f: float, lam_a: float, lam_b: float, e: float,
     largest = max(interface.C, interface.C_T)
     for level in [v for v in COMPLIANCE_STEPS if v < largest] + [largest]:
         step = interface.scaled(level / largest)
-        sol, jacobian = _solve_liftoff(load, f, COARSE_N, lam_a, lam_b, e, preformed, seed,
-                                       "", False, False, True, step, jacobian)
+        sol, jacobian = _solve_liftoff(load, f, coarse_points(materials), lam_a, lam_b, e,
+                                       preformed, seed, "", False, False, True, step,
+                                       jacobian, materials=materials)
         if not sol.converged:
             return None
         seed = (sol.a, sol.b)
@@ -669,7 +768,8 @@ def solve_compliant(load: Load, f: float, n: int, lam_a: float, lam_b: float, e:
                     preformed: bool, problem: str, interface: Interface,
                     guess: tuple[float, float] | None,
                     smooth: Callable[[], LiftoffSolution],
-                    first_guess: tuple[float, float] | None = None) -> LiftoffSolution:
+                    first_guess: tuple[float, float] | None = None,
+                    materials: Materials = ONE_MATERIAL) -> LiftoffSolution:
     """A lifting-off problem at f > 0 on a compliant ``interface``: from ``guess`` (a
     neighbour's a, b) or, without one, from ``first_guess`` (a seed table's, e.g.
     ``line.compliant_guess``) where that reaches an admissible solution, else from
@@ -680,25 +780,29 @@ def solve_compliant(load: Load, f: float, n: int, lam_a: float, lam_b: float, e:
     tabulated stick zone the discretisation does not resolve
     (``compliant.resolved_stick_zone``) is searched from ``first_guess`` with the
     H-switched rule only, and refused (``refuse``) where that finds no admissible
-    solution."""
-    if (guess is None or not guess[1] > guess[0] > 0) and first_guess is not None:
+    solution. The seed tables hold one material's answers: with two ``materials``
+    ``first_guess`` is not used (neither seed nor refusal) and a cold point follows the
+    continuation from ``smooth()``."""
+    cold = guess is None or not guess[1] > guess[0] > 0
+    if cold and first_guess is not None and materials.same:
         resolved = resolved_stick_zone(first_guess[0], n, lam_a)
         sol = solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, first_guess, problem,
                             seed_only=True, interface=interface,
-                            continuous=None if resolved else False)
+                            continuous=None if resolved else False, materials=materials)
         if sol.converged and sol.admissible:
             return sol
         if not resolved:
             return refuse(sol, first_guess[0], lam_a)
         if sol.converged:  # a root the checks find fault with: no other search helps
             return sol
-    if guess is None or not guess[1] > guess[0] > 0:
+    if cold:
         first = smooth()
         start = (max(first.a, 1e-3), first.b) if first.converged else None
-        guess = compliance_seed(load, f, lam_a, lam_b, e, preformed, interface, start) \
-            if start is not None else None
+        guess = compliance_seed(load, f, lam_a, lam_b, e, preformed, interface, start,
+                                materials) if start is not None else None
     return solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, problem,
-                         seed_only=guess is not None, interface=interface)
+                         seed_only=guess is not None, interface=interface,
+                         materials=materials)
 
 
 def refuse(sol: LiftoffSolution, a: float, lam_a: float) -> LiftoffSolution:
@@ -721,16 +825,17 @@ def refuse(sol: LiftoffSolution, a: float, lam_a: float) -> LiftoffSolution:
     return sol
 
 
-def coarse_failure(coarse: LiftoffSolution) -> RootResult:
+def coarse_failure(coarse: LiftoffSolution, coarse_n: int = COARSE_N) -> RootResult:
     """The root-finder result reported at full N when the coarse solve found no root."""
     params = np.array([np.log(max(coarse.a, 1e-26)),
                        np.log(max(coarse.b - coarse.a, 1e-26))])
     return RootResult(params, np.array([]), np.full(2, np.inf), False, coarse.nfev,
-                      "coarse solve failed", [f"coarse N = {COARSE_N}: {coarse.message}"])
+                      "coarse solve failed", [f"coarse N = {coarse_n}: {coarse.message}"])
 
 
 def critical_friction(load: Load, n: int, lam_a: float, lam_b: float, e: float,
-                      guess: tuple[float, float] = (0.07, 1.38)) -> dict[str, float]:
+                      guess: tuple[float, float] = (0.07, 1.38),
+                      materials: Materials = ONE_MATERIAL) -> dict[str, float]:
     """The friction below which the central stick zone vanishes: the same equations with
     a = 0 fixed and f as the unknown in its place (roots of the two leftover rows in
     (f, b)). Below this f a root of the discrete equations has a < 0, which is no solution
@@ -742,7 +847,7 @@ def critical_friction(load: Load, n: int, lam_a: float, lam_b: float, e: float,
         b = float(np.exp(min(p[1], 4.0)))
         if f < 0 or b >= e - 0.25:
             raise ValueError("outside the domain")
-        return assemble(load, f, n, 0.0, b, lam_a, lam_b, e, True)[0]
+        return assemble(load, f, n, 0.0, b, lam_a, lam_b, e, True, materials=materials)[0]
 
     guesses = [np.array([guess[0], np.log(guess[1])]),
                np.array([0.5 * guess[0], np.log(guess[1])]),

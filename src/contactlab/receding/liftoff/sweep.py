@@ -20,6 +20,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.sweep import Sweep, check_refine, record_variables
 from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT
 from contactlab.receding.liftoff.loading import ALIASES, make_load
@@ -53,16 +54,20 @@ def check_f(f_values: np.ndarray | list[float]) -> np.ndarray:
 
 def sweep_line(f_values, n: int, lam: float, e: float, chaise: bool, *,
                stick_zone_limit: float = STICK_ZONE_LIMIT, refine_max_n: int | None = None,
-               continuation: bool = True) -> xr.Dataset:
+               continuation: bool = True, materials: Materials = ONE_MATERIAL
+               ) -> xr.Dataset:
     """The line load (ch. 6) at every f (dim f), and the Chaise et al. model (suffix
-    ``_chaise``) for Figs 6.3, 6.5, 6.6 (see the module docstring for the options)."""
+    ``_chaise``) for Figs 6.3, 6.5, 6.6 (see the module docstring for the options), in the
+    body of ``materials`` (the layer's and the half-plane's)."""
     f_values = check_f(f_values)
     refine_max_n = check_refine(n, refine_max_n)
     models = [("", True)] + ([("_chaise", False)] if chaise else [])
     data = {}
     for suffix, preformed in models:
         what = f"line sweep N = {n}" + (" (Chaise et al. model)" if suffix else "")
-        records = Sweep(LINE, {"f": f_values}, lambda index: LINE.point(float(f_values[index[0]])),
+        records = Sweep(LINE, {"f": f_values},
+                        lambda index: LINE.point(float(f_values[index[0]]),
+                                                 materials=materials),
                         n, settings={"lam": lam, "e": e, "stick_zone_limit": stick_zone_limit,
                                      "preformed": preformed},
                         refine_max_n=refine_max_n, continuation=continuation, what=what).run()
@@ -74,14 +79,17 @@ def sweep_line(f_values, n: int, lam: float, e: float, chaise: bool, *,
     ds.attrs.update({"problem": "line", "N": int(n), "lambda": lam, "e": e,
                      "stick_zone_limit": stick_zone_limit, "refine_max_n": refine_max_n,
                      "continuation": int(continuation),
-                     "units_note": "lengths in c, tractions in T = P/c"})
+                     "units_note": "lengths in c, tractions in T = P/c",
+                     **materials.result_attrs()})
     return ds
 
 
 def sweep_patch(law: str, f_values, w_values, n: int, lam_b: float, e_extra: float,
                 shape: dict | None = None, *, stick_zone_limit: float = STICK_ZONE_LIMIT,
-                refine_max_n: int | None = None, continuation: bool = True) -> xr.Dataset:
-    """A pressure patch over (f, w_hat), with the thesis's lambda_a(w) (sec. 7.4).
+                refine_max_n: int | None = None, continuation: bool = True,
+                materials: Materials = ONE_MATERIAL) -> xr.Dataset:
+    """A pressure patch over (f, w_hat), with the thesis's lambda_a(w) (sec. 7.4), in the
+    body of ``materials`` (the layer's and the half-plane's).
 
     ``law="table"`` takes ``shape = {"x": [...], "p": [...]}``: a pressure shape with x
     in units of the half-width w (0 <= x <= 1, or symmetric on [-1, 1]), scaled to each
@@ -106,7 +114,8 @@ def sweep_patch(law: str, f_values, w_values, n: int, lam_b: float, e_extra: flo
     lam_a = np.array([default_lambdas(float(w))[0] for w in w_values])
     records = Sweep(problem, {"f": f_values, "w_hat": w_values},
                     lambda index: problem.point(float(f_values[index[0]]),
-                                                float(w_values[index[1]]), shape=xy),
+                                                float(w_values[index[1]]), shape=xy,
+                                                materials=materials),
                     n, settings={"lam_b": lam_b, "e_minus_w": e_extra,
                                  "stick_zone_limit": stick_zone_limit},
                     refine_max_n=refine_max_n, continuation=continuation,
@@ -135,7 +144,8 @@ def sweep_patch(law: str, f_values, w_values, n: int, lam_b: float, e_extra: flo
     ds.attrs.update({"problem": problem.name, "N": int(n), "lambda_b": lam_b,
                      "e_minus_w": e_extra, "stick_zone_limit": stick_zone_limit,
                      "refine_max_n": refine_max_n, "continuation": int(continuation),
-                     "units_note": "lengths in c, tractions in T = int p dx / c"})
+                     "units_note": "lengths in c, tractions in T = int p dx / c",
+                     **materials.result_attrs()})
     return ds
 
 
@@ -175,8 +185,10 @@ def profile_dataset(sol: LiftoffSolution, x_max: float, points: int,
     variables: dict[str, tuple[np.ndarray, str]] = {}
     if sol.converged:
         s, nn = sol.tractions(x)
-        sb, nb = sol.load.bilateral(x)
+        sb, nb = sol.load.bilateral(x, sol.materials)
         remote_lhs = sol.remote_slip_record()["remote_slip_lhs"]
+        pre = sol.preformed  # the remote form's load part: (1 + alpha) g with two materials
+        remote_g = pre.remote_g if pre is not None else sol.load.remote_g
         variables.update({
             "shear": (s, "shear traction S/T"),
             "normal": (nn, "normal traction N/T"),
@@ -191,10 +203,8 @@ def profile_dataset(sol: LiftoffSolution, x_max: float, points: int,
                                          f"corrective climb density B_yc {unit_d}"),
             "separation": (sol.separation(x), f"separation v2 - v1 {unit_g}"),
             "slip": (sol.slip(x), f"slip u2 - u1 {unit_g}"),
-            "remote_climb": (np.where(x > sol.load.w + 0.5,
-                                      -sol._k + sol.load.remote_g(np.maximum(x, sol.load.w
-                                                                             + 0.5)),
-                                      np.nan),
+            "remote_climb": (np.where(x > sol.load.w + 0.5, -sol._k + remote_g(
+                                          np.maximum(x, sol.load.w + 0.5)), np.nan),
                              f"remote form of B_y, eq. (6.4)/(7.12)-(7.17) {unit_d}"),
         })
         far = x > sol.b
@@ -222,6 +232,7 @@ def profile_dataset(sol: LiftoffSolution, x_max: float, points: int,
                                 "units": ONE})},
     )
     ds.attrs.update(solution_attrs(sol))
+    ds.attrs.update(sol.materials.result_attrs())
     if chaise is not None:
         ds.attrs.update({"a_chaise": chaise.a, "b_chaise": chaise.b,
                          "converged_chaise": int(chaise.converged)})

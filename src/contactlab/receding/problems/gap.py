@@ -4,7 +4,9 @@ Solved by :func:`contactlab.receding.gap.solver.solve_gap` in whichever regime (
 slip and separation) satisfies the contact conditions; swept over (f, w/c) continuing
 along f from the largest value down, each converged point seeding the next (a failed
 seeded point is solved cold), unconverged points retried from every converged neighbour.
-Lengths in c, tractions in p. Smooth interface and one material only.
+Lengths in c, tractions in p, relative displacements in C* p c (the composite
+compliance of ``core.materials``; (kappa + 1) p c / (2 mu) for one material). Smooth
+interface only.
 """
 
 from __future__ import annotations
@@ -76,14 +78,14 @@ class GapProblem(RecedingProblem):
         from contactlab.receding.gap.solver import solve_gap
 
         return solve_gap(point.w_hat, point.f, n, guess=seed,
-                         stick_zone_limit=stick_zone_limit)
+                         stick_zone_limit=stick_zone_limit, materials=point.materials)
 
     def failed_solution(self, point: Point, n: int, error: Exception) -> Any:
         """A failed solution with its reason (bad geometry, a singular system)."""
         from contactlab.receding.gap.solver import GapSolution
 
         return GapSolution(w=point.w_hat, f=point.f, n=n, regime="failed", converged=False,
-                           message=str(error))
+                           message=str(error), materials=point.materials)
 
     def seed(self, sol: Any, shift: float = 0.0) -> Any:
         """A converged solution that slips seeds its neighbour (a stick solution says

@@ -9,7 +9,8 @@ neighbour's seed is its (a, b). A sweep over f (and w/c) records :data:`VARIABLE
 sweep over the interface's compliance (:meth:`LiftoffProblem.compliant`) records
 :func:`compliant_variables`, with the certificates of a compliant interface. Lengths in
 c, tractions in T (the load per thickness), relative displacements in
-(kappa + 1) T c / (2 mu).
+(kappa + 1) T c / (2 mu), i.e. C* T c with C* the composite compliance of the point's
+materials (``core.materials``; the records' long names write one material's C*).
 """
 
 from __future__ import annotations
@@ -252,8 +253,10 @@ class LiftoffProblem(RecedingProblem):
         lines = [f"{self.describe_solution(sol)}, f = {sol.f:g}, N = {sol.n}: {sol.regime}",
                  f"  stick-slip point      a/c = {number(a, '.6g')}",
                  f"  separation point      b/c = {number(b, '.6g')}",
-                 f"  remote slope          K_T = {number(k_t, '.6g')}  (k_l 2 mu/((kappa + 1) "
-                 f"T), T = load per thickness)",
+                 f"  remote slope          K_T = {number(k_t, '.6g')}  ("
+                 + ("k_l 2 mu/((kappa + 1) T)" if sol.materials.same
+                    else "k_l / (C* T), C* of the two materials")
+                 + ", T = load per thickness)",
                  f"  largest residual {number(sol.residual, '.1e')} (units of T), remote slip "
                  f"error {number(sol.remote_slip_record()['remote_slip_error'], '.1e')}, "
                  f"converged {sol.converged}, admissible {sol.admissible}, "

@@ -25,7 +25,7 @@ class LineProblem(LiftoffProblem):
 
         return solve_line(point.f, n, lam, e, guess=self.seed_of(point, seed), preformed=preformed,
                           stick_zone_limit=stick_zone_limit,
-                          interface=self.interface_of(point))
+                          interface=self.interface_of(point), materials=point.materials)
 
 
 LINE = LineProblem(

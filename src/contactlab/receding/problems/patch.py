@@ -55,7 +55,7 @@ class PatchProblem(LiftoffProblem):
                            e=w + e_minus_w, table=self.table(point),
                            guess=self.seed_of(point, seed),
                            preformed=preformed, stick_zone_limit=stick_zone_limit,
-                           interface=self.interface_of(point))
+                           interface=self.interface_of(point), materials=point.materials)
 
     def solve_from(self, point: Point, n: int, seed: Any, *, lam_b: float, e_minus_w: float,
                    stick_zone_limit: float, **settings: Any) -> Any:
@@ -72,7 +72,7 @@ class PatchProblem(LiftoffProblem):
         load = make_load(self.law, w, self.table(point))
         return solve_liftoff(load, point.f, n, default_lambdas(w)[0], lam_b, w + e_minus_w,
                              True, seed, load.law, continuous=False, seed_only=True,
-                             interface=self.interface_of(point))
+                             interface=self.interface_of(point), materials=point.materials)
 
 
 def declare_patch(name: str, order: int, title: str, help: str, *, shape: bool = False,

@@ -31,6 +31,8 @@ from contactlab.receding.options import (
     PATCHES,
     ROUGH,
     line_options,
+    material_options,
+    materials_of,
     patch_options,
 )
 from contactlab.receding.problems import named_liftoff, registry
@@ -95,13 +97,14 @@ def _fit_numbers(words: list[str]) -> dict[str, float]:
     return spec
 
 
-def interface_of(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
+def interface_of(args: argparse.Namespace, materials: Any) -> tuple[Any, dict[str, Any]]:
     """The interface law of ``receding solve`` and what it was made of (for the answer):
     ``--interface-compliance C [--interface-compliance-t C_T]`` the linear law (C_T: C/m,
     Mindlin's m at --nu); ``--interface-from-test TEST`` (from --summary) or
     ``--interface-fit ...`` a tested pair's law (eqs 2.4, 2.7), measured or linearised
-    (--interface-law), under a layer of thickness --c, modulus --E, --nu, loaded by --load
-    (T = P/c); none of them: smooth (None)."""
+    (--interface-law), under a layer of thickness --c on a half-plane of ``materials``
+    (``core.materials.Materials``: C = 1/(C* c k_n)), loaded by --load (T = P/c); none of
+    them: smooth (None)."""
     C, C_T = args.interface_compliance, args.interface_compliance_t
     test, fit = args.interface_from_test, args.interface_fit
     linear = [flag for flag, v in (("--interface-compliance", C),
@@ -111,7 +114,7 @@ def interface_of(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
     if len(tested) > 1 or (linear and tested):
         raise ValueError(f"{' and '.join(linear + tested)}: give one interface law")
     if tested:
-        return _tested_interface(args)
+        return _tested_interface(args, materials)
     for flag, value in (("--interface-compliance", C), ("--interface-compliance-t", C_T)):
         if value is not None and not (value >= 0 and value < float("inf")):
             raise ValueError(f"{flag} {value:g}: a compliance number must be finite and >= 0 "
@@ -126,7 +129,7 @@ def interface_of(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
     return linear_interface(C, C_T), {}
 
 
-def _tested_interface(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
+def _tested_interface(args: argparse.Namespace, materials: Any) -> tuple[Any, dict[str, Any]]:
     """A tested pair's law under the layer of ``receding solve`` (:func:`interface_of`)."""
     from pathlib import Path
 
@@ -138,7 +141,6 @@ def _tested_interface(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
                          "(layer thickness c [mm], load per unit depth P [kN/mm])")
     check_numbers("--c", args.c, positive=True)
     check_numbers("--load", args.load, positive=True)
-    check_numbers("--E", args.E, positive=True)
     spec: dict[str, Any] = {"law": args.interface_law}
     if args.pressure is not None:
         check_numbers("--pressure", args.pressure, positive=True)
@@ -165,11 +167,13 @@ def _tested_interface(args: argparse.Namespace) -> tuple[Any, dict[str, Any]]:
         tangential_direction=args.tangential_direction, cc_basis=args.cc_basis)
     T = args.load / args.c
     if kind == "measured":
-        interface = law.measured(T=T, E=args.E, nu=args.nu, c=args.c)
+        interface = law.measured(T=T, materials=materials, c=args.c)
     else:
-        interface = law.linearised(pressure=pressure, E=args.E, nu=args.nu, c=args.c)
+        interface = law.linearised(pressure=pressure, materials=materials, c=args.c)
     info = {"interface_source": f"{law.source} from {source}", "interface_law": kind,
-            "c_mm": args.c, "E_kN_mm2": args.E, "nu": args.nu, "load_kN_mm": args.load,
+            "c_mm": args.c, "E_kN_mm2": materials.young_layer, "nu": materials.nu_layer,
+            "modulus_kN_mm2": materials.modulus, "materials": materials.describe(),
+            "load_kN_mm": args.load,
             "T_kN_mm2": T, "pressure_kN_mm2": pressure, "beta_n_per_mm": law.beta_n,
             "p0_kN_mm2": law.p0, "Cc": law.cc, "f_of_pair": law.f,
             "k_n_kN_mm3": float(law.k_n(T if kind == "measured" else pressure))}
@@ -184,15 +188,15 @@ def interface_lines(info: dict[str, Any]) -> list[str]:
           else f"linearised at p = {info['pressure_kN_mm2']:.4g} kN/mm^2")
     return [f"  interface law         {info['interface_source']}, {info['interface_law']} "
             f"(eqs 2.4, 2.7; {at})",
-            f"  physical scale        c = {info['c_mm']:g} mm, E = {info['E_kN_mm2']:g} kN/mm^2, "
-            f"nu = {info['nu']:g}, P = {info['load_kN_mm']:g} kN/mm: T = P/c = "
-            f"{info['T_kN_mm2']:.4g} kN/mm^2",
+            f"  physical scale        c = {info['c_mm']:g} mm, 1/C* = "
+            f"{info['modulus_kN_mm2']:.6g} kN/mm^2 ({info['materials']}), P = "
+            f"{info['load_kN_mm']:g} kN/mm: T = P/c = {info['T_kN_mm2']:.4g} kN/mm^2",
             f"  law's numbers         beta_n = {info['beta_n_per_mm']:.4g} 1/mm, p0 = "
             f"{info['p0_kN_mm2']:.4g} kN/mm^2, Cc = {info['Cc']:.4g}, k_n = "
             f"{info['k_n_kN_mm3']:.4g} kN/mm^3; the pair's own f = {info['f_of_pair']:.4g}"]
 
 
-def _lam_e(args: argparse.Namespace, problem: str) -> tuple[float, float]:
+def lam_e(args: argparse.Namespace, problem: str) -> tuple[float, float]:
     """lambda and e of the line load, lambda_b and e - w of a patch."""
     if not registry()[problem].widths:
         return args.lam, args.e
@@ -208,12 +212,13 @@ def _sweep(args: argparse.Namespace) -> None:
     from contactlab.receding.core.summary import log_summary
     from contactlab.receding.liftoff.rough import sweep_rough
 
-    lam, e_extra = _lam_e(args, args.problem)
+    lam, e_extra = lam_e(args, args.problem)
     ratios = mindlin_ct_ratios(args.ct_ratios, args.nu)
     start = time.perf_counter()
     ds = sweep_rough(args.problem, args.f, args.C, ct_ratios=ratios,
                      w_values=getattr(args, "w_hat", None), n=args.n, lam=lam,
-                     e_extra=e_extra, refine_max_n=args.refine_max_n)
+                     e_extra=e_extra, refine_max_n=args.refine_max_n,
+                     materials=materials_of(args))
     ds.attrs["nu_mindlin"] = args.nu
     log_summary(ds, f"{args.problem} rough sweep N = {args.n}", time.perf_counter() - start)
     stamp(ds, title=f"{args.problem} on a rough (linear compliant) interface: a, b, K_T "
@@ -243,12 +248,12 @@ def _profile(args: argparse.Namespace) -> None:
     from contactlab.receding.core.interface import linear_interface
     from contactlab.receding.liftoff.rough import rough_profile
 
-    lam, e_extra = _lam_e(args, args.problem)
+    lam, e_extra = lam_e(args, args.problem)
     ratio = mindlin_ct_ratios(args.ct_ratios, args.nu)[0]
     w_hat = getattr(args, "w_hat", None) or 0.0
     ds = rough_profile(args.problem, args.f, w_hat, linear_interface(args.C, ratio * args.C),
                        n=args.n, lam=lam, e_extra=e_extra, x_max=args.x_max,
-                       points=args.points)
+                       points=args.points, materials=materials_of(args))
     ds.attrs["nu_mindlin"] = args.nu
     where = f", w/c = {w_hat:g}" if registry()[args.problem].widths else ""
     stamp(ds, title=f"{args.problem} on a rough interface: profiles at f = {args.f:g}{where}, "
@@ -265,7 +270,7 @@ def _pairs(args: argparse.Namespace) -> None:
         raise ValueError(f"--pairs ({PAIRS}.tests) must map names to laws, e.g. "
                          '{"SU3": {"from_test": "SU3"}}, got ' + repr(specs))
     check_numbers("--c", args.c, positive=True)
-    check_numbers("--E", args.E, positive=True)
+    materials = materials_of(args)
     import xarray as xr
 
     from contactlab.io import stamp, write_netcdf
@@ -285,10 +290,10 @@ def _pairs(args: argparse.Namespace) -> None:
         if kind == "linearised":
             linearised.append(name)
     start = time.perf_counter()
-    lam, e_extra = _lam_e(args, args.problem)
-    ds = tested_pairs(laws, pressures, problem=args.problem, w_hat=args.w_hat, E=args.E,
-                      nu=args.nu, c_values=args.c, n=args.n, lam=lam, e_extra=e_extra,
-                      linearised_only=linearised)
+    lam, e_extra = lam_e(args, args.problem)
+    ds = tested_pairs(laws, pressures, problem=args.problem, w_hat=args.w_hat,
+                      materials=materials, c_values=args.c, n=args.n, lam=lam,
+                      e_extra=e_extra, linearised_only=linearised)
     import logging
 
     logging.getLogger(__name__).info("tested pairs: %d solutions in %.1f s",
@@ -357,7 +362,8 @@ COMMANDS = (
                         key=dict.fromkeys(LAWS, f"{ROUGH}.w"), only=LAWS),
                  Option("--C", "normal compliance numbers C (0: smooth)", float, nargs="+",
                         key=f"{ROUGH}.C"),
-                 *_ratios(), *_discretisation(), out_option("netCDF output (one chunk)")),
+                 *_ratios(), *_discretisation(), *material_options(),
+                 out_option("netCDF output (one chunk)")),
         run=_sweep, select="problem"),
     gather_command(NAME, "rough-gather", "rough-sweep", "f", _gather),
     Command(
@@ -374,14 +380,14 @@ COMMANDS = (
                         key=f"{ROUGH}.profile_x_max"),
                  Option("--points", "points of the profile", int,
                         key=f"{ROUGH}.profile_points"),
-                 out_option()),
+                 *material_options(), out_option()),
         run=_profile, select="problem"),
     Command(
         NAME, "rough-pairs", "tested pairs' laws under a layer of thickness c",
-        description="a, b and K_T of a pressure patch on a layer (E, nu, thickness c) "
-                    "through each tested pair's interface: the measured law of eqs 2.4, "
-                    "2.7 and its linearisation at the pair's pressure, beside the smooth "
-                    "interface, at the pair's f.",
+        description="a, b and K_T of a pressure patch on a layer of thickness c (the "
+                    "materials of receding.materials) through each tested pair's "
+                    "interface: the measured law of eqs 2.4, 2.7 and its linearisation at "
+                    "the pair's pressure, beside the smooth interface, at the pair's f.",
         options=(Option("--pairs", "JSON: name -> {from_test: <test>} or the fit's numbers "
                         "{beta_n_per_um, P0_kN, area_mm2, cc, f}, with law (measured or "
                         "linearised) and pressure [kN/mm^2]", json_value,
@@ -399,10 +405,6 @@ COMMANDS = (
                         "patch's load", choices=PROBLEMS, key=f"{PAIRS}.problem"),
                  Option("--w-hat", "patch half-width w/c (the line load carries the load "
                         "2 w p of that patch)", float, key=f"{PAIRS}.w"),
-                 Option("--E", "Young's modulus of layer and half-plane", float,
-                        unit="kN/mm^2", key=f"{PAIRS}.E"),
-                 Option("--nu", "Poisson's ratio of layer and half-plane", float,
-                        key=f"{PAIRS}.nu"),
                  Option("--c", "layer thicknesses", float, unit="mm", nargs="+",
                         key=f"{PAIRS}.c"),
                  Option("--n", "Gauss-Chebyshev points N (even)", int,
@@ -411,7 +413,7 @@ COMMANDS = (
                    for o in patch_options(PATCHES)),
                  *(Option(o.flag, o.help, o.type, key=dict.fromkeys(LINES, o.key),
                           only=LINES) for o in line_options(LINE)),
-                 out_option()),
+                 *material_options(), out_option()),
         run=_pairs, select="problem"),
     Command(
         NAME, "report-rough", "report section of the rough interface",
