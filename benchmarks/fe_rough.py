@@ -18,9 +18,9 @@ import time
 from pathlib import Path
 
 from contactlab.fe.deck import RecedingModel
-from contactlab.fe.interface_law import mindlin_ratio
 from contactlab.fe.mesh2d import StripBlockGeometry
 from contactlab.fe.rough import mesh_series, run_rough
+from contactlab.receding.core.interface import mindlin_ratio
 
 #: The models of the compliant-interface study: (model, strip length, block depth, x_fine),
 #: the half model in units of c = 1 mm; x_fine covers the largest b (C = 3).

@@ -46,12 +46,8 @@ def test_structured_mesh_is_deterministic_and_paired(mesh) -> None:
 
 
 def test_compliance_converts_to_stiffness_per_unit_area() -> None:
-    from contactlab.fe.interface_law import (
-        interface_compliance,
-        interface_stiffness,
-        layer_modulus,
-        mindlin_ratio,
-    )
+    from contactlab.fe.compliance import interface_compliance, interface_stiffness, layer_modulus
+    from contactlab.receding.core.interface import mindlin_ratio
 
     # E = 20000, nu = 0.3: mu = 7692.3, kappa = 1.8, 2 mu / (kappa + 1) = E / (4 (1 - nu^2))
     assert layer_modulus(20000.0, 0.3) == pytest.approx(2 * 20000 / 2.6 / 2.8, rel=1e-14)

@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from contactlab.fe.compliance import interface_stiffness
 from contactlab.fe.mesh2d import PlaneMesh
 
 PROBLEMS = ("gap", "line", "uniform")
@@ -150,8 +151,6 @@ def penalty_defaults(model: RecedingModel, h: float, thickness: float = 1.0
     the strip's ``thickness`` c); otherwise ``penalty`` and ``stick_slope`` if set, else
     the hard penalty 50 E/h and stick slope 5 E/h.
     """
-    from contactlab.fe.interface_law import interface_stiffness
-
     if model.compliance > 0:
         k = interface_stiffness(model.compliance, model.young, model.poisson, thickness,
                                 scale=modulus_scale(model) if model.two_materials else None)

@@ -25,37 +25,9 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from contactlab.fe.compliance import interface_stiffness
 from contactlab.fe.deck import contact_cards, id_lines
 from contactlab.fe.mesh2d import PlaneMesh, structured_strip_on_block
-
-
-def layer_modulus(young: float, poisson: float) -> float:
-    """2 mu / (kappa + 1) = E / (4 (1 - nu^2)) (N/mm^2), plane strain."""
-    mu = young / (2.0 * (1.0 + poisson))
-    return 2.0 * mu / (4.0 - 4.0 * poisson)
-
-
-def interface_stiffness(compliance: float, young: float, poisson: float,
-                        thickness: float, scale: float | None = None) -> float:
-    """Stiffness per unit area k (N/mm^3) of the dimensionless compliance C:
-    k = (2 mu / (kappa + 1)) / (c C); ``scale`` replaces 2 mu / (kappa + 1) (two
-    materials: 1/C*, ``deck.modulus_scale``)."""
-    if not compliance > 0:
-        raise ValueError(f"a compliant interface needs C > 0, got {compliance}")
-    modulus = layer_modulus(young, poisson) if scale is None else scale
-    return modulus / (thickness * compliance)
-
-
-def interface_compliance(stiffness: float, young: float, poisson: float,
-                         thickness: float) -> float:
-    """The dimensionless compliance C of a stiffness k per unit area (inverse of
-    :func:`interface_stiffness`)."""
-    return layer_modulus(young, poisson) / (thickness * stiffness)
-
-
-def mindlin_ratio(poisson: float) -> float:
-    """Mindlin's ratio of tangential to normal stiffness, m = 2 (1 - nu) / (2 - nu)."""
-    return 2.0 * (1.0 - poisson) / (2.0 - poisson)
 
 
 def patch_mesh(width: float, thickness: float, depth: float) -> PlaneMesh:
