@@ -1,4 +1,4 @@
-"""Time the default study from scratch and split its CPU time by command (issue 14).
+"""Time the default study from scratch and split its CPU time by command.
 
 Copies what a run needs (Snakefile, workflow/, config/, resources/) into a scratch
 directory, runs ``snakemake --workflow-profile workflow/profiles/default -j<jobs> all``

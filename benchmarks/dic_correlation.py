@@ -235,7 +235,7 @@ def main() -> None:
                            if target else "no target")
             print(f"\n{name}: {now['vectors']} vectors, {now['valid']:.4f} valid")
             print(f"  a pair, reference included: {now['pair']:.2f} s ({target_text}; "
-                  f"{issue:.1f} s before, issue 41)")
+                  f"{issue:.1f} s before)")
             if args.before:
                 old = measure_elsewhere(args.before, frames, subset, step, values,
                                         args.repeat)

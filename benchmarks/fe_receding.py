@@ -2,7 +2,7 @@
 
 Run: ``python benchmarks/fe_receding.py [h ...]`` (default h/c = 0.1 0.05 0.025). Prints the
 element count, wall time, ccx CPU time, Newton iterations and the transition points of each
-run, for the thesis's encastred blocks and the far-field edges (issue 18).
+run, for the thesis's encastred blocks and the far-field edges.
 Needs ``ccx`` on PATH (Debian package calculix-ccx).
 """
 

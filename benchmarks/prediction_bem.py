@@ -1,4 +1,4 @@
-"""Benchmark: the stiffness prediction of one pair per variant and grid (issue 21).
+"""Benchmark: the stiffness prediction of one pair per variant and grid.
 
 Target: a 512 x 512 composite, 10 load levels, normal and tangential, under 2 minutes on
 2 cores. Per pair and variant it prints CPU and wall seconds of the composite, the normal

@@ -1,4 +1,4 @@
-"""Time the test suite as ``make test`` runs it, and the machine's CPU over it (issue 14).
+"""Time the test suite as ``make test`` runs it, and the machine's CPU over it.
 
 Runs ``pytest -n <jobs> tests`` (``--quick``: ``-m "not slow"``, everything but the
 workflow runs) from the repository with this environment, ``--repeat`` times, and prints

@@ -1,5 +1,5 @@
 """Benchmark: write all SYNTHETIC demo scans, then process them (issue 7: "takes seconds"),
-and fill the undefined points of a real optical scan (issue 22).
+and fill the undefined points of a real optical scan.
 
 Run from the repository root: ``.venv/bin/python benchmarks/surfaces_scans.py``.
 Prints wall-clock and CPU seconds for generation, reading, filling and processing.

@@ -1,4 +1,4 @@
-"""LICENSE, pyproject.toml and CITATION.cff agree (issue 16); the CFF is checked in full
+"""LICENSE, pyproject.toml and CITATION.cff agree; the CFF is checked in full
 by `cffconvert --validate` (README, "Licence and citation")."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Every third-party package the code imports is declared (issue 16).
+"""Every third-party package the code imports is declared.
 
 Imports of ``src/`` (also those inside functions) are mapped to their distributions
 through the installed metadata and must be in pyproject.toml (dependencies or an

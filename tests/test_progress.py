@@ -1,4 +1,4 @@
-"""Progress reports and the one log format (issue 16, item 4)."""
+"""Progress reports and the one log format."""
 
 from __future__ import annotations
 

@@ -56,7 +56,7 @@ def test_index_links_every_section(tmp_path: Path) -> None:
 
 
 def test_index_has_run_metadata_an_intro_and_contents_by_part(tmp_path: Path) -> None:
-    """Issue 16, item 5: date, study, config hash, version and commit at the top; an
+    """date, study, config hash, version and commit at the top; an
     introduction that counts what the page holds; contents by part, section, sub-section,
     figure and table, every link pointing at an id on the page."""
     a = _section(tmp_path, "alpha")

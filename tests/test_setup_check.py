@@ -1,4 +1,4 @@
-"""Set-up that needs the least (issue 16): system packages only when missing and needed.
+"""Set-up that needs the least: system packages only when missing and needed.
 
 The set-up logic runs as `make all` / `make test` run it, in dry-run mode, with a PATH
 that holds only what each case provides (a stub ``ccx``, or nothing).

@@ -1,4 +1,4 @@
-"""No file name or config value can run a command (issue: paths with spaces, shell safety).
+"""No file name or config value can run a command.
 
 Two static checks keep the hole closed: every value a rule's ``shell:`` interpolates is
 quoted (``:q``), and the package starts subprocesses only with argument lists. The

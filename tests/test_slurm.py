@@ -1,4 +1,4 @@
-"""A study through a real Slurm cluster (issue 13): the one-node cluster of .ci/slurm-local.
+"""A study through a real Slurm cluster: the one-node cluster of .ci/slurm-local.
 
 The test starts slurmctld, slurmd and munged (root needed), runs a reduced study with
 ``--profile workflow/profiles/slurm`` and checks that the heavy jobs went through

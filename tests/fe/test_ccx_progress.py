@@ -1,4 +1,4 @@
-"""Progress of a CalculiX run read from its .sta file while it runs (issue 16, item 4)."""
+"""Progress of a CalculiX run read from its .sta file while it runs."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The mesh and domain study of issue 18: extrapolation, far-field edges, sub-element points,
+"""The FE mesh and domain study: extrapolation, far-field edges, sub-element points,
 and a coarse study end to end as the rules run it."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Bad input is refused naming the file and field (issue 21)."""
+"""Bad input is refused naming the file and field."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""The bounded Polonsky-Keer solver against ContactMechanics, elastic and capped (issue 21).
+"""The bounded Polonsky-Keer solver against ContactMechanics, elastic and capped.
 
 The reference is the library's constrained conjugate gradients on its non-periodic
 half-space, which the prediction used before: same surface, same load ladder (each level

@@ -1,4 +1,4 @@
-"""Composite topography of a pair: Sq against Seq (eq. 2.1), mirroring, grids (issue 21)."""
+"""Composite topography of a pair: Sq against Seq (eq. 2.1), mirroring, grids."""
 
 from __future__ import annotations
 

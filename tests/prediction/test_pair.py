@@ -1,4 +1,4 @@
-"""One pair end to end: CF result, flags, fitted eq. (2.2), summary beside measured (issue 21)."""
+"""One pair end to end: CF result, flags, fitted eq. (2.2), summary beside measured."""
 
 from __future__ import annotations
 

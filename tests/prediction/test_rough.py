@@ -1,5 +1,5 @@
 """Rough contacts: Mindlin ratio of an elastic stuck isotropic contact, Barber's theorem,
-f-scaling of Coulomb partial slip and Masing's rule of the reversed cycle (issue 21)."""
+f-scaling of Coulomb partial slip and Masing's rule of the reversed cycle."""
 
 from __future__ import annotations
 

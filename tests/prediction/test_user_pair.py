@@ -1,4 +1,4 @@
-"""End-to-end: a test a user adds gets its prediction beside its measured values (issue 21).
+"""End-to-end: a test a user adds gets its prediction beside its measured values.
 
 The user's study has its own test sheet (one test, U1) and surface sheet (its two areal
 scans, written here), as a named study: ``results/studies/my_pair/``. Its measured raw

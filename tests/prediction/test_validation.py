@@ -1,4 +1,4 @@
-"""The solvers against closed forms: Hertz, Cattaneo-Mindlin, the Mindlin ratio (issue 21)."""
+"""The solvers against closed forms: Hertz, Cattaneo-Mindlin, the Mindlin ratio."""
 
 from __future__ import annotations
 

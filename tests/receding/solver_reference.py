@@ -3,7 +3,7 @@
 ``python tests/receding/solver_reference.py`` solves every case below and writes
 ``tests/receding/data/solver_reference.json``; ``test_solver_reference.py`` solves them
 again and compares. ``--solved-only`` replaces only the points recorded as failed or
-inadmissible that are now solved, and lists them under ``updates`` (issue 19).
+inadmissible that are now solved, and lists them under ``updates``.
 The cases cover the gap problem (ch. 5) in every regime at N = 100 and
 at other N, the line load (ch. 6) at N = 500 with and without the preformed density, the
 three patch laws (ch. 7) at N = 100 including wide patches, and quick subsets of the
@@ -170,7 +170,7 @@ def main(argv: list[str]) -> None:
             print(f"{group}: {len(changed)} points now solved: {changed}")
             data.setdefault("updates", []).append(
                 {"commit": commit, "group": group, "points": changed,
-                 "note": "previously failed or inadmissible, now solved (issue 19)"})
+                 "note": "previously failed or inadmissible, now solved"})
         else:
             data[group] = compute(group)
             print(f"{group}: {len(data[group])} cases")

@@ -15,7 +15,7 @@ from contactlab.io import check_cf
 
 LINE = ["--lam", "3.5", "--e", "5"]  # config receding.line (thesis sec. 6.4)
 PATCH = ["--lam-b", "2", "--e-minus-w", "5"]  # config receding.patches (sec. 7.4)
-#: issue 19's options as the config passes them (N = 40 misses the contact checks by up
+#: the options as the config passes them (N = 40 misses the contact checks by up
 #: to 0.01 T next to b: refined to 80)
 ROBUST = ["--stick-zone-limit", "1e-4", "--refine-max-n", "80"]
 

@@ -1,4 +1,4 @@
-"""Issue 19: vanishing stick zones as limits, refinement in N, continuation, the continuous
+"""Vanishing stick zones as limits, refinement in N, continuation, the continuous
 slip rule -- every point of a sweep solved and certified, or flagged with its numbers."""
 
 from __future__ import annotations

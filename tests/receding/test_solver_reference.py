@@ -1,4 +1,4 @@
-"""The receding solvers give the answers recorded before their speed-up (issue 14).
+"""The receding solvers give the answers recorded before their speed-up.
 
 ``data/solver_reference.json`` was written by ``solver_reference.py`` at the commit it
 names. Converged and admissible points must agree within a relative 1e-6 (transition

@@ -1,6 +1,6 @@
 """The SYNTHETIC demo scans, processed like real ones, against the published tables.
 
-Stated tolerances (issue 7; also in the report): Sq 1 %, Sa 3 %, Sp 2 %,
+Stated tolerances (also in the report): Sq 1 %, Sa 3 %, Sp 2 %,
 Str +-(0.1 Str + 0.02), Rq 1 %, Ra 3 %, Rz 30 % (20x) and 10 % (100x, Table 2.6),
 fractal dimension +-0.08 (absolute). The 100x profiles are evaluated on sampling
 lengths of 160 um (five per evaluation length, the surface sheet's

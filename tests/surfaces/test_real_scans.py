@@ -1,4 +1,4 @@
-"""Real instrument files (issue 22): reading, filling, parameters against independent values.
+"""Real instrument files: reading, filling, parameters against independent values.
 
 The files are SurfaceTopography's format examples (tests/data/scans/, MIT licence, see
 the README there): an Alicona AL3D, a Bruker Dektak OPDX line with the instrument's own

@@ -71,7 +71,7 @@ def test_report_without_texture_keeps_the_published_seq_section(repo: Path,
 
 def test_section_lists_refused_scans_and_still_shows_the_others(repo: Path,
                                                                  tmp_path: Path) -> None:
-    """A texture summary with a refused scan (issue 22): the section names it with its
+    """A texture summary with a refused scan: the section names it with its
     reason in a table of its own and keeps the evaluated surface in the other tables."""
     from contactlab.surfaces.sheet import SurfaceSpec
     from contactlab.surfaces.texture import summary_dataset, surface_dataset, surface_texture

@@ -1,4 +1,4 @@
-"""Reading scans: X3P round trip, unit conversion, and refusal of bad files (issue 7)."""
+"""Reading scans: X3P round trip, unit conversion, and refusal of bad files."""
 
 from __future__ import annotations
 

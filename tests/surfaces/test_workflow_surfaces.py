@@ -64,7 +64,7 @@ def write_bad_scans(data: Path) -> None:
 @pytest.mark.slow
 def test_real_scans_evaluated_and_refused_ones_listed_with_their_reason(
         workflow_copy: Path, snakemake, repo: Path) -> None:
-    """Real instrument files in the surface sheet (issue 22), in one job, with two bad
+    """Real instrument files in the surface sheet, in one job, with two bad
     scans among them: with --keep-going every good surface is evaluated, the summary lists
     all nine surfaces with the bad ones' reasons, and surfaces_texture_check fails the run
     naming both; allow_refused_scans accepts them; without them the summary has the filled

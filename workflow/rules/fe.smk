@@ -76,7 +76,7 @@ rule fe_convergence:
 
 
 rule fe_receding_study:
-    """One run of the h and L study (issue 18): a problem with given block edges, h/c and
+    """One run of the h and L study: a problem with given block edges, h/c and
     domain scale (strip length and block depth times the scale)."""
     output:
         result("fe/study/{problem}_{edges}_h{h}_s{scale}.nc"),
@@ -103,7 +103,7 @@ rule fe_receding_study:
 
 rule fe_study:
     """results/fe/study_{problem}.nc: extrapolation to h -> 0 and L -> infinity of every
-    transition point and K_T, beside the DDT solution and its N-convergence (issue 18)."""
+    transition point and K_T, beside the DDT solution and its N-convergence."""
     input:
         runs=lambda wc: rulehelpers.study_runs(FE, wc.problem, RESULTS),
         solver=lambda wc: rulehelpers.ddt_sources(wc.problem),
