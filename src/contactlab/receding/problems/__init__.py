@@ -72,4 +72,5 @@ def schema_enums() -> dict[str, tuple[str, ...]]:
         "receding.rough.problems[]": liftoff,
         "receding.rough.profiles[].problem": liftoff,
         "receding.rough.pairs.problem": liftoff,
+        "receding.history.problem": liftoff,
     }
