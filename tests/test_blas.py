@@ -37,3 +37,22 @@ def test_one_thread_unless_the_environment_sets_a_count() -> None:
     assert _blas_threads() == [1]
     assert _blas_threads(OPENBLAS_NUM_THREADS="2") == [2]
 
+
+
+def test_single_thread_has_nothing_to_limit_in_a_one_thread_process() -> None:
+    """After one_thread_by_default (before numpy loads) a solver's single_thread neither
+    imports threadpoolctl nor searches the loaded libraries; with a user's count it limits."""
+    probe = """
+import sys
+from contactlab.blas import one_thread_by_default, single_thread
+one_thread_by_default()
+import numpy
+with single_thread():
+    pass
+print("threadpoolctl" in sys.modules)
+"""
+    env = {k: v for k, v in os.environ.items() if k not in THREAD_VARIABLES}
+    for variables, loaded in (({}, "False"), ({"OPENBLAS_NUM_THREADS": "2"}, "True")):
+        out = subprocess.run([sys.executable, "-c", probe], env={**env, **variables},
+                             capture_output=True, text=True, check=True).stdout
+        assert out.strip() == loaded

@@ -69,8 +69,9 @@ def test_every_command_has_a_description_examples_and_every_option_help() -> Non
     for declaration in declared():
         if not declaration.help:
             missing.append(f"{declaration.path}: no help")
+        # a config-fed option may leave its help to the schema (tests/test_command.py)
         missing += [f"{declaration.path} {o.flag}: no help" for o in declaration.options
-                    if not o.help]
+                    if not o.help and o.key is None]
     assert not missing, missing
     assert len(groups()) == 9 and len(declared()) >= 52
 
@@ -170,7 +171,7 @@ def test_rules_pass_every_config_value_so_nothing_is_completed(repo: Path) -> No
     from snakemake.utils import validate
 
     config = yaml.safe_load((repo / "config/config.yaml").read_text())
-    validate(config, str(repo / "workflow/schemas/config.schema.yaml"))
+    validate(config, str(repo / "src/contactlab/schemas/config.schema.yaml"))
     for declaration in declared():
         selections = [None]
         if declaration.select:
@@ -499,7 +500,7 @@ KNOWN_SCIENCE_DEFAULTS = {
 def test_science_defaults_are_none_or_the_schema_default(repo: Path) -> None:
     """A science function's default for a config value, where it has one, is the
     schema's: never a second default that could drift."""
-    schema = yaml.safe_load((repo / "workflow/schemas/config.schema.yaml").read_text())
+    schema = yaml.safe_load((repo / "src/contactlab/schemas/config.schema.yaml").read_text())
     defaults: dict[tuple[str, str], set] = {}
     for path, key, sub in schema_leaves(schema):
         if "default" in sub and "properties" not in sub:

@@ -148,3 +148,24 @@ def test_values_typed_by_hand_meet_the_schema_a_workflow_job_s_were_checked_at_s
         "--lam inf: inf is not a finite number (config receding.line.lambda)"]
     monkeypatch.setenv("CONTACTLAB_CONFIG_SHA256", "0123abcd")
     assert command.complete(parser.parse_args(typed[2:]), typed) == []
+
+
+def test_an_option_fed_from_the_config_takes_its_help_from_the_schema_not_a_copy() -> None:
+    """A config-fed option whose help would repeat its key's schema description leaves its
+    help out, and ``--help`` shows the description (read from the schema only then)."""
+    from contactlab.cli import build_parser, groups
+    from contactlab.schema import schema_node
+
+    copies = [f"{c.path} {o.flag}" for g in groups() for c in g.commands for o in c.options
+              if o.key is not None and o.help and " ".join(o.help.split()) in {
+                  " ".join(schema_node(k).get("description", "").split()) for k in o.keys()}]
+    assert not copies, "help repeats the schema description: " + ", ".join(copies)
+    blank = [f"{c.path} {o.flag}" for g in groups() for c in g.commands for o in c.options
+             if not o.help and not any(schema_node(k).get("description") for k in o.keys())]
+    assert not blank, "no help and no schema description: " + ", ".join(blank)
+
+    parser = build_parser()
+    bem = parser._subparsers._group_actions[0].choices["asperity"] \
+        ._subparsers._group_actions[0].choices["bem"]
+    nu = " ".join(bem.format_help().split())
+    assert f"--nu NU {schema_node('asperity.nu')['description']} (default: " in nu

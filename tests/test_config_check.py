@@ -22,7 +22,7 @@ from contactlab.study import coerce
 
 
 def _schema(repo: Path) -> dict[str, Any]:
-    return parse_yaml((repo / "workflow/schemas/config.schema.yaml").read_text())
+    return parse_yaml((repo / "src/contactlab/schemas/config.schema.yaml").read_text())
 
 
 def _problems(repo: Path, e2e_text: str, overrides: dict[str, Any] | None = None) -> str:
@@ -116,7 +116,7 @@ def test_every_walked_parameter_returns_from_the_command_line_with_its_type(
     from snakemake.utils import validate
 
     config = parse_yaml((repo / "tests" / "e2e_config.yaml").read_text())
-    validate(config, str(repo / "workflow/schemas/config.schema.yaml"))  # + defaults
+    validate(config, str(repo / "src/contactlab/schemas/config.schema.yaml"))  # + defaults
     schema = _schema(repo)
     cases = list(walk(config, schema))
     assert len(cases) > 80
@@ -149,3 +149,36 @@ def test_a_tested_pair_naming_no_test_of_the_sheet_is_found_at_start_up(repo: Pa
         "study.yaml: receding.rough.pairs.tests.X.from_test: \"SU33\" is no test with raw "
         "data in config/tests.csv (the stiffness summary's tests: SU3, S3, RU3, SU1, SU2, "
         "S1, S2, RU1, ... (10 in all))")
+
+
+def test_a_plainly_valid_scalar_is_what_jsonschema_accepts() -> None:
+    """The one-value check without jsonschema (``plainly_valid``) accepts a value only where
+    jsonschema does too, over every scalar node of the schema and values of each type; and
+    it decides a command's typical values (``--n 100``) alone."""
+    from contactlab.config_check import plainly_valid, validator
+    from contactlab.schema import _schema, schema_node
+
+    nodes = []
+
+    def collect(node: Any) -> None:
+        if isinstance(node, dict):
+            if "type" in node or "enum" in node:
+                nodes.append(node)
+            for child in node.get("properties", {}).values():
+                collect(child)
+            if isinstance(node.get("items"), dict):
+                collect(node["items"])
+
+    collect(_schema())
+    probes = [0, 1, 2, 3, 100, 1001, -1, 0.5, 2.5, 1e-30, 1e9, float("nan"), float("inf"),
+              True, False, "line", "x", "", None, [1], {"a": 1}]
+    accepted = 0
+    for node in nodes:
+        for value in [*probes, *node.get("enum", [])]:
+            if plainly_valid(value, node):
+                accepted += 1
+                assert not list(validator(node).iter_errors(value)), (node, value)
+    assert accepted > 500
+    assert plainly_valid(100, schema_node("receding.line.n"))
+    assert not plainly_valid(101, schema_node("receding.line.n"))  # not a multiple of 2
+    assert not plainly_valid(float("nan"), {"type": "number"})

@@ -11,7 +11,7 @@ import yaml
 
 
 def _schema(repo: Path) -> dict:
-    return yaml.safe_load((repo / "workflow/schemas/config.schema.yaml").read_text())
+    return yaml.safe_load((repo / "src/contactlab/schemas/config.schema.yaml").read_text())
 
 
 def leaves(config: Mapping[str, Any], schema: Mapping[str, Any], prefix: str = ""
@@ -51,7 +51,7 @@ def test_schema_defaults_fill_a_minimal_study(repo: Path) -> None:
     config = yaml.safe_load((repo / "config/config.yaml").read_text())
     for section in ("stiffness", "fe"):
         config.pop(section, None)
-    validate(config, str(repo / "workflow/schemas/config.schema.yaml"))
+    validate(config, str(repo / "src/contactlab/schemas/config.schema.yaml"))
     assert config["stiffness"]["errors"]["piston_area_cm2"] == 6.5
     assert config["stiffness"]["raw"]["tangential_pressure"] == "multiply"
     fe = config["fe"]
@@ -84,7 +84,7 @@ def test_config_readme_is_generated_from_the_schemas(repo: Path) -> None:
     from contactlab.config_docs import page as generated
 
     page = (repo / "config" / "README.md").read_text()
-    assert page == generated(repo), "regenerate: python -m contactlab.config_docs"
+    assert page == generated(), "regenerate: python -m contactlab.config_docs"
     assert "`stiffness.errors.piston_area_cm2` | number | `6.5` |" in page
     # both sheets: every column with its type, unit, allowed values, and example rows
     assert "| `max_normal_load_kN` | number | kN | yes | > 0 |" in page
@@ -104,7 +104,7 @@ def test_the_sheets_examples_are_read_as_the_workflow_reads_them(repo: Path,
     from contactlab.testsheet import check_rows, check_surface_pairs, read_test_sheet
 
     for name, reader in (("tests", read_test_sheet), ("surfaces", read_surface_sheet)):
-        schema = yaml.safe_load((repo / f"workflow/schemas/{name}.schema.yaml").read_text())
+        schema = yaml.safe_load((repo / f"src/contactlab/schemas/{name}.schema.yaml").read_text())
         path = tmp_path / f"{name}.csv"
         with path.open("w", newline="") as handle:
             writer = csv.DictWriter(handle, fieldnames=list(schema["properties"]))

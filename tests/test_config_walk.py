@@ -64,8 +64,8 @@ def test_shared_dry_runs_find_each_fault_of_its_parameter(repo: Path) -> None:
     from snakemake.utils import validate
 
     config = parse_yaml((repo / "tests" / "e2e_config.yaml").read_text())
-    validate(config, str(repo / "workflow/schemas/config.schema.yaml"))
-    schema = parse_yaml((repo / "workflow/schemas/config.schema.yaml").read_text())
+    validate(config, str(repo / "src/contactlab/schemas/config.schema.yaml"))
+    schema = parse_yaml((repo / "src/contactlab/schemas/config.schema.yaml").read_text())
     snakemake = StandIn(config)
     failures = check_all(config, schema, "receding", snakemake)
     assert sorted(failures) == [

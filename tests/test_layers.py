@@ -5,9 +5,10 @@ of its own layer and of the layers below it, never above:
 
 0. ground floor: ``contactlab`` itself, ``io``, ``display``, ``schema``, ``study``,
    ``published``, ``testsheet``, ``csvlines``, ``config_check``, ``config_docs``,
-   ``setup_check``, ``progress``, ``blas`` -- files, how tables show numbers and units,
-   provenance, the thesis's transcribed tables, the test sheet, the set-up's
-   system packages, the log format and progress reports, one BLAS thread;
+   ``setup_check``, ``progress``, ``blas``, ``allocator`` -- files, how tables show numbers
+   and units, provenance, the thesis's transcribed tables, the test sheet, the set-up's
+   system packages, the log format and progress reports, one BLAS thread, freed memory kept
+   for the next array;
 1. science: every module of a branch package (``surfaces``, ``stiffness``, ``dic``,
    ``asperity``, ``receding``, ``fe``, ``prediction`` and their sub-packages) that is not a
    report builder or a command line -- numbers and files in, numbers and datasets out;
@@ -39,7 +40,8 @@ GROUND = {"contactlab", "contactlab.__init__", "contactlab.atomic", "contactlab.
           "contactlab.study",
           "contactlab.published", "contactlab.testsheet", "contactlab.csvlines",
           "contactlab.config_check", "contactlab.config_docs", "contactlab.setup_check",
-          "contactlab.progress", "contactlab.blas", "contactlab.display"}
+          "contactlab.progress", "contactlab.blas", "contactlab.allocator",
+          "contactlab.display"}
 BRANCHES = ("surfaces", "stiffness", "dic", "asperity", "receding", "fe", "prediction")
 LAYERS = ("ground floor", "science", "report toolkit", "report builder", "command line",
           "workflow")

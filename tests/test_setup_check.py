@@ -40,7 +40,7 @@ def setup_run(tmp_path: Path, bin_dir: Path, fe: str | None, *extra: str,
     config.write_text("tests: config/tests.csv\n" + (f"fe: {{enabled: {fe}}}\n" if fe else ""))
     return subprocess.run(
         [sys.executable, "-m", "contactlab.setup_check", "--dry-run", "--config", str(config),
-         "--schema", str(REPO / "workflow/schemas/config.schema.yaml"), *extra],
+         "--schema", str(REPO / "src/contactlab/schemas/config.schema.yaml"), *extra],
         env={"PATH": str(bin_dir), **(env or {})}, capture_output=True, text=True,
         check=False, cwd=tmp_path)
 

@@ -112,9 +112,10 @@ def _startup_error(work: Path) -> str:
     ``config/tests.csv`` in the folder ``work``, the current one: "" when nothing."""
     from contactlab.config_check import parse_yaml
     from contactlab.rulehelpers import demo_data_files
+    from contactlab.schema import schema_file
     from contactlab.testsheet import check_rows
 
-    schema = parse_yaml((work / "workflow" / "schemas" / "tests.schema.yaml").read_text())
+    schema = parse_yaml(schema_file("tests").read_text())
     try:
         sheet = read_test_sheet("config/tests.csv")
         check_rows(sheet, "config/tests.csv", schema)
@@ -150,7 +151,6 @@ def test_bad_sheet_is_named_with_line_test_and_column(repo: Path, tmp_path: Path
     """The one-line start-up errors of a bad sheet (tests/test_workflow.py shows that the
     workflow stops with such a line before any job)."""
     shutil.copytree(repo / "config", tmp_path / "config")
-    shutil.copytree(repo / "workflow" / "schemas", tmp_path / "workflow" / "schemas")
     monkeypatch.chdir(tmp_path)
     assert _startup_error(tmp_path) == ""
     sheet = tmp_path / "config" / "tests.csv"

@@ -26,6 +26,8 @@ if TYPE_CHECKING:
 #: The variables OpenBLAS (numpy's and scipy's BLAS) and OpenMP read for their thread
 #: count when they load.
 THREAD_VARIABLES = ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS")
+#: whether :func:`one_thread_by_default` left this process's BLAS at one thread
+_ONE_THREAD = {"process": False}
 
 
 def one_thread_by_default(environ: MutableMapping[str, str] = os.environ) -> None:
@@ -38,10 +40,14 @@ def one_thread_by_default(environ: MutableMapping[str, str] = os.environ) -> Non
     unset = [name for name in THREAD_VARIABLES if name not in environ]
     for name in unset:
         environ[name] = "1"
-    if unset and "numpy" in sys.modules:  # BLAS has read the variables already
+    loaded = "numpy" in sys.modules
+    if unset and loaded:  # BLAS has read the variables already
         from threadpoolctl import threadpool_limits
 
         threadpool_limits(1)
+    # one thread for sure: BLAS reads these ones when it loads, or was limited just now
+    _ONE_THREAD["process"] = environ is os.environ and (not loaded or bool(unset)) and all(
+        environ[name] == "1" for name in THREAD_VARIABLES)
 
 
 @lru_cache(maxsize=1)
@@ -56,6 +62,11 @@ def _controller() -> ThreadpoolController:
 
 @contextlib.contextmanager
 def single_thread() -> Iterator[None]:
-    """Run the body with the BLAS of numpy and scipy limited to one thread."""
+    """Run the body with the BLAS of numpy and scipy limited to one thread (nothing to do
+    in a process :func:`one_thread_by_default` made single-threaded: the command line's,
+    which then neither imports threadpoolctl nor searches the loaded libraries)."""
+    if _ONE_THREAD["process"]:
+        yield
+        return
     with _controller().limit(limits=1, user_api="blas"):
         yield

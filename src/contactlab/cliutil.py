@@ -14,7 +14,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from contactlab.command import Command, Option
+from contactlab.command import SCHEMA_HELP, Command, Option
 
 #: Negative numbers in any notation (``-1``, ``-.5``, ``-1e-5``, ``-2.5E+3``, ``-inf``).
 NEGATIVE_NUMBER = re.compile(
@@ -35,6 +35,8 @@ class HelpFormatter(argparse.HelpFormatter):
     def _get_help_string(self, action: argparse.Action) -> str | None:
         text = action.help or ""
         key = getattr(action, "config_key", None)
+        if text.startswith(SCHEMA_HELP):
+            text = config_description(key) + text[len(SCHEMA_HELP):]
         if key is not None:
             return f"{text} (default: {config_default_text(key)})"
         if getattr(action, "must_give", False):
@@ -43,6 +45,16 @@ class HelpFormatter(argparse.HelpFormatter):
                 or action.default in (None, False, [], argparse.SUPPRESS)):
             return text
         return text + " (default: %(default)s)"
+
+
+def config_description(key: str | dict[str, str]) -> str:
+    """The schema's description of a config-fed option's key (of its first key that has one,
+    for an option whose key depends on the selected problem)."""
+    from contactlab.schema import schema_node
+
+    names = [key] if isinstance(key, str) else list(dict.fromkeys(key.values()))
+    return next((schema_node(name)["description"] for name in names
+                 if schema_node(name).get("description")), "")
 
 
 def config_default_text(key: str | dict[str, str]) -> str:

@@ -4,7 +4,7 @@ A :class:`Command` lists its :class:`Option` s. Everything else is made from tha
 
 - the argparse parser (:meth:`Command.add_to`), whose help shows each option's unit and
   default -- for an option fed from the config, the schema's default
-  (``workflow/schemas/config.schema.yaml``, read only when needed);
+  (``src/contactlab/schemas/config.schema.yaml``, read only when needed);
 - after parsing, the values the user left out: a config-fed option takes the schema's
   default, and every missing or inapplicable option is reported in one message
   (:meth:`Command.complete`);
@@ -37,6 +37,9 @@ class _Required:
 
 
 REQUIRED: Any = _Required()
+
+#: The help of an option that shows its config key's description in the schema.
+SCHEMA_HELP = "<schema description>"
 
 #: What an option's value names on disk (:attr:`Option.role`).
 ROLES = ("", "input", "output", "output folder")
@@ -80,7 +83,8 @@ class Option:
     flag
         ``--w-hat`` for an option, ``chunks`` for a positional argument.
     help
-        What the value means (without unit or default: both are added).
+        What the value means (without unit or default: both are added). Empty for a
+        config-fed option: the help shows its key's description in the schema.
     type
         Converter of one word (``float``, ``int``, :func:`contactlab.cliutil.input_file`, ...).
     unit
@@ -108,7 +112,7 @@ class Option:
     """
 
     flag: str
-    help: str
+    help: str = ""
     type: Callable[[str], Any] = str
     unit: str = ""
     nargs: int | str | None = None
@@ -123,6 +127,8 @@ class Option:
     def __post_init__(self) -> None:
         if self.role not in ROLES:
             raise ValueError(f"option {self.flag}: role {self.role!r} is not one of {ROLES}")
+        if not self.help and self.key is None:
+            raise ValueError(f"option {self.flag}: no help and no config key to take it from")
 
     @property
     def greedy(self) -> bool:
@@ -165,7 +171,9 @@ class Option:
 
     def add_to(self, parser: argparse.ArgumentParser) -> None:
         """Add this option to ``parser``."""
-        text = self.help + (f" [{self.unit}]" if self.unit else "")
+        # an option without help shows its key's schema description, read only by --help
+        # (contactlab.cliutil.HelpFormatter); argparse leaves out an empty help
+        text = (self.help or SCHEMA_HELP) + (f" [{self.unit}]" if self.unit else "")
         kwargs: dict[str, Any] = {"help": text}
         if self.kind == "switch":
             kwargs["action"] = argparse.BooleanOptionalAction

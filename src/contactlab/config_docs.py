@@ -1,7 +1,7 @@
 """``config/README.md``: every config key with its type, default and meaning, and every
 column of the test and surface sheets, from their schemas.
 
-The schemas (``workflow/schemas/config.schema.yaml``, ``tests.schema.yaml``,
+The schemas (``src/contactlab/schemas/config.schema.yaml``, ``tests.schema.yaml``,
 ``surfaces.schema.yaml``) are the one home of each default, type, unit and allowed value;
 this page is generated from them (``python -m contactlab.config_docs > config/README.md``)
 and a test fails when the two drift apart.
@@ -12,19 +12,15 @@ from __future__ import annotations
 import json
 import sys
 from collections.abc import Iterator, Mapping
-from pathlib import Path
 from typing import Any
 
-SCHEMA = Path("workflow/schemas/config.schema.yaml")
-#: The sheets: title, the default study's file, the config key naming it, schema.
-SHEETS = (("The test sheet", "config/tests.csv", "tests",
-           Path("workflow/schemas/tests.schema.yaml")),
-          ("The surface sheet", "config/surfaces.csv", "surfaces.sheet",
-           Path("workflow/schemas/surfaces.schema.yaml")))
+#: The sheets: title, the default study's file, the config key naming it, schema name.
+SHEETS = (("The test sheet", "config/tests.csv", "tests", "tests"),
+          ("The surface sheet", "config/surfaces.csv", "surfaces.sheet", "surfaces"))
 
 HEADER = """# Configuration keys
 
-Generated from `workflow/schemas/config.schema.yaml`, `tests.schema.yaml` and
+Generated from `src/contactlab/schemas/config.schema.yaml`, `tests.schema.yaml` and
 `surfaces.schema.yaml` by `python -m contactlab.config_docs > config/README.md` (a test keeps
 it current).
 
@@ -128,15 +124,17 @@ def sheet_section(title: str, path: str, key: str, schema: Mapping[str, Any]) ->
     return "\n".join(lines) + "\n"
 
 
-def page(root: str | Path = ".") -> str:
+def page() -> str:
     """The whole page: the config keys (:func:`render`) and both sheets
-    (:func:`sheet_section`), from the schemas under ``root``."""
+    (:func:`sheet_section`), from the shipped schemas."""
     import yaml
 
-    def load(path: Path) -> Mapping[str, Any]:
-        return yaml.safe_load((Path(root) / path).read_text(encoding="utf-8"))
+    from contactlab.schema import schema_file
 
-    parts = [render(load(SCHEMA))]
+    def load(name: str) -> Mapping[str, Any]:
+        return yaml.safe_load(schema_file(name).read_text(encoding="utf-8"))
+
+    parts = [render(load("config"))]
     parts += [sheet_section(title, path, key, load(schema))
               for title, path, key, schema in SHEETS]
     return "\n".join(parts)

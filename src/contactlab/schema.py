@@ -1,8 +1,9 @@
 """The config schema, the one home of every default, and the values it describes.
 
-``workflow/schemas/config.schema.yaml`` declares every config key with its type, limits,
-default and meaning; the workflow validates each study's config against it, the commands
-take their defaults from it, and the studies' tools compare configs key by key. This module
+``contactlab/schemas/config.schema.yaml`` (package data, so an installed ``contactlab`` has
+its defaults wherever it runs) declares every config key with its type, limits, default and
+meaning; the workflow validates each study's config against it, the commands take their
+defaults from it, and the studies' tools compare configs key by key. This module
 reads it (once, lazily, with libyaml) and walks it by dotted key. Standard library only;
 PyYAML is imported when the schema is first read.
 """
@@ -14,17 +15,22 @@ from functools import cache
 from pathlib import Path
 from typing import Any
 
-#: The config schema, the one home of every default (``workflow/schemas/`` of the checkout).
-SCHEMA_PATH = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / "config.schema.yaml"
+#: The schemas shipped with the package (the workflow reads the same files): the config,
+#: the test and surface sheets and the compare files.
+SCHEMA_DIR = Path(__file__).resolve().parent / "schemas"
+#: The config schema, the one home of every default.
+SCHEMA_PATH = SCHEMA_DIR / "config.schema.yaml"
+
+
+def schema_file(name: str) -> Path:
+    """The shipped schema ``name`` (``config``, ``tests``, ``surfaces`` or ``compare``)."""
+    return SCHEMA_DIR / f"{name}.schema.yaml"
 
 
 @cache
 def _schema() -> dict:
     import yaml
 
-    if not SCHEMA_PATH.is_file():
-        raise FileNotFoundError(f"config schema {SCHEMA_PATH} not found: contactlab reads its "
-                                "defaults from the checkout it is installed from (pip install -e)")
     loader = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
     with SCHEMA_PATH.open(encoding="utf-8") as stream:
         return yaml.load(stream, Loader=loader)

@@ -31,6 +31,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from contactlab.schema import SCHEMA_PATH
+
 #: Debian package of each shared library the gmsh wheel's libgmsh links (readelf -d).
 GMSH_LIBRARIES = {
     "libGLU.so.1": "libglu1-mesa",
@@ -198,7 +200,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                     "wheel's libraries) when they are missing and the FE branch is enabled.")
     parser.add_argument("--config", action="append", default=[], metavar="FILE",
                         help="config file, merged in order (repeatable)")
-    parser.add_argument("--schema", default="workflow/schemas/config.schema.yaml",
+    parser.add_argument("--schema", default=str(SCHEMA_PATH),
                         help="config schema giving the default of fe.enabled")
     parser.add_argument("--python", default=sys.executable,
                         help="Python of the environment in which gmsh must import")

@@ -1,6 +1,6 @@
 """The test sheet: one row per contact-stiffness test (``config/tests.csv``).
 
-Columns are described in ``workflow/schemas/tests.schema.yaml`` and the README.
+Columns are described in ``src/contactlab/schemas/tests.schema.yaml`` and the README.
 This module adds the checks a JSON schema cannot express: numbers parsed cell
 by cell (pandas reads a column with one bad cell as text), unique ids,
 existing data files, and specimens and pads that name surfaces of the surface
@@ -73,7 +73,8 @@ def read_test_sheet(path: str | Path) -> pd.DataFrame:
 
 def check_rows(sheet: pd.DataFrame, sheet_path: str | Path, schema: dict) -> None:
     """Raise :class:`TestSheetError` naming line, test id, column and value of the first
-    cell (in sheet order) that breaks the row schema (``workflow/schemas/tests.schema.yaml``)."""
+    cell (in sheet order) that breaks the row schema
+    (``src/contactlab/schemas/tests.schema.yaml``)."""
     from jsonschema import Draft202012Validator
 
     validator = Draft202012Validator(schema)

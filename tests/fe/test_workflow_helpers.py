@@ -15,12 +15,12 @@ def _config(repo: Path, name: str) -> dict:
     from snakemake.utils import validate
 
     config = yaml.safe_load((repo / name).read_text())
-    validate(config, str(repo / "workflow/schemas/config.schema.yaml"))
+    validate(config, str(repo / "src/contactlab/schemas/config.schema.yaml"))
     return config
 
 
 def test_configs_validate_and_name_existing_levels(repo: Path) -> None:
-    schema = yaml.safe_load((repo / "workflow/schemas/config.schema.yaml").read_text())
+    schema = yaml.safe_load((repo / "src/contactlab/schemas/config.schema.yaml").read_text())
     for name in ("config/config.yaml", "tests/e2e_config.yaml"):
         config = _config(repo, name)
         jsonschema.validate(config, schema)

@@ -413,3 +413,47 @@ def test_a_compliance_below_the_resolution_is_the_smooth_interface_and_says_so()
     profile = rough_profile("line", 0.5, 0.0, linear_interface(1e-300, 1e-300), n=100,
                             lam=3.5, e_extra=5.0, x_max=3.0, points=31)
     assert profile.attrs["below_resolution"] == 1 and profile.attrs["admissible"] == 1
+
+
+def test_a_cold_point_starts_from_the_compliance_table() -> None:
+    """The compliance table holds the line load's solutions: a cold solve at a resolved grid
+    point (f = 0.3, C = 1, the table's N) is admissible and lands within the table's rounding
+    of it; at N = 100 and f = 0.5 the root reached from the table's seed is the one the
+    continuation from the smooth interface reaches (the solver's other cold start)."""
+    from contactlab.receding.liftoff.line import compliant_guess
+    from contactlab.receding.liftoff.seeds import COMPLIANT_N, COMPLIANT_SETTINGS
+    from contactlab.receding.liftoff.solver import COARSE_N, solve_compliant
+
+    lam, e = COMPLIANT_SETTINGS["lam"], COMPLIANT_SETTINGS["e"]
+    law = linear_interface(1.0, RATIO)
+    a, b = compliant_guess(0.3, 1.0)
+    sol = solve_line(0.3, COMPLIANT_N, lam, e, interface=law)
+    assert sol.admissible and not sol.refusal
+    assert sol.a == pytest.approx(a, rel=1e-3) and sol.b == pytest.approx(b, abs=1e-4)
+    load = make_load("line")
+    seeded = solve_compliant(load, 0.5, 100, lam, lam, e, True, "line", law, None,
+                             lambda: solve_line(0.5, COARSE_N, lam, e),
+                             compliant_guess(0.5, 1.0))
+    continued = solve_compliant(load, 0.5, 100, lam, lam, e, True, "line", law, None,
+                                lambda: solve_line(0.5, COARSE_N, lam, e))
+    assert seeded.admissible and continued.admissible
+    for key in ("a", "b", "K_T"):
+        assert getattr(seeded, key) == pytest.approx(getattr(continued, key), abs=1e-9), key
+
+
+def test_a_stick_zone_below_the_resolution_is_refused_with_its_reason() -> None:
+    """At f = 0.02, C = 1e-3 the table's stick zone (about 1.8e-4 c) spans far fewer than
+    RESOLVED_NODES node spacings at N = 100: the point is refused, not returned as a root
+    of the discrete equations, and the refusal names the size, the N and the N from which
+    it spans that many spacings."""
+    from contactlab.receding.liftoff.compliant import RESOLVED_NODES, a_resolution
+    from contactlab.receding.liftoff.line import compliant_guess
+
+    sol = solve_line(0.02, 100, 3.5, 5.0, interface=linear_interface(1e-3, RATIO * 1e-3))
+    a = compliant_guess(0.02, 1e-3)[0]
+    assert a < RESOLVED_NODES * a_resolution(100, 3.5)
+    assert not sol.converged and not sol.admissible and sol.regime == "failed"
+    assert sol.refusal.startswith("stick zone not resolved: about 0.00018 c at f = 0.02")
+    needed = int(sol.refusal.rsplit("N = ", 1)[1])
+    assert a >= RESOLVED_NODES * a_resolution(needed, 3.5) * 0.95
+    assert sol.refusal in sol.message

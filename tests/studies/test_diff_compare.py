@@ -39,7 +39,6 @@ def _line(path: Path, f: list[float], k_t: list[float]) -> None:
 def studies(tmp_path: Path, repo: Path) -> Path:
     """A repository with the default study and `x` (lambda 4.0, a finer f grid) built."""
     shutil.copytree(repo / "config", tmp_path / "config")
-    shutil.copytree(repo / "workflow" / "schemas", tmp_path / "workflow" / "schemas")
     (tmp_path / "config" / "studies" / "x.yaml").write_text(
         "study: x\nreceding:\n  line: {lambda: 4.0}\n")
     _line(tmp_path / "results/receding/line.nc", [0.3, 0.5], [0.2, 0.1])
@@ -112,15 +111,15 @@ def test_comparison_page_has_a_figure_per_quantity(studies: Path) -> None:
 
 
 def test_compare_files_are_checked(repo: Path, tmp_path: Path) -> None:
-    spec = read_compare_file(repo / "config" / "compare" / "friction.yaml", repo)
+    spec = read_compare_file(repo / "config" / "compare" / "friction.yaml")
     assert spec["studies"][0] == "default"
     bad = tmp_path / "bad.yaml"
     bad.write_text("studies: [default]\nquantities: [line.q]\n")
     with pytest.raises(ConfigError, match=r"bad.yaml: studies: \['default'\] is too short"):
-        read_compare_file(bad, repo)
+        read_compare_file(bad)
     bad.write_text("studies: [default, x]\nquantities: [line.q]\n")
     with pytest.raises(ConfigError, match=r"quantities\[0\]: unknown quantity 'line.q'"):
-        read_compare_file(bad, repo)
+        read_compare_file(bad)
 
 
 def test_the_report_page_lists_the_comparison_pages(repo: Path, tmp_path: Path) -> None:

@@ -9,6 +9,7 @@ import pytest
 from snakemake.utils import validate
 
 from contactlab.config_check import ConfigError, load_yaml_file
+from contactlab.schema import SCHEMA_PATH
 from contactlab.studies.effective import effective_config, fill_defaults, merge
 from contactlab.study import coerce
 
@@ -29,11 +30,11 @@ def test_merge_is_snakemakes_update_config() -> None:
 def test_effective_config_equals_snakemakes_validate(repo: Path, study: str) -> None:
     """Coerce and fill defaults as common.smk does (with snakemake.utils.validate) and
     compare with the file-only computation, for every shipped study."""
-    schema = load_yaml_file(repo / "workflow" / "schemas" / "config.schema.yaml")
+    schema = load_yaml_file(SCHEMA_PATH)
     config = merge(load_yaml_file(repo / "config" / "config.yaml"),
                    load_yaml_file(repo / "config" / "studies" / study))
     expected = coerce(dict(config), schema)
-    validate(expected, str(repo / "workflow" / "schemas" / "config.schema.yaml"))
+    validate(expected, str(SCHEMA_PATH))
     assert effective_config([f"config/studies/{study}"], root=repo) == expected
 
 

@@ -117,13 +117,13 @@ def test_missing_scan_names_sheet_surface_and_column(tmp_path: Path) -> None:
 
 
 def test_the_surface_sheets_schema_states_what_the_reader_takes(repo: Path) -> None:
-    """workflow/schemas/surfaces.schema.yaml documents the sheet (config/README.md is made
+    """src/contactlab/schemas/surfaces.schema.yaml documents the sheet (config/README.md is made
     from it): its columns, the optional one, and the allowed values are the reader's."""
     import yaml
 
     from contactlab.surfaces import sheet
 
-    schema = yaml.safe_load((repo / "workflow/schemas/surfaces.schema.yaml").read_text())
+    schema = yaml.safe_load((repo / "src/contactlab/schemas/surfaces.schema.yaml").read_text())
     properties = schema["properties"]
     assert tuple(properties) == sheet.COLUMNS
     assert set(sheet.COLUMNS) - set(schema["required"]) == set(sheet.OPTIONAL)

@@ -31,6 +31,7 @@ from contactlab.rulehelpers import (
     section_page,
     table_files,
 )
+from contactlab.schema import SCHEMA_PATH, schema_file
 from contactlab.studies import names, reads
 from contactlab.study import changes, coerce, export_provenance, logs_dir, results_dir
 from contactlab.surfaces.sheet import check_demo_scan_surfaces, read_surface_sheet
@@ -48,12 +49,8 @@ def _config_files():
     return ", ".join(str(f) for f in workflow.configfiles) or "the --config values"
 
 
-def _load_yaml(path):
-    return parse_yaml((Path(workflow.basedir) / path).read_text(encoding="utf-8"))
 
-
-
-CONFIG_SCHEMA = _load_yaml("workflow/schemas/config.schema.yaml")
+CONFIG_SCHEMA = parse_yaml(SCHEMA_PATH.read_text(encoding="utf-8"))
 # nested --config values arrive as strings (snakemake#2374): give them the schema's types
 config.update(coerce(dict(config), CONFIG_SCHEMA))
 # each problem on one line, blamed on the file or the --config that set the key
@@ -68,7 +65,7 @@ try:
     check_config(config, CONFIG_SCHEMA, _SOURCES)
 except ConfigError as exc:
     refuse(str(exc))
-validate(config, "../schemas/config.schema.yaml")  # fills in the schema's defaults
+validate(config, str(SCHEMA_PATH))  # fills in the schema's defaults
 
 STUDY = config.get("study")  # absent: the default study
 # one name, one folder: no other study or family file gives the name, and not "default"
@@ -99,7 +96,7 @@ for _path, _data in _SOURCES:
     if not {"study", "family"} & set(_data or {}):
         update_config(_DEFAULT_STUDY, _data or {})
 _DEFAULT_STUDY = coerce(_DEFAULT_STUDY, CONFIG_SCHEMA)
-validate(_DEFAULT_STUDY, "../schemas/config.schema.yaml")
+validate(_DEFAULT_STUDY, str(SCHEMA_PATH))
 #: every key a named study changes against the default study: (default, study) values
 STUDY_CHANGES = changes(config, _DEFAULT_STUDY) if STUDY else {}
 _SHARED = sorted(k for k in STUDY_CHANGES
@@ -127,7 +124,7 @@ except ConfigError as exc:
 # surface with a demo scan has published statistics to make it from
 try:
     TESTS = read_test_sheet(config["tests"])
-    check_rows(TESTS, config["tests"], _load_yaml("workflow/schemas/tests.schema.yaml"))
+    check_rows(TESTS, config["tests"], parse_yaml(schema_file("tests").read_text(encoding="utf-8")))
     _SURFACE_SPECS = read_surface_sheet(config["surfaces"]["sheet"])
     check_demo_scan_surfaces(_SURFACE_SPECS, config["surfaces"]["sheet"],
                              "results/surfaces/demo_scans", config["published_dir"])

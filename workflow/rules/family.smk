@@ -18,6 +18,7 @@ from contactlab.studies.family import (
     variant_config,
 )
 from contactlab.rulehelpers import demo_image_folders
+from contactlab.schema import SCHEMA_PATH
 from contactlab.studies import cluster, manifest, names, reads, reuse, shared
 from contactlab.studies.jobkeys import StudyFolders
 from contactlab.study import STUDIES_ENV, PROVENANCE_ENV, coerce
@@ -35,8 +36,7 @@ if _CLASH:
 FAMILY_GRID = config["grid"]
 
 # every variant checked before any is read, each problem blamed on the family file
-_SCHEMA = parse_yaml((Path(workflow.basedir) / "workflow/schemas/config.schema.yaml")
-                     .read_text(encoding="utf-8"))
+_SCHEMA = parse_yaml(SCHEMA_PATH.read_text(encoding="utf-8"))
 _SOURCES = [(str(f), load_yaml_file(f)) for f in map(str, workflow.configfiles)]
 for _variant in VARIANTS:
     _config = coerce(variant_config(_FAMILY_BASE, _variant), _SCHEMA)

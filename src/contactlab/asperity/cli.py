@@ -29,7 +29,7 @@ EXAMPLES = """\
   contactlab asperity grid-bem-gather N1.nc N3.nc --out grid_bem.nc
   contactlab asperity report grid grid.nc grid_bem.nc --out 30_asperity_3_grid.html
 BEM lengths are in units of the contact radius; stresses N/mm^2, lengths mm. Options left
-out take the config schema's defaults (workflow/schemas/config.schema.yaml, section
+out take the config schema's defaults (src/contactlab/schemas/config.schema.yaml, section
 asperity), shown in each command's --help.
 """
 
@@ -152,7 +152,7 @@ LAWS = ("coulomb", "shear_limit", "combined")
 
 
 def _nu() -> Option:
-    return Option("--nu", "Poisson's ratio of both bodies", float, key="asperity.nu")
+    return Option("--nu", type=float, key="asperity.nu")
 
 
 def _q_points() -> Option:
@@ -161,8 +161,7 @@ def _q_points() -> Option:
 
 
 def _cells(section: str) -> Option:
-    return Option("--cells", "cells across the contact diameter (even)", int,
-                  key=f"{section}.cells")
+    return Option("--cells", type=int, key=f"{section}.cells")
 
 
 COMMANDS = (
@@ -172,7 +171,7 @@ COMMANDS = (
                     "monotonic tangential load, one interface law, by the tangential BEM "
                     "(sec. 3.2.1, Fig. 3.6).",
         options=(Option("--law", "interface law", choices=LAWS),
-                 Option("--tau-max", "shear limits tau_max/p0", float, nargs="+",
+                 Option("--tau-max", type=float, nargs="+",
                         key=dict.fromkeys(("shear_limit", "combined"), f"{BEM}.tau_max"),
                         only=("shear_limit", "combined")),
                  Option("--f", "friction coefficient f", float,
@@ -192,8 +191,7 @@ COMMANDS = (
                         key="asperity.transverse.tol"),
                  Option("--f", "friction coefficient f of the Coulomb and combined runs",
                         float, key=f"{BEM}.friction"),
-                 Option("--tau-max", "shear limit tau_max/p0 of the shear-limit and combined "
-                        "runs", float, key="asperity.transverse.tau_max"),
+                 Option("--tau-max", type=float, key="asperity.transverse.tau_max"),
                  _nu(), out_option()),
         run=_transverse),
     Command(

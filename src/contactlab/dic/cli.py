@@ -45,7 +45,7 @@ Positions and displacements in um (pixels for correlate without --pixel-size-um)
 step and tolerance in pixels. An image folder holds one 8/16-bit grey TIFF or PNG file per
 frame (its id the last number in the file name) and the sidecar contactlab.json (pixel
 size, reference, pad and specimen x ranges: docs/stiffness_formats.md). Options left out
-take the config schema's defaults (workflow/schemas/config.schema.yaml), shown in each
+take the config schema's defaults (src/contactlab/schemas/config.schema.yaml), shown in each
 command's --help.
 """
 
@@ -209,7 +209,7 @@ COMMANDS = (
                         key=f"{DEMO}.speckle_size"),
                  Option("--read-noise", "camera noise (standard deviation)", float,
                         unit="8-bit grey levels", key=f"{DEMO}.read_noise"),
-                 Option("--bits", "bit depth of the frames", int, choices=(8, 16),
+                 Option("--bits", type=int, choices=(8, 16),
                         key=f"{DEMO}.bits"),
                  Option("--image-format", "file format of the frames", choices=("png", "tif"),
                         key=f"{DEMO}.image_format"),

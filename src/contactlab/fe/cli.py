@@ -37,7 +37,7 @@ EXAMPLES = """\
   contactlab fe asperity-gather sy0.nc sy3000.nc --bem single.nc --out asperity_plastic.nc
 Needs CalculiX `ccx` (Debian package calculix-ccx). Receding-contact lengths are in units
 of the strip thickness c; the asperity model is in mm and N/mm^2. Options left out take
-the config schema's defaults (workflow/schemas/config.schema.yaml, section fe; each
+the config schema's defaults (src/contactlab/schemas/config.schema.yaml, section fe; each
 problem's own in fe.problems), shown in each command's --help.
 """
 

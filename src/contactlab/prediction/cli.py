@@ -40,7 +40,7 @@ EXAMPLES = """\
       results/prediction/*.nc --out results/report/sections/25_prediction.html
 Units: kN, um, mm, mm^2; moduli and hardness in GPa (= kN/mm^2); stiffness per nominal area
 kN/mm^3. Options left out take the config schema's defaults
-(workflow/schemas/config.schema.yaml), shown in each command's --help.
+(src/contactlab/schemas/config.schema.yaml), shown in each command's --help.
 """
 
 

@@ -40,7 +40,7 @@ EXAMPLES = """\
   contactlab receding rough-pairs --summary results/stiffness/summary.nc --out pairs.nc
 Lengths are in units of the layer thickness c (w/c, x/c), tractions in units of the
 applied pressure or load; N is the number of Gauss-Chebyshev points. Options left out
-take the config schema's defaults (workflow/schemas/config.schema.yaml), shown in each
+take the config schema's defaults (src/contactlab/schemas/config.schema.yaml), shown in each
 command's --help.
 """
 

@@ -44,7 +44,7 @@ EXAMPLES = """\
   contactlab stiffness summarize-published --tests config/tests.csv \\
       --out results/stiffness/summary_from_published_steps.nc
 Loads kN, displacements um, areas mm^2, stiffness per area kN/mm^3, beta 1/um. Options
-left out take the config schema's defaults (workflow/schemas/config.schema.yaml), shown in
+left out take the config schema's defaults (src/contactlab/schemas/config.schema.yaml), shown in
 each command's --help.
 """
 
@@ -138,8 +138,7 @@ def _figures(args: argparse.Namespace) -> None:
 def kt0_threshold_option(section: str) -> Option:
     """The Kt0 margin threshold of the means, of ``section`` (``stiffness.raw`` or
     ``stiffness.published_steps``)."""
-    return Option("--kt0-threshold", "relative Kt0 margin below which a step enters the "
-                  "means (sec. 2.5.3)", float, key=f"{section}.kt0_margin_threshold")
+    return Option("--kt0-threshold", type=float, key=f"{section}.kt0_margin_threshold")
 
 
 def error_model_options(section: str) -> tuple[Option, ...]:
@@ -153,10 +152,9 @@ def error_model_options(section: str) -> tuple[Option, ...]:
                "zeroing)", float, unit="MPa", key=f"{ERRORS}.pressure_uncertainty_MPa"),
         Option("--piston-area-rel-uncertainty", "relative uncertainty of the piston area "
                "(1 = 100%%)", float, key=f"{ERRORS}.piston_area_rel_uncertainty"),
-        Option("--tangential-pressure-rel-extra", "extra relative pressure uncertainty "
-               "during tangential steps", float, key=f"{ERRORS}.tangential_pressure_rel_extra"),
-        Option("--qs-rel-extra", "extra relative uncertainty of Qs added to its fit margin "
-               "(eq. 2.10)", float, key=f"{ERRORS}.qs_rel_extra"),
+        Option("--tangential-pressure-rel-extra", type=float,
+               key=f"{ERRORS}.tangential_pressure_rel_extra"),
+        Option("--qs-rel-extra", type=float, key=f"{ERRORS}.qs_rel_extra"),
         Option("--tangential-pressure", "gauge pressure of the tangential-step load error: "
                "Pn/A (text of sec. 2.5.2) or Pn*A/10 (reproduces the published f margins)",
                choices=("divide", "multiply"),

@@ -205,7 +205,7 @@ def study_configs(record: StudyRecord, root: str | os.PathLike[str] = ".",
     Raises ConfigError or FamilyError if a config is invalid.
     """
     root = Path(root)
-    schema = load_schema(root) if schema is None else schema
+    schema = load_schema() if schema is None else schema
     memo = {} if memo is None else memo
     files, overrides = record.command_files(), record.command_overrides()
     own = _own_file(record, files, root) if record.kind != "default" else None
@@ -435,7 +435,7 @@ def describe_stale(manifest: Mapping[str, Any], stale: Mapping[str, list[str]],
 def list_studies(root: str | os.PathLike[str] = ".") -> list[StudyStatus]:
     """Every study of the repository at ``root`` (:func:`discover`) with its status."""
     root = Path(root)
-    schema = load_schema(root)
+    schema = load_schema()
     commit = git_commit(root)
     memo: dict[Any, Any] = {}
     return [study_status(record, root, schema, commit, memo)

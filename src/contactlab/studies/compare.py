@@ -1,6 +1,6 @@
 """A comparison page of several studies: their parameters and headline results overlaid.
 
-A compare file (``config/compare/<name>.yaml``, schema ``workflow/schemas/compare.schema.yaml``)
+A compare file (``config/compare/<name>.yaml``, schema ``contactlab/schemas/compare.schema.yaml``)
 names the studies and the headline quantities (:mod:`contactlab.studies.headline`)::
 
     title: Friction and the lifting-off layer
@@ -28,18 +28,17 @@ from pathlib import Path
 from typing import Any
 
 from contactlab.config_check import ConfigError, load_yaml_file
+from contactlab.schema import schema_file
 
 #: The compare files' folder and schema, relative to the repository root.
 COMPARE_DIR = "config/compare"
-SCHEMA = "workflow/schemas/compare.schema.yaml"
 #: Panels of a two-dimensional quantity (one per value of its second coordinate) at most.
 MAX_PANELS = 4
 #: Marker shapes of the studies in a figure, in order.
 MARKERS = ("o", "s", "^", "D", "v", "P", "X", "<", ">", "h")
 
 
-def read_compare_file(path: str | os.PathLike[str], root: str | os.PathLike[str] = "."
-                      ) -> dict[str, Any]:
+def read_compare_file(path: str | os.PathLike[str]) -> dict[str, Any]:
     """A compare file, checked against the schema, its quantities against the known ones;
     ConfigError naming the file and the field otherwise."""
     from jsonschema import Draft202012Validator
@@ -47,7 +46,7 @@ def read_compare_file(path: str | os.PathLike[str], root: str | os.PathLike[str]
     from contactlab.studies.headline import BY_ID
 
     spec = load_yaml_file(path)
-    schema = load_yaml_file(Path(root) / SCHEMA)
+    schema = load_yaml_file(schema_file("compare"))
     errors = sorted(Draft202012Validator(schema).iter_errors(spec), key=lambda e: list(e.path))
     if errors:
         raise ConfigError("\n".join(
@@ -72,7 +71,7 @@ def read_compare_files(root: str | os.PathLike[str] = "."
     specs, problems = {}, {}
     for name, path in compare_files(root).items():
         try:
-            specs[name] = read_compare_file(path, root)
+            specs[name] = read_compare_file(path)
         except ConfigError as exc:
             problems[name] = str(exc)
     return specs, problems
@@ -308,7 +307,7 @@ def build_compare_page(name: str, title: str, studies: Sequence[str],
     root, out = Path(root), Path(out)
     folder = out.parent
     known = discover(root)
-    schema = load_schema(root)
+    schema = load_schema()
     statuses = {s: study_status(known[s], root, schema) if s in known else None
                 for s in studies}
     chosen = [quantity(q) for q in quantities]
@@ -420,7 +419,7 @@ def compare_page_from_file(path: str | os.PathLike[str], out: str | os.PathLike[
                            root: str | os.PathLike[str] = ".",
                            units: Mapping[str, str] | None = None) -> Path:
     """The page of one compare file (:func:`read_compare_file`) written to ``out``."""
-    spec = read_compare_file(path, root)
+    spec = read_compare_file(path)
     return build_compare_page(Path(path).stem, spec.get("title", Path(path).stem),
                               spec["studies"], spec["quantities"], out, root,
                               spec.get("description", ""), units)

@@ -149,7 +149,7 @@ def diff_studies(names: Sequence[str], root: str | os.PathLike[str] = ".",
         raise ValueError("give at least two studies to compare")
     root = Path(root)
     records = find_studies(names, root)
-    schema = load_schema(root)
+    schema = load_schema()
     diff = StudyDiff(list(names))
     configs = flatten([{k: v for k, v in study_configs(r, root, schema)[0].items()
                         if k != "study"} for r in records])

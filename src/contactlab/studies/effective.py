@@ -17,11 +17,11 @@ from pathlib import Path
 from typing import Any
 
 from contactlab.config_check import ConfigError, load_yaml_file
+from contactlab.schema import SCHEMA_PATH
 from contactlab.study import coerce, config_sha256
 
 #: The default study's config file and the config schema, relative to the repository root.
 DEFAULT_CONFIG = "config/config.yaml"
-SCHEMA = "workflow/schemas/config.schema.yaml"
 
 
 def merge(base: Mapping[str, Any], override: Mapping[str, Any]) -> dict[str, Any]:
@@ -81,9 +81,9 @@ def _filling_validator(schema: Mapping[str, Any]) -> Any:
     return _VALIDATORS[id(schema)][1]
 
 
-def load_schema(root: str | Path = ".") -> dict[str, Any]:
-    """The config schema of the repository at ``root``."""
-    return load_yaml_file(Path(root) / SCHEMA)
+def load_schema() -> dict[str, Any]:
+    """The config schema (:data:`contactlab.schema.SCHEMA_PATH`), read afresh."""
+    return load_yaml_file(SCHEMA_PATH)
 
 
 def merged_config(config_files: Sequence[str | Path], overrides: Mapping[str, Any] | None = None,
@@ -140,7 +140,7 @@ def effective_config(config_files: Sequence[str | Path], overrides: Mapping[str,
                      ) -> dict[str, Any]:
     """The effective config of a run given ``config_files`` (its ``--configfile`` list) and
     ``overrides`` (its ``--config`` values), in the repository at ``root``."""
-    schema = load_schema(root) if schema is None else schema
+    schema = load_schema() if schema is None else schema
     return finish(merged_config(config_files, overrides, root), schema)
 
 

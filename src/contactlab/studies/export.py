@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from contactlab.config_check import ConfigError
+from contactlab.schema import SCHEMA_DIR
 from contactlab.studies import store
 from contactlab.studies.catalog import discover
 from contactlab.studies.manifest import result_reads
@@ -80,8 +81,8 @@ def export_study(name: str, out: str | os.PathLike[str], root: str | os.PathLike
     commit = manifest.get("git_commit", "unknown")
     workflow = crate.add_workflow(root / "Snakefile", "Snakefile", main=True, lang="snakemake",
                                   properties={"name": "contactlab workflow", "version": commit})
-    for folder in ("workflow/rules", "workflow/schemas"):
-        crate.add_tree(root / folder, folder)
+    crate.add_tree(root / "workflow/rules", "workflow/rules")
+    crate.add_tree(SCHEMA_DIR, "src/contactlab/schemas")
     if (root / "environment.lock").is_file():
         crate.add_file(root / "environment.lock", "environment.lock", properties={
             "name": "the Python environment of the run (pinned, hashed)",

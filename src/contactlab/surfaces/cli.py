@@ -182,7 +182,7 @@ EXAMPLES = """\
   contactlab surfaces report --seq results/surfaces/seq.nc --texture results/surfaces/texture.nc \\
       --surface-dir results/surfaces --out results/report/sections/10_surfaces.html
 Heights and roughness in um. Options left out take the config schema's defaults
-(workflow/schemas/config.schema.yaml), shown in each command's --help.
+(src/contactlab/schemas/config.schema.yaml), shown in each command's --help.
 """
 
 NAME = "surfaces"

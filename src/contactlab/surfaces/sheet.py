@@ -7,7 +7,7 @@ scan files and the measurement settings of sec. 2.3.4. Keeping it apart from the
 test sheet lets one surface serve several tests (a specimen side is shared by
 three tests) without repeating its scans.
 
-Columns: ``workflow/schemas/surfaces.schema.yaml`` (documented in ``config/README.md``,
+Columns: ``src/contactlab/schemas/surfaces.schema.yaml`` (documented in ``config/README.md``,
 "The surface sheet"; a test keeps the schema and :data:`COLUMNS`, :data:`OPTIONAL`,
 :data:`OBJECTIVES`, :data:`DIRECTIONS` in step). ``profile_length_mm`` is read in mm and
 kept in um (:attr:`SurfaceSpec.profile_length_um`); a blank ``sampling_length_um`` (or no

@@ -28,7 +28,6 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from scipy.special import dawsn, erf
 
 from contactlab.receding.core.kernels import Kind, regular_pair
 
@@ -59,6 +58,8 @@ class Bridge:
             raise ValueError("bridge parity must be +1 or -1")
 
     def _own(self, x: np.ndarray, centre: float) -> tuple[np.ndarray, np.ndarray]:
+        from scipy.special import dawsn  # scipy.special only where a bridge is used
+
         u, wu = _hermite(_HERMITE)
         xi = centre + self.d * u
         shear, normal = regular_pair(self.kind, x[:, None] - xi[None, :])
@@ -90,6 +91,8 @@ class Bridge:
     def integral_from_zero(self, x: np.ndarray) -> np.ndarray:
         """int_0^x l per unit amplitude."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
+        from scipy.special import erf
+
         half = 0.5 * np.sqrt(np.pi) * self.d
 
         def one(centre: float) -> np.ndarray:

@@ -24,8 +24,9 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy import linalg, optimize
+from scipy import linalg
 
+from contactlab.allocator import keep_freed_memory
 from contactlab.blas import single_thread
 
 
@@ -49,15 +50,15 @@ class LinearSystem:
         may reuse the LU factors of a nearby system)."""
         keep = np.ones(self.matrix.shape[0], dtype=bool)
         keep[self.leftover] = False
-        square = self.matrix[keep]
-        if square.shape[0] != square.shape[1]:
+        if int(keep.sum()) != self.matrix.shape[1]:
             raise ValueError(
-                f"square subset is {square.shape}; need as many kept rows as unknowns"
+                f"square subset is {(int(keep.sum()), self.matrix.shape[1])}; need as many "
+                "kept rows as unknowns"
             )
         if factor is None:
-            phi = linalg.solve(square, self.rhs[keep], check_finite=False)
+            phi = linalg.solve(self.matrix[keep], self.rhs[keep], check_finite=False)
         else:
-            phi = factor.solve(square, self.rhs[keep])
+            phi = factor.solve(self.matrix, keep, self.rhs[keep])
         residual = self.matrix[self.leftover] @ phi - self.rhs[self.leftover]
         return phi, residual
 
@@ -71,7 +72,9 @@ class Factor:
     against the O(n^3) of a factorisation (n = 1001 at N = 500). The
     sweeps stop at the backward error of a direct solve, |b - A x| <= 8 eps (|A| |x| +
     |b|) in the max norm; where they stop contracting (a large step of the transition
-    points) the system is factorised afresh and its factors kept.
+    points) the system is factorised afresh and its factors kept. The sweeps multiply
+    the whole matrix (the leftover rows too, two of a thousand) rather than a copy of the
+    square subset: only a factorisation copies it.
     """
 
     #: most refinement sweeps before a fresh factorisation
@@ -83,19 +86,21 @@ class Factor:
         self.factorisations = 0
         self.sweeps = 0
 
-    def solve(self, square: np.ndarray, rhs: np.ndarray) -> np.ndarray:
-        """x with square @ x = rhs; ``square`` may be overwritten (a fresh copy)."""
-        if self.lu is not None and self.lu[0].shape == square.shape:
-            x = self._refine(square, rhs)
+    def solve(self, matrix: np.ndarray, keep: np.ndarray, rhs: np.ndarray) -> np.ndarray:
+        """x with matrix[keep] @ x = rhs (``keep`` selects as many rows as columns)."""
+        if self.lu is not None and self.lu[0].shape[0] == matrix.shape[1]:
+            x = self._refine(matrix, keep, rhs)
             if x is not None:
                 return x
+        square = matrix[keep]
         # the max-norm of the rows, for the stopping rule of later refinements
         self.norm = float(np.max(np.sum(np.abs(square), axis=1)))
         self.lu = linalg.lu_factor(square, overwrite_a=True, check_finite=False)
         self.factorisations += 1
         return linalg.lu_solve(self.lu, rhs, check_finite=False)
 
-    def _refine(self, square: np.ndarray, rhs: np.ndarray) -> np.ndarray | None:
+    def _refine(self, matrix: np.ndarray, keep: np.ndarray, rhs: np.ndarray
+                ) -> np.ndarray | None:
         assert self.lu is not None
         x = linalg.lu_solve(self.lu, rhs, check_finite=False)
         if not np.all(np.isfinite(x)):
@@ -104,7 +109,7 @@ class Factor:
         norm_b = float(np.max(np.abs(rhs)))
         previous = np.inf
         for _ in range(self.SWEEPS):
-            r = rhs - square @ x
+            r = rhs - (matrix @ x)[keep]
             err = float(np.max(np.abs(r)))
             self.sweeps += 1
             if err <= 8.0 * np.finfo(float).eps * (norm_a * float(np.max(np.abs(x))) + norm_b):
@@ -156,6 +161,7 @@ def find_transitions(
     of the residuals in the parameters at the first guess, e.g. from a coarser N) saves
     the finite differences of the first Newton iteration.
     """
+    keep_freed_memory()
     with single_thread(), warnings.catch_warnings():
         # near-singular squares occur on the way (e.g. nearly zero-width zones); the
         # residuals judge the result
@@ -217,6 +223,7 @@ def difference_jacobian(assemble: Callable[[np.ndarray], LinearSystem],
     ``params`` (None where a system cannot be assembled or solved), one BLAS thread."""
     params = np.asarray(params, dtype=float)
     fun = _Evaluations(assemble, params.size)
+    keep_freed_memory()
     with single_thread(), warnings.catch_warnings():
         warnings.simplefilter("ignore", linalg.LinAlgWarning)
         r = fun(params)
@@ -282,6 +289,8 @@ def _find(assemble, guesses, tol, accept, maxfev, valid, jacobian) -> RootResult
             best = RootResult(x, phi, res, True, fun.count, "secant Newton converged",
                               system=system, jacobian=jac)
             break
+        from scipy import optimize  # MINPACK, only where the secant iteration stalls
+
         sol = optimize.root(fun, guess, method="hybr", tol=tol, options={"maxfev": maxfev})
         system, phi, res = fun.full(sol.x)
         total += fun.count

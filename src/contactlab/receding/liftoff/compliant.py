@@ -63,12 +63,28 @@ from contactlab.receding.core.solve import LinearSystem
 #: bridge width as a fraction of the zone it sits in (results hardly depend on it:
 #: b within 2e-6 for 0.05-0.5, line load, f = 0.5, C = 1, N = 100-400)
 BRIDGE_WIDTH = 0.2
+#: a stick zone counts as resolved where it spans this many node spacings of the slip
+#: zone's glide density (a is then within about 10 % of its limit in N, FINDINGS)
+RESOLVED_NODES = 8
 #: Newton steps of the measured law at fixed transition points, and their tolerance on P
 NEWTON_STEPS = 40
 NEWTON_TOL = 1e-12
 
-#: (x) -> (S, N, s_known, n_known): the tractions of the base unknowns at points x
-BaseTractions = Callable[[np.ndarray], tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]
+#: (x, shear) -> (S, N, s_known, n_known): the tractions of the base unknowns at points x
+#: (S and s_known None where ``shear`` is False: the normal traction alone)
+BaseTractions = Callable[[np.ndarray, bool], tuple[Any, np.ndarray, Any, np.ndarray]]
+
+
+def a_resolution(n: int, lam: float) -> float:
+    """Distance (units of c) of the first node of the slip zone's glide density beyond a:
+    lam log(2 / (1 - s_N)) of the map of sec. 6.4, about 2.5 lam / (N + 1)^2."""
+    s = float(bounded_rule(n).s.min())
+    return float(lam * np.log(2.0 / (1.0 - s)))
+
+
+def resolved_stick_zone(a: float, n: int, lam: float, nodes: float = RESOLVED_NODES) -> bool:
+    """Whether a stick zone of half-width a spans ``nodes`` node spacings at N, lam."""
+    return bool(a >= nodes * a_resolution(n, lam))
 
 
 @dataclass(frozen=True)
@@ -189,9 +205,10 @@ def extend(base: LinearSystem, geom: CompliantGeometry, tractions: BaseTractions
            state: Linearisation | None = None) -> LinearSystem:
     """``base`` with the added columns and rows of ``geom`` (module docstring).
 
-    ``tractions(x)`` gives the base unknowns' traction matrices and the known tractions
-    (load, preformed load part) at x; ``normal_rows``/``shear_rows`` are the base rows
-    collocated at ``normal_points`` (N = 0) and ``shear_points`` (S + friction N = 0)."""
+    ``tractions(x, shear)`` gives the base unknowns' traction matrices and the known
+    tractions (load, preformed load part) at x (the normal ones alone unless ``shear``);
+    ``normal_rows``/``shear_rows`` are the base rows collocated at ``normal_points``
+    (N = 0) and ``shear_points`` (S + friction N = 0)."""
     rows0, cols0 = base.matrix.shape
     extra = geom.size
     blocks = geom.blocks
@@ -208,17 +225,27 @@ def extend(base: LinearSystem, geom: CompliantGeometry, tractions: BaseTractions
     if not blocks:
         return LinearSystem(matrix, rhs, list(base.leftover), base.targets)
     x = np.concatenate(points)
-    bs, bn, s0, n0 = tractions(x)
-    es, en = geom.traction_matrices(x)
-    full_s = np.hstack([bs, es])
-    full_n = np.hstack([bn, en])
+    kinds = np.concatenate([np.full(pts.size, name == "contact")
+                            for (name, _, _), pts in zip(blocks, points, strict=True)])
+    # the contact law takes the normal traction only, the stick law both (the measured
+    # law's c_t(P)): the shear is evaluated at the stick rows alone
+    full_s = np.zeros((x.size, cols0 + extra))
+    full_n = np.empty((x.size, cols0 + extra))
+    s0, n0 = np.zeros(x.size), np.empty(x.size)
+    stick = ~kinds
+    if stick.any():
+        bs, bn, s0[stick], n0[stick] = tractions(x[stick], True)
+        es, en = geom.traction_matrices(x[stick])
+        full_s[stick, :cols0], full_s[stick, cols0:] = bs, es
+        full_n[stick, :cols0], full_n[stick, cols0:] = bn, en
+    if kinds.any():
+        _, bn, _, n0[kinds] = tractions(x[kinds], False)
+        full_n[kinds, :cols0], full_n[kinds, cols0:] = bn, geom.normal_matrix(x[kinds])
     disp = np.zeros((x.size, cols0 + extra))
     start = 0
     for (name, _, _), pts in zip(blocks, points, strict=True):
         disp[start:start + pts.size, cols0:] = geom.displacement_matrix(name, pts)
         start += pts.size
-    kinds = np.concatenate([np.full(pts.size, name == "contact")
-                            for (name, _, _), pts in zip(blocks, points, strict=True)])
     law = geom.interface
     p_k, s_k = _start(law, kinds, x, state, geom)
     for _ in range(1 if law.linear else NEWTON_STEPS):

@@ -79,7 +79,7 @@ def assemble_frictionless(load: Load, n: int, b: float, lam_a: float, lam_b: flo
     if interface.normal:
         pre = Preformed(load, b, e) if preformed else None
         system = extend(system, geometry(interface, 0.0, b, n),
-                        lambda x: base_tractions(load, glide, climb, pre, x),
+                        lambda x, shear: base_tractions(load, glide, climb, pre, x, shear),
                         normal_rows=slice(0, m), normal_points=xb, shear_rows=slice(m, 2 * m),
                         shear_points=xa, friction=np.zeros(m), state=state)
     return system, glide, climb

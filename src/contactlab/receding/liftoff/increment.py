@@ -92,7 +92,7 @@ import numpy as np
 from contactlab.blas import single_thread
 from contactlab.receding.core.dislocations import DensityInterval
 from contactlab.receding.core.kernels import regular_pair
-from contactlab.receding.core.quadrature import interpolation_matrix, legendre
+from contactlab.receding.core.quadrature import gauss_legendre, interpolation_matrix, legendre
 from contactlab.receding.core.solution import CHECK_TOL, admissible
 from contactlab.receding.core.solve import LinearSystem, RootResult, find_transitions
 from contactlab.receding.liftoff.loading import Load
@@ -210,7 +210,7 @@ def _panels(breaks: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Nodes and weights of a composite Gauss-Legendre rule between consecutive
     ``breaks``, each panel graded geometrically towards both ends (the densities have
     square-root kinks there)."""
-    u, wu = np.polynomial.legendre.leggauss(_GAUSS)
+    u, wu = gauss_legendre(_GAUSS)
     half = 0.5 ** np.arange(1, _LEVELS + 1)
     frac = np.unique(np.concatenate([[0.0], 0.5 * half, 1.0 - 0.5 * half, [1.0]]))
     lo, hi = breaks[:-1], breaks[1:]

@@ -49,6 +49,7 @@ from contactlab.receding.liftoff.solver import (
     LiftoffSolution,
     base_tractions,
     check_liftoff_inputs,
+    critical_friction,
 )
 
 #: flag of a solution whose central stick zone is solved in its limit a -> 0
@@ -120,7 +121,8 @@ def assemble_limit(load: Load, f: float, n: int, b: float, lam_a: float, lam_b: 
     if interface.normal:
         pre = Preformed(load, b, e) if preformed else None
         geom = geometry(interface, 0.0, b, n)
-        system = extend(system, geom, lambda x: base_tractions(load, glide, climb, pre, x),
+        system = extend(system, geom,
+                        lambda x, shear: base_tractions(load, glide, climb, pre, x, shear),
                         normal_rows=slice(0, m), normal_points=xb, shear_rows=slice(m, 2 * m),
                         shear_points=xa, friction=h, state=state)
         system.matrix[2 * m, -geom.size:] = f * geom.normal_matrix(zero)[0]
@@ -209,3 +211,27 @@ def try_limit(sol: LiftoffSolution, lam_a: float, lam_b: float, stick_zone_limit
     sol.message += (f"; stick-zone limit: converged {lim.converged}, matching gives a = "
                     f"10^{lim.log10_a:.1f} c (stick_zone_limit {stick_zone_limit:g})")
     return None
+
+
+def below_resolution(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
+                     problem: str, preformed: bool, a_expected: float, b_guess: float,
+                     stick_zone_limit: float) -> LiftoffSolution | None:
+    """The stick-zone limit of a point whose resolved equations have no root, found before
+    any resolved search (else None).
+
+    Where the seed tables' stick zone ``a_expected`` lies below ``stick_zone_limit`` (it
+    shrinks like exp(-C/f)) and f below the critical friction at this N
+    (``solver.critical_friction``: the discrete equations have no root with a > 0 there),
+    every resolved search fails, after trying the stock guesses with MINPACK, and the
+    fallbacks then solve this limit from ``b_guess`` (``try_limit``). Here it is solved at
+    once, with the same arguments, so the answer is the same. Elsewhere (the limit not
+    converged, or matching puts a above ``stick_zone_limit``) the caller goes on as
+    before."""
+    if not (preformed and 0 < f < LIMIT_FRICTION and stick_zone_limit > 0
+            and a_expected < stick_zone_limit):
+        return None
+    crit = critical_friction(load, n, lam_a, lam_b, e, guess=(0.07, b_guess))
+    if not (crit["converged"] and f < crit["f_critical"]):
+        return None
+    lim = solve_no_stick(load, f, n, lam_a, lam_b, e, problem, preformed, b_guess)
+    return lim if lim.converged and lim.log10_a < np.log10(stick_zone_limit) else None

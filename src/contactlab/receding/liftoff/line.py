@@ -37,7 +37,12 @@ import numpy as np
 
 from contactlab.receding.core.interface import SMOOTH, Interface
 from contactlab.receding.core.solution import check_friction
-from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT, solve_no_stick, try_limit
+from contactlab.receding.liftoff.limit import (
+    STICK_ZONE_LIMIT,
+    below_resolution,
+    solve_no_stick,
+    try_limit,
+)
 from contactlab.receding.liftoff.loading import make_load
 from contactlab.receding.liftoff.solver import (
     COARSE_N,
@@ -61,6 +66,29 @@ def line_guess(f: float) -> tuple[float, float]:
         slope_b = (b_s[-1] - b_s[-2]) / (fs[-1] - fs[-2])
         return a_s[-1] + slope_a * (f - fs[-1]), b_s[-1] + slope_b * (f - fs[-1])
     return float(np.exp(np.interp(f, fs, np.log(a_s)))), float(np.interp(f, fs, b_s))
+
+
+def compliant_guess(f: float, C: float) -> tuple[float, float]:
+    """(a, b) of the line load on a linear interface of compliance C (C_T = C / m), only to
+    seed the root finder: interpolated in f and log10 C (log a, b) from the table of
+    ``seeds.compliant_seeds``, towards the smooth interface's (``line_guess``) linearly in
+    C below its smallest C, held at its edges beyond."""
+    from contactlab.receding.liftoff.seeds import compliant_seeds
+
+    fs, log_c, a_s, b_s = compliant_seeds()
+    fc = float(np.clip(f, fs[0], fs[-1]))
+    lc = float(np.clip(np.log10(max(C, 1e-300)), log_c[0], log_c[-1]))
+
+    def at(table: np.ndarray) -> float:
+        row = [np.interp(fc, fs, column) for column in table.T]
+        return float(np.interp(lc, log_c, row))
+
+    a, b = float(np.exp(at(np.log(a_s)))), at(b_s)
+    smallest = 10.0 ** log_c[0]
+    if C < smallest:
+        a0, b0 = line_guess(f)
+        a, b = a0 + (a - a0) * C / smallest, b0 + (b - b0) * C / smallest
+    return a, b
 
 
 def solve_line(f: float, n: int, lam: float, e: float,
@@ -90,7 +118,8 @@ def solve_line(f: float, n: int, lam: float, e: float,
     if not interface.smooth:
         sol = solve_compliant(load, f, n, lam, lam, e, preformed, problem, interface, guess,
                               lambda: solve_line(f, COARSE_N, lam, e, None, preformed,
-                                                 stick_zone_limit))
+                                                 stick_zone_limit),
+                              compliant_guess(f, interface.C))
         return sol if sol.converged else try_limit(sol, lam, lam, stick_zone_limit) or sol
     if guess is not None and guess[0] == 0 and stick_zone_limit > 0:
         lim = solve_no_stick(load, f, n, lam, lam, e, problem, preformed, guess[1])
@@ -99,6 +128,10 @@ def solve_line(f: float, n: int, lam: float, e: float,
         guess = None
     seeds = [guess] if guess is not None else []
     a0, b0 = line_guess(f)
+    lim = below_resolution(load, f, n, lam, lam, e, problem, preformed, a0, b0,
+                           stick_zone_limit)
+    if lim is not None:
+        return lim
     # the Chaise model separates a little further out (b about 6 % larger)
     seeds.append((a0, b0) if preformed else (a0, 1.06 * b0))
     sol = None

@@ -46,6 +46,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from contactlab.receding.core.quadrature import gauss_legendre
+
 LAWS = ("line", "uniform", "hertz", "punch", "table")
 #: laws whose remote form g has a closed form (used; the quadrature sum is the check)
 CLOSED = ("line", "uniform", "hertz", "punch")
@@ -181,7 +183,7 @@ def make_load(law: str, w: float = 0.0, table: Mapping[str, Sequence[float]] | N
                              f"got {w}")
     m = points or _points(w) if law != "table" else 0
     if law == "uniform":
-        u, wu = np.polynomial.legendre.leggauss(m)
+        u, wu = gauss_legendre(m)
         return Load(law, w, w * u, 0.5 * wu, amplitude_per_T=1.0 / (2.0 * w))
     if law == "hertz":
         theta = np.pi * np.arange(1, m + 1) / (m + 1)
@@ -226,7 +228,7 @@ def make_load(law: str, w: float = 0.0, table: Mapping[str, Sequence[float]] | N
         raise ValueError("pressure table must extend to x > 0")
     # Gauss-Legendre per segment, mirrored
     g = 8
-    u, wu = np.polynomial.legendre.leggauss(g)
+    u, wu = gauss_legendre(g)
     per = max(1, int(np.ceil(_points(w_table) / (2 * g * (tx.size - 1)))))
     edges = np.concatenate([np.linspace(tx[i], tx[i + 1], per + 1)[:-1]
                             for i in range(tx.size - 1)] + [[tx[-1]]])

@@ -21,8 +21,13 @@ import numpy as np
 
 from contactlab.receding.core.interface import SMOOTH, Interface
 from contactlab.receding.core.solution import check_friction
-from contactlab.receding.liftoff.limit import STICK_ZONE_LIMIT, solve_no_stick, try_limit
-from contactlab.receding.liftoff.line import fallbacks, line_guess
+from contactlab.receding.liftoff.limit import (
+    STICK_ZONE_LIMIT,
+    below_resolution,
+    solve_no_stick,
+    try_limit,
+)
+from contactlab.receding.liftoff.line import compliant_guess, fallbacks, line_guess
 from contactlab.receding.liftoff.loading import Load, make_load
 from contactlab.receding.liftoff.seeds import patch_seeds
 from contactlab.receding.liftoff.solver import (
@@ -117,10 +122,15 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
                                   guess=None if guess is None else guess[1],
                                   interface=interface)
     if not interface.smooth:
+        # the patch's smooth seed moved as the line load's transition points move with C
+        a_p, b_p = patch_guess(load.law, f, load.w)
+        a_l, b_l = line_guess(f)
+        a_c, b_c = compliant_guess(f, interface.C)
         sol = solve_compliant(load, f, n, lam_a, lam_b, e, preformed, load.law, interface,
                               guess, lambda: solve_patch(law, f, w_hat, COARSE_N, lam_a,
                                                          lam_b, e, table, None, preformed,
-                                                         stick_zone_limit))
+                                                         stick_zone_limit),
+                              (a_p + a_c - a_l, b_p + b_c - b_l))
         return sol if sol.converged else try_limit(sol, lam_a, lam_b,
                                                    stick_zone_limit) or sol
     if guess is not None and guess[0] == 0 and stick_zone_limit > 0:
@@ -128,8 +138,12 @@ def solve_patch(law: str = "uniform", f: float = 0.3, w_hat: float = 1.0, n: int
         if lim.converged and lim.log10_a < np.log10(stick_zone_limit):
             return lim
         guess = None
-    if guess is None:
-        guess = patch_guess(load.law, f, load.w)
+    guess = patch_guess(load.law, f, load.w) if guess is None else guess
+    # the line load's stick zone screens (the patch table's offsets stop at its lowest f)
+    lim = below_resolution(load, f, n, lam_a, lam_b, e, load.law, preformed,
+                           line_guess(f)[0], guess[1], stick_zone_limit)
+    if lim is not None:
+        return lim
     sol = solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, load.law,
                         continuous=False)
     seed = guess

@@ -50,16 +50,21 @@ adaptive principal-value quadrature (scipy ``quad`` with the Cauchy weight) at m
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import cached_property, lru_cache
+from functools import cached_property
 
 import numpy as np
 
+from contactlab.receding.core.quadrature import gauss_legendre
 from contactlab.receding.liftoff.loading import Load
 
-#: geometric panels per finite segment and Gauss points per panel
+#: geometric panels per finite segment and Gauss points per panel (on [e, x])
 _LEVELS = 8
 _GAUSS = 7
 _TAIL = 30
+#: Gauss-Legendre points per panel on [b, e], where every integrand is analytic
+#: (``_integrals``), and the panels' largest width (units of c)
+_CUBIC = 12
+_PANEL = 2.0
 
 
 def cubic_coefficients(b: float, e: float, y: float, dy: float) -> tuple[float, float]:
@@ -75,14 +80,9 @@ def printed_cubic_coefficients(b: float, e: float, k2: float, kl: float) -> tupl
     return r1, r2
 
 
-@lru_cache(maxsize=4)
-def _gauss(m: int) -> tuple[np.ndarray, np.ndarray]:
-    return np.polynomial.legendre.leggauss(m)
-
-
 def _graded(lo: np.ndarray, hi: np.ndarray, towards_hi: bool) -> tuple[np.ndarray, np.ndarray]:
     """Nodes/weights (m, P*G) on [lo, hi] per row, panels halving towards one end."""
-    u, wu = _gauss(_GAUSS)
+    u, wu = gauss_legendre(_GAUSS)
     frac = np.concatenate([[0.0], 1.0 - 0.5 ** np.arange(1, _LEVELS), [1.0]])  # 0 .. 1
     if not towards_hi:
         frac = 1.0 - frac[::-1]
@@ -97,7 +97,7 @@ def _graded(lo: np.ndarray, hi: np.ndarray, towards_hi: bool) -> tuple[np.ndarra
 
 
 def _tail(start: np.ndarray, scale: float = 2.0) -> tuple[np.ndarray, np.ndarray]:
-    u, wu = _gauss(_TAIL)
+    u, wu = gauss_legendre(_TAIL)
     x = start[:, None] + scale * ((1.0 + u) / (1.0 - u))[None, :]
     w = np.broadcast_to(wu * 2.0 * scale / (1.0 - u) ** 2, x.shape)
     return x, w
@@ -170,94 +170,132 @@ class Preformed:
     def _integrals(self, x: np.ndarray, shear: bool) -> tuple[np.ndarray | None, np.ndarray]:
         """(shear or None, normal) per basis density, eqs (6.10)-(6.11) by quadrature.
 
-        Panels on [b, e] graded towards x (or towards the nearer end when x lies outside),
-        panels on [e, x] for x > e and the tail beyond max(x, e); the points are grouped
-        by where they lie so that no group carries panels of zero length.
+        On [b, e], where A_y is the cubic P, the Cauchy part at points within a panel's
+        width of [b, e] is taken against P(x) (P continued beyond [b, e] at points
+        outside it): (P(xi) - P(x)) C(x - xi) = -Q 4/q with Q = (P(xi) - P(x))/(xi - x) a
+        polynomial, so every integrand on [b, e] is analytic with its nearest poles at
+        xi = x +- 2i (farther points: P C itself, x a panel's width away at least), and
+        one composite Gauss-Legendre rule (``_cubic_rule``) serves every point. Beyond e
+        the Cauchy part is taken against A(x) on the tail from e (points x <= e, shared
+        nodes) or on panels over [e, x] graded towards x and the tail from x (points
+        beyond e). The constants' principal values are added in closed form (the
+        ln-term of the module docstring): P(x) times the one at b, (A(x) - P(x)) times
+        the one at e (zero where A(x) = P(x)).
         """
         x = np.atleast_1d(np.asarray(x, dtype=float))
         ax = np.abs(x)
         b, e = self.b, self.e
-        normal = np.zeros((ax.size, 2))
-        out = np.zeros((ax.size, 2))
-        for rows in (ax < b, (ax >= b) & (ax <= e), ax > e):
-            if not rows.any():
-                continue
-            xr = ax[rows]
-            # panels with fixed ends are shared by all rows (one row of nodes); True marks
-            # the panels on [b, e], where A_y is the cubic
-            lo, hi = np.full(1, b), np.full(1, e)
-            if xr[0] < b:
-                panels = [(*_graded(lo, hi, False), True), (*_tail(hi), False)]
-            elif xr[0] <= e:
-                panels = [(*_graded(np.full_like(xr, b), xr, True), True),
-                          (*_graded(xr, np.full_like(xr, e), False), True),
-                          (*_tail(hi), False)]
-            else:
-                panels = [(*_graded(lo, hi, True), True),
-                          (*_graded(np.full_like(xr, e), xr, True), False),
-                          (*_tail(xr), False)]
-            normal[rows], shear_rows = self._sums(xr, panels, shear)
-            if shear_rows is not None:
-                out[rows] = shear_rows
+        r = self.coefficients  # [[R1, R2] of the load part, of the K part]
+        a_x = self.basis(ax)  # (m, 2): A at the points
+        hx = ax - b
+        p_x = (hx * hx)[:, None] * (r[:, 0][None, :] + hx[:, None] * r[:, 1][None, :])
+        # [b, e]: the cubic against P(x), one rule for all points
+        xi1, om = _cubic_rule(b, e)
+        h1 = xi1 - b
+        p1 = (h1 * h1)[:, None] * (r[:, 0][None, :] + h1[:, None] * r[:, 1][None, :])
+        d = ax[:, None] - xi1[None, :]
+        dp = ax[:, None] + xi1[None, :]
+        iq = 1.0 / (4.0 + d * d)
+        ip = 1.0 / (4.0 + dp * dp)
+        regular = d * iq * iq * (-4.0 - 64.0 * iq) - (1.0 / dp - dp * ip * (
+            1.0 + ip * (4.0 + 64.0 * ip)))  # (H_yyy - C)(d) - H_yyy(d + 2 xi)
+        w4 = om[None, :] * 4.0 * iq
+        normal = (om[None, :] * regular) @ p1
+        # near [b, e]: -sum om Q 4/q, Q = R1 (h + hx) + R2 (h^2 + h hx + hx^2) per basis;
+        # farther off (P continued there would grow like the distance cubed) the plain
+        # sum of P C, whose pole x is then at least a panel's width away
+        reach = min(e - b, _PANEL)
+        close = (ax >= b - reach) & (ax <= e + reach)
+        s0 = w4.sum(axis=1)
+        s1 = w4 @ h1
+        s2 = w4 @ (h1 * h1)
+        hc = np.where(close, hx, 0.0)
+        cubic = -(r[:, 0][None, :] * (s1 + hc * s0)[:, None]
+                  + r[:, 1][None, :] * (s2 + hc * s1 + hc * hc * s0)[:, None])
+        if not close.all():
+            with np.errstate(divide="ignore", invalid="ignore"):
+                plain = (w4[~close] / d[~close]) @ p1
+            cubic[~close] = plain
+        normal += cubic
+        out = None
+        if shear:
+            kernel = 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
+            out = (om[None, :] * kernel) @ p1
+        # beyond e
+        near = ax <= e
+        for rows, nodes, weights in self._beyond(ax, near):
+            n_r, s_r = _beyond_sums(ax[rows], nodes, weights, self.load, a_x[rows], shear)
+            normal[rows] += n_r
+            if out is not None and s_r is not None:
+                out[rows] += s_r
+        # the principal values of the constants, at b and at e
+        with np.errstate(divide="ignore"):
+            at_b = np.where(hx != 0.0, 0.5 * np.log(hx * hx / (hx * hx + 4.0)), 0.0)
+            he = ax - e
+            at_e = np.where(he != 0.0, 0.5 * np.log(he * he / (he * he + 4.0)), 0.0)
+        p_x[~close] = 0.0  # no P(x) taken off on [b, e] there
+        normal += p_x * at_b[:, None]
+        jump = a_x - p_x
+        normal += np.where(jump != 0.0, jump * at_e[:, None], 0.0)
         if not shear:
             return None, normal / np.pi
+        assert out is not None
         sign = np.where(x < 0, -1.0, 1.0)[:, None]
         return sign * out / np.pi, normal / np.pi
 
-    def _sums(self, ax: np.ndarray, panels: list, shear: bool,
-              ) -> tuple[np.ndarray, np.ndarray | None]:
-        """pi sigma_yy^A and pi sigma_xy^A (or None) at the points ax >= 0, from the nodes
-        and weights (one row, or one per point) of ``panels`` (nodes, weights, on [b, e]),
-        joined into one array so that every kernel is evaluated in one pass."""
-        r = self.coefficients
-        a_x = self.basis(ax)  # (m, 2)
-        m = ax.size
-        width = sum(nodes.shape[1] for nodes, _, _ in panels)
-        xi = np.empty((m, width))
-        om = np.empty((m, width))
-        a0 = np.empty((m, width))  # the basis densities at the nodes: the cubics on [b, e],
-        a1 = np.empty((m, width))  # g and -1 beyond e
-        col = 0
-        for nodes, weights, cubic in panels:
-            block = slice(col, col + nodes.shape[1])
-            col = block.stop
-            xi[:, block] = nodes
-            om[:, block] = weights
-            if cubic:
-                h = nodes - self.b
-                h2 = h * h
-                h3 = h2 * h
-                a0[:, block] = r[0, 0] * h2 + r[0, 1] * h3
-                a1[:, block] = r[1, 0] * h2 + r[1, 1] * h3
-            else:
-                a0[:, block] = self.load.remote_g(nodes.ravel()).reshape(nodes.shape)
-                a1[:, block] = -1.0
-        # kernels with the powers of 1/(4 + d^2) shared (kernels.py, App. B.1)
-        d = ax[:, None] - xi
-        dp = ax[:, None] + xi
-        iq = 1.0 / (4.0 + d * d)
-        ip = 1.0 / (4.0 + dp * dp)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            cp = 4.0 * iq / d  # C(d) = 4 / (d (d^2 + 4))
-        cp[np.abs(d) < 1e-13] = 0.0
-        # (H_yyy - C)(d) - H_yyy(d + 2 xi)
-        smooth_n = d * iq * iq * (-4.0 - 64.0 * iq) - (1.0 / dp - dp * ip * (
-            1.0 + ip * (4.0 + 64.0 * ip)))
-        # the Cauchy part against A(xi) - A(x): sum C A(xi) - A(x) sum C
-        w_c = om * cp
-        cauchy_total = w_c.sum(axis=1)
-        w_t = w_c + om * smooth_n
-        normal = np.stack([np.einsum("mk,mk->m", w_t, a0),
-                           np.einsum("mk,mk->m", w_t, a1)], axis=1)
-        out = None
-        if shear:
-            # H_yxy(d) - H_yxy(d + 2 xi), H_yxy = 8 (3/q^2 - 16/q^3)
-            w_s = om * 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
-            out = np.stack([np.einsum("mk,mk->m", w_s, a0),
-                            np.einsum("mk,mk->m", w_s, a1)], axis=1)
-        normal -= a_x * cauchy_total[:, None]
-        gap = ax - self.b
-        with np.errstate(divide="ignore"):
-            log_term = np.where(gap != 0.0, 0.5 * np.log(gap * gap / (gap * gap + 4.0)), 0.0)
-        normal += a_x * log_term[:, None]
-        return normal, out
+    def _beyond(self, ax: np.ndarray, near: np.ndarray):
+        """(rows, nodes, weights) of the integrals over [e, inf): the tail from e, shared
+        by the points x <= e (one row of nodes), and per point beyond e the panels on
+        [e, x] graded towards x and the tail from x."""
+        e = self.e
+        if near.any():
+            nodes, weights = _tail(np.full(1, e))
+            yield near, nodes, weights
+        far = ~near
+        if far.any():
+            xr = ax[far]
+            pn, pw = _graded(np.full_like(xr, e), xr, True)
+            tn, tw = _tail(xr)
+            yield far, np.concatenate([pn, tn], axis=1), np.concatenate([pw, tw], axis=1)
+
+
+def _cubic_rule(b: float, e: float) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes and weights on [b, e]: Gauss-Legendre panels of at most _PANEL (the kernels'
+    poles lie 2 off the axis), each as wide as its distance from 0 at most (the mirror
+    images' 1/(x + xi) has its pole at -x <= 0: grading towards 0 where b is small)."""
+    edges = [b]
+    while edges[-1] < e:
+        start = edges[-1]
+        edges.append(min(e, start + min(_PANEL, max(start, (e - b) / 64.0))))
+    lo, hi = np.array(edges[:-1]), np.array(edges[1:])
+    u, wu = gauss_legendre(_CUBIC)
+    half = 0.5 * (hi - lo)
+    nodes = (0.5 * (lo + hi))[:, None] + half[:, None] * u[None, :]
+    return nodes.ravel(), (half[:, None] * wu[None, :]).ravel()
+
+
+def _beyond_sums(ax: np.ndarray, nodes: np.ndarray, weights: np.ndarray, load: Load,
+                 a_x: np.ndarray, shear: bool) -> tuple[np.ndarray, np.ndarray | None]:
+    """pi sigma_yy^A and pi sigma_xy^A (or None) of A_y beyond e at the points ax, from the
+    nodes and weights (one row shared, or one per point) where A = [g, -1]: the Cauchy
+    part against A(x), (A(xi) - A(x)) C(x - xi), and the regular parts."""
+    g = load.remote_g(nodes.ravel()).reshape(nodes.shape)
+    d = ax[:, None] - nodes
+    dp = ax[:, None] + nodes
+    iq = 1.0 / (4.0 + d * d)
+    ip = 1.0 / (4.0 + dp * dp)
+    cp = 4.0 * iq / d  # C(d) = 4 / (d (d^2 + 4)); nodes lie beyond e or off x
+    regular = d * iq * iq * (-4.0 - 64.0 * iq) - (1.0 / dp - dp * ip * (
+        1.0 + ip * (4.0 + 64.0 * ip)))
+    w_c = weights * cp
+    w_t = w_c + weights * regular
+    total_c = w_c.sum(axis=1)
+    normal = np.stack([np.einsum("mk,mk->m", w_t, np.broadcast_to(g, w_t.shape)),
+                       -w_t.sum(axis=1)], axis=1)
+    normal -= a_x * total_c[:, None]
+    out = None
+    if shear:
+        w_s = weights * 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
+        out = np.stack([np.einsum("mk,mk->m", w_s, np.broadcast_to(g, w_s.shape)),
+                        -w_s.sum(axis=1)], axis=1)
+    return normal, out

@@ -78,6 +78,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -98,11 +99,14 @@ from contactlab.receding.core.solve import (
     find_transitions,
 )
 from contactlab.receding.liftoff.compliant import (
+    RESOLVED_NODES,
     CompliantPart,
     Linearisation,
+    a_resolution,
     compliant_checks,
     extend,
     geometry,
+    resolved_stick_zone,
 )
 from contactlab.receding.liftoff.loading import Load
 from contactlab.receding.liftoff.preformed import Preformed
@@ -153,6 +157,9 @@ class LiftoffSolution:
     compliant: CompliantPart | None = None
     #: residual certificates beyond the contact checks (equilibrium, end conditions)
     certificates: dict[str, float] = field(default_factory=dict)
+    #: why the solver refused the point (empty where it did not): a stick zone that the
+    #: discretisation does not resolve on a compliant interface (``solve_compliant``)
+    refusal: str = ""
 
     # ---- convenience for the FE branch and the CLI
     @property
@@ -191,6 +198,20 @@ class LiftoffSolution:
             cs, cn = self.compliant.tractions(x)
             s, n = s + cs, n + cn
         return s, n
+
+    def normal_traction(self, x: np.ndarray) -> np.ndarray:
+        """N(x) / T: the normal part of ``tractions`` without evaluating any shear kernel."""
+        x = np.atleast_1d(np.asarray(x, dtype=float))
+        n = self.load.bilateral(x)[1]
+        pre = self.preformed
+        if pre is not None:
+            n = n + pre.normal_stress(x) @ np.array([1.0, self._k])
+        for interval, phi in ((self.glide, self.phi_x), (self.climb, self.phi_y)):
+            if interval is not None and phi.size:
+                n = n + interval.normal_influence(x) @ phi
+        if self.compliant is not None:
+            n = n + self.compliant.geometry.normal_matrix(x) @ self.compliant.values
+        return n
 
     def glide_density(self, x: np.ndarray) -> np.ndarray:
         """B_x (even), times 2 mu / ((kappa + 1) T)."""
@@ -358,7 +379,7 @@ class LiftoffSolution:
         total = 0.0
         for lo, hi in ([(0.0, a), (a, self.b)] if 0 < a < self.b else [(0.0, self.b)]):
             xs, ws = legendre(points, lo, hi)
-            total += float(ws @ self.tractions(xs)[1])
+            total += float(ws @ self.normal_traction(xs))
         s_ab, n_ab = self.tractions(np.array([a, self.b]))
         out.update(equilibrium_error=abs(2.0 * total + 1.0), end_traction=abs(n_ab[1]),
                    end_gap=abs(float(self.separation(np.array([self.b]))[0])))
@@ -438,27 +459,34 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
         return system, glide, climb
     pre = Preformed(load, b, e) if preformed else None
     system = extend(system, geometry(interface, a, b, n),
-                    lambda x: base_tractions(load, glide, climb, pre, x),
+                    lambda x, shear: base_tractions(load, glide, climb, pre, x, shear),
                     normal_rows=slice(0, m), normal_points=xb, shear_rows=slice(m, 2 * m),
                     shear_points=xa, friction=h, state=state)
     return system, glide, climb
 
 
 def base_tractions(load: Load, glide, climb: DensityInterval, pre: Preformed | None,
-                   x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+                   x: np.ndarray, shear: bool = True) -> tuple[Any, np.ndarray, Any, np.ndarray]:
     """(S, N, s_known, n_known) at x: the traction matrices of the columns [phi_x, phi_y,
     K] (K with the preformed density) and the tractions of the load and of the preformed
-    density's load part (units of T)."""
+    density's load part (units of T); S and s_known None unless ``shear``."""
+    s0, n0 = load.bilateral(x)
+    if not shear:
+        normal = [glide.normal_influence(x), climb.normal_influence(x)]
+        if pre is not None:
+            pn = pre.normal_stress(x)
+            normal.append(pn[:, 1:2])
+            n0 = n0 + pn[:, 0]
+        return None, np.hstack(normal), None, n0
     gs, gn = glide.influence(x)
     cs, cn = climb.influence(x)
-    s0, n0 = load.bilateral(x)
-    shear, normal = [gs, cs], [gn, cn]
+    shears, normal = [gs, cs], [gn, cn]
     if pre is not None:
         ps, pn = pre.stresses(x)
-        shear.append(ps[:, 1:2])
+        shears.append(ps[:, 1:2])
         normal.append(pn[:, 1:2])
         s0, n0 = s0 + ps[:, 0], n0 + pn[:, 0]
-    return np.hstack(shear), np.hstack(normal), s0, n0
+    return np.hstack(shears), np.hstack(normal), s0, n0
 
 
 def _params(p: np.ndarray) -> tuple[float, float]:
@@ -640,11 +668,30 @@ def compliance_seed(load: Load, f: float, lam_a: float, lam_b: float, e: float,
 def solve_compliant(load: Load, f: float, n: int, lam_a: float, lam_b: float, e: float,
                     preformed: bool, problem: str, interface: Interface,
                     guess: tuple[float, float] | None,
-                    smooth: Callable[[], LiftoffSolution]) -> LiftoffSolution:
+                    smooth: Callable[[], LiftoffSolution],
+                    first_guess: tuple[float, float] | None = None) -> LiftoffSolution:
     """A lifting-off problem at f > 0 on a compliant ``interface``: from ``guess`` (a
-    neighbour's a, b) or, without one, from ``smooth()`` (the smooth problem at a coarse N,
-    with its fallbacks) through ``compliance_seed``; the H-switched slip rule first, then
-    the continuous one (flag ``continuous_slip_rule``)."""
+    neighbour's a, b) or, without one, from ``first_guess`` (a seed table's, e.g.
+    ``line.compliant_guess``) where that reaches an admissible solution, else from
+    ``smooth()`` (the smooth problem at a coarse N, with its fallbacks) through
+    ``compliance_seed``; the H-switched slip rule first, then the continuous one (flag
+    ``continuous_slip_rule``). A root found from ``first_guess`` that misses a contact
+    check is returned as it is (the continuation finds the same root). A point whose
+    tabulated stick zone the discretisation does not resolve
+    (``compliant.resolved_stick_zone``) is searched from ``first_guess`` with the
+    H-switched rule only, and refused (``refuse``) where that finds no admissible
+    solution."""
+    if (guess is None or not guess[1] > guess[0] > 0) and first_guess is not None:
+        resolved = resolved_stick_zone(first_guess[0], n, lam_a)
+        sol = solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, first_guess, problem,
+                            seed_only=True, interface=interface,
+                            continuous=None if resolved else False)
+        if sol.converged and sol.admissible:
+            return sol
+        if not resolved:
+            return refuse(sol, first_guess[0], lam_a)
+        if sol.converged:  # a root the checks find fault with: no other search helps
+            return sol
     if guess is None or not guess[1] > guess[0] > 0:
         first = smooth()
         start = (max(first.a, 1e-3), first.b) if first.converged else None
@@ -652,6 +699,26 @@ def solve_compliant(load: Load, f: float, n: int, lam_a: float, lam_b: float, e:
             if start is not None else None
     return solve_liftoff(load, f, n, lam_a, lam_b, e, preformed, guess, problem,
                          seed_only=guess is not None, interface=interface)
+
+
+def refuse(sol: LiftoffSolution, a: float, lam_a: float) -> LiftoffSolution:
+    """``sol`` marked as refused (not converged, regime ``failed``, ``refusal`` saying why):
+    its stick zone, about ``a`` by the seed tables, spans fewer than RESOLVED_NODES node
+    spacings of the slip zone's glide density at its N, and the search from the tables'
+    seed found no admissible solution. The N from which it spans RESOLVED_NODES spacings is
+    named (the spacing falls like 1/(N + 1)^2)."""
+    spacing = a_resolution(sol.n, lam_a)
+    needed = int(np.ceil((sol.n + 1) * np.sqrt(RESOLVED_NODES * spacing / max(a, 1e-300))))
+    needed += needed % 2
+    sol.refusal = (f"stick zone not resolved: about {a:.2g} c at f = {sol.f:g} (seed "
+                   f"table), under {RESOLVED_NODES} node spacings of the slip zone's glide "
+                   f"density at N = {sol.n} (first node {spacing:.2g} c beyond a); it spans "
+                   f"{RESOLVED_NODES} from about N = {needed}")
+    sol.message += f"; {sol.refusal}"
+    sol.converged = False
+    sol.regime = "failed"
+    sol.checks = {}
+    return sol
 
 
 def coarse_failure(coarse: LiftoffSolution) -> RootResult:

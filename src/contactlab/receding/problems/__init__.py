@@ -62,7 +62,7 @@ def named_liftoff() -> tuple[str, ...]:
 
 
 def schema_enums() -> dict[str, tuple[str, ...]]:
-    """The problem lists of the config schema (``workflow/schemas/config.schema.yaml``) by
+    """The problem lists of the config schema (``src/contactlab/schemas/config.schema.yaml``) by
     the dotted path of their ``enum`` (``[]``: the items of an array)."""
     laws = names(family="patch", shape=False)
     liftoff = named_liftoff()

@@ -254,6 +254,8 @@ class LiftoffProblem(RecedingProblem):
                         else 0.0, **sol.certify()})
             if law.kind == "measured":
                 out["pi0"] = law.pi0
+            if sol.refusal:
+                out["refusal"] = sol.refusal
         return json_ready(out)
 
     def report_lines(self, sol: Any, summary: Mapping[str, Any]) -> list[str]:
@@ -273,7 +275,9 @@ class LiftoffProblem(RecedingProblem):
             lines.append(f"  rough interface      C = {summary['C']:.6g}, C_T = "
                          f"{summary['C_T']:.6g}{pi0} ({law.kind} law); equilibrium error "
                          f"{number(summary['equilibrium_error'], '.1e')}")
-        if not sol.interface.smooth and not sol.converged:
+        if getattr(sol, "refusal", ""):
+            lines.append(f"  refused              {sol.refusal}")
+        elif not sol.interface.smooth and not sol.converged:
             lines.append("  not solved           no root of the transition-point equations; a "
                          "compliant interface is reached from the smooth one through C = "
                          "0.01 ... 1e4, and the contact must stay within the truncation e "
