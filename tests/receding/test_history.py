@@ -89,3 +89,33 @@ def test_history_command(capsys: pytest.CaptureFixture[str]) -> None:
     err = capsys.readouterr().err
     assert "--path 1.0 -0.5" in err and "receding.history.path" in err
     assert "Traceback" not in err
+
+
+def test_a_path_spends_no_more_solves_than_allowed(line, unloaded) -> None:
+    """The unloading path stops, with the states it found and a message, once its solves
+    are spent; the same path with enough solves is the full one."""
+    assert unloaded.converged and unloaded.budget.used > 6  # a solve per sub-step at least
+    cut = line.history(line.point(0.5), N, (1.0, 0.5), n_inner=40, max_step=0.1,
+                       max_solves=6, **LINE)
+    assert cut.budget.used == 6 and not cut.converged and cut.completed == 1
+    assert 1 < len(cut.states) < len(unloaded.states)
+    assert "solves allowed spent" in cut.message and "stopped at lambda" in cut.message
+    for mine, full in zip(cut.states, unloaded.states, strict=False):
+        assert mine.factor == full.factor and mine.zones == full.zones
+
+
+def test_least_sub_steps_counts_the_largest_steps() -> None:
+    from contactlab.receding.liftoff.history import least_sub_steps
+
+    assert least_sub_steps((1.0,), 0.1) == 0
+    assert least_sub_steps((1.0, 0.5), 0.1) == 5
+    assert least_sub_steps((1.0, 2.0, 0.5), 0.1) == 5 + 8  # steps of 0.1 then 0.2
+    assert least_sub_steps((1.0, 0.5, 1.0, 0.5), 0.25) == 6
+
+
+def test_history_refuses_a_path_of_too_many_steps_before_solving(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["receding", "history", "--max-step", "1e-5"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "Traceback" not in err
+    assert "--max-step 1e-05" in err and "50000 sub-steps" in err and "--max-solves 40" in err

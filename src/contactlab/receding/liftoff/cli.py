@@ -150,27 +150,39 @@ def _history(args: argparse.Namespace) -> None:
     import math
 
     from contactlab.receding.core.solution import json_ready
-    from contactlab.receding.liftoff.history import segments
+    from contactlab.receding.liftoff.history import MAX_ZONES, least_sub_steps, segments
 
     problem = registry()[args.problem]
     check_memory("--n", args.n, problem.memory(args.n))
+    # a step's dense system: both semi-infinite densities and the interior slip zones
+    check_memory("--n-inner", args.n_inner, 32.0 * (2 * args.n + MAX_ZONES * args.n_inner) ** 2)
+    least = least_sub_steps(args.path, args.max_step)
+    if least > args.max_solves:
+        raise ValueError(
+            f"--path {' '.join(map(str, args.path))} with --max-step {args.max_step} takes at "
+            f"least {least} sub-steps, more than --max-solves {args.max_solves} (one "
+            "incremental solve each); use a larger --max-step, fewer factors or a larger "
+            "--max-solves")
     point = problem.point(args.f, getattr(args, "w_hat", None))
     settings = {k: getattr(args, k) for k in problem.settings}
     start = time.process_time()
     history = problem.history(point, args.n, args.path, n_inner=args.n_inner,
-                              max_step=args.max_step, **settings)
+                              max_step=args.max_step, max_solves=args.max_solves, **settings)
     rows = segments(history) if history.completed else []
     out = {"problem": problem.name, "f": args.f, "w_hat": point.w_hat, "N": args.n,
            "path": list(args.path), "completed": history.completed,
            "converged": history.converged, "admissible": history.admissible,
-           "message": history.message, "cpu_seconds": round(time.process_time() - start, 2),
+           "message": history.message, "solves": history.budget.used,
+           "max_solves": args.max_solves,
+           "cpu_seconds": round(time.process_time() - start, 2),
            "segments": rows}
     if args.json:
         print(json.dumps(json_ready(out)))
         return
     print(f"{problem.title}, f = {args.f:g}, N = {args.n}, path {' '.join(map(str, args.path))}"
           f": {history.completed} of {len(args.path)} segments, admissible "
-          f"{history.admissible}, {out['cpu_seconds']} s CPU")
+          f"{history.admissible}, {history.budget.used} incremental solves, "
+          f"{out['cpu_seconds']} s CPU")
     for r in rows:
         cycle = r["cycle_slip_change"]
         print(f"  {r['from']:g} -> {r['to']:g} ({r['steps']} steps): {r['zones']}\n"
@@ -259,6 +271,7 @@ COMMANDS = (
                  Option("--n", type=int, key=f"{HISTORY}.n"),
                  Option("--n-inner", type=int, key=f"{HISTORY}.n_inner"),
                  Option("--max-step", type=float, key=f"{HISTORY}.max_step"),
+                 Option("--max-solves", type=int, key=f"{HISTORY}.max_solves"),
                  *(Option(o.flag, o.help, o.type, key=dict.fromkeys(LINES, o.key),
                           only=LINES) for o in line_options()),
                  *(Option(o.flag, o.help, o.type, key=dict.fromkeys(LAWS, o.key), only=LAWS)

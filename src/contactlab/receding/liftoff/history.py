@@ -33,8 +33,9 @@ where a zone stops slipping (:func:`grown` fails), the last sub-step becomes the
 of the next.
 
 **Energy and cycles** (:func:`segments`). The frictional energy dissipated in a step is
-2 int_0^inf S du, S the mean of the shear at its two ends and du the slip increment
-(trapezoidal in the load, exact to second order in the step); summed over a segment of
+2 int_0^X S du, S the mean of the shear at its two ends and du the slip increment
+(trapezoidal in the load, exact to second order in the step), X the larger of their
+contacts (beyond it S = 0: open on both ends); summed over a segment of
 the path, with the largest slip change over it and, where a segment ends at the factor
 of the one two before (a cycle), the largest slip change over that cycle: zero when the
 slip has stopped (shakedown), the slip amplitude otherwise.
@@ -46,6 +47,7 @@ which reports how far it got (``HistorySolution.completed``).
 
 from __future__ import annotations
 
+import itertools
 import logging
 import math
 from collections.abc import Sequence
@@ -80,11 +82,42 @@ MAX_ZONES = 5
 GROWTH = (0.25, 0.75, 0.05)
 
 
+class BudgetSpent(Exception):
+    """The path has taken all the incremental solves it was allowed (:class:`Budget`)."""
+
+
+@dataclass
+class Budget:
+    """A count of incremental solves (``increment.solve_step``, one root search each) that a
+    path may take; :meth:`spend` raises :class:`BudgetSpent` once ``limit`` are taken. A
+    count rather than a time, so that where a path stops does not depend on the machine."""
+
+    limit: float = math.inf
+    used: int = 0
+
+    def spend(self) -> None:
+        if self.used >= self.limit:
+            raise BudgetSpent(f"all {self.used} incremental solves allowed spent")
+        self.used += 1
+
+
+def least_sub_steps(factors: Sequence[float], max_step: float) -> int:
+    """The fewest sub-steps a path through ``factors`` can take: each later segment in
+    steps of at most ``max_step`` times the largest factor so far (:func:`advance`), one
+    incremental solve each at least."""
+    peak, count = factors[0], 0
+    for before, target in itertools.pairwise(factors):
+        peak = max(peak, target)
+        count += math.ceil(abs(target - before) / (max_step * peak) - 1e-9)
+    return count
+
+
 @dataclass
 class HistorySolution:
     """The states along a path: ``states[i]`` at ``factors[i]``; ``targets`` the path's
     factors and ``ends[k]`` the index of the state that ends segment k; ``completed`` the
-    segments finished (all of them unless a step failed, ``message``)."""
+    segments finished (all of them unless a step failed or the solves allowed were
+    spent, ``message``)."""
 
     load: Load
     f: float
@@ -93,6 +126,8 @@ class HistorySolution:
     states: list[StepSolution] = field(default_factory=list)
     ends: list[int] = field(default_factory=list)
     message: str = ""
+    #: the incremental solves allowed and taken
+    budget: Budget = field(default_factory=Budget)
 
     @property
     def completed(self) -> int:
@@ -237,13 +272,16 @@ def turned(zones: Zones, direction: int) -> Zones:
 # --------------------------------------------------------------------------- steps
 
 
-def settle(state: StepSolution, factor: float, start: Zones, direction: int
-           ) -> tuple[StepSolution | None, list[str]]:
+def settle(state: StepSolution, factor: float, start: Zones, direction: int,
+           budget: Budget | None = None) -> tuple[StepSolution | None, list[str]]:
     """The step from ``state`` to ``factor``, its zones amended from ``start`` until every
-    check holds (None if they do not settle), and the log of what was tried."""
+    check holds (None if they do not settle), and the log of what was tried; each solve is
+    taken from ``budget`` (:class:`BudgetSpent` when it is spent)."""
+    budget = budget if budget is not None else Budget()
     zones, notes = start, []
     spacing = (state.b + 8.0) / 1199.0
     for _ in range(ITERATIONS):
+        budget.spend()
         sol, _ = solve_step(state, factor, zones)
         notes.append(f"{zones.describe()} -> "
                      + (sol.zones.describe() if sol.converged else "no root"))
@@ -270,6 +308,7 @@ def settle(state: StepSolution, factor: float, start: Zones, direction: int
             amended = amend(sol.zones, found, spacing, grow)
             if amended is None or amended == sol.zones:
                 return None, notes
+            budget.spend()
             trial, _ = solve_step(state, factor, amended)
             notes.append(f"{amended.describe()} -> "
                          + (trial.zones.describe() if trial.converged else "no root"))
@@ -325,8 +364,8 @@ def grown(before: Zones, after: Zones, tol: float = 1e-5) -> bool:
     return True
 
 
-def advance(states: list[StepSolution], target: float, step: float
-            ) -> tuple[list[StepSolution], str]:
+def advance(states: list[StepSolution], target: float, step: float,
+            budget: Budget | None = None) -> tuple[list[StepSolution], str]:
     """The states from ``states[-1]`` to the factor ``target`` in sub-steps of at most
     ``step`` (the first after a turn of the load ``TURN`` times it, each doubled after a
     step that settled at once and halved where its zones do not settle, down to
@@ -335,8 +374,19 @@ def advance(states: list[StepSolution], target: float, step: float
     Each sub-step is solved from the anchor, the last state at which a zone stopped
     slipping (at first ``states[-1]``); where the sub-step's zones do not contain the
     previous sub-step's (:func:`grown`), the previous sub-step becomes the anchor and the
-    sub-step is solved again from it (module docstring, "Episodes")."""
+    sub-step is solved again from it (module docstring, "Episodes"). The solves are taken
+    from ``budget``: once it is spent the states so far are returned with a message."""
+    budget = budget if budget is not None else Budget()
     out: list[StepSolution] = []
+    try:
+        return _advance(states, target, step, budget, out)
+    except BudgetSpent as spent:
+        at = (out or states)[-1].factor
+        return out, f"stopped at lambda = {at:.6g} on the way to {target:.6g}: {spent}"
+
+
+def _advance(states: list[StepSolution], target: float, step: float, budget: Budget,
+             out: list[StepSolution]) -> tuple[list[StepSolution], str]:
     anchor = last = states[-1]
     direction = int(np.sign(target - anchor.factor))
     if direction == 0:
@@ -349,15 +399,15 @@ def advance(states: list[StepSolution], target: float, step: float
         if abs(target - factor) < 1e-9 * step:
             factor = target
         start = predicted([*states, *out], factor, direction)
-        sol, notes = settle(anchor, factor, start, direction)
+        sol, notes = settle(anchor, factor, start, direction, budget)
         if sol is None and start != last.zones and last.direction == direction:
-            sol, more = settle(anchor, factor, last.zones, direction)
+            sol, more = settle(anchor, factor, last.zones, direction, budget)
             notes += more
         if sol is not None and last is not anchor and not grown(last.zones, sol.zones):
             notes.append(f"a zone stopped slipping after lambda = {last.factor:.6g}: "
                          "anchored there")
             anchor, fresh = last, True
-            sol, more = settle(anchor, factor, sol.zones, direction)
+            sol, more = settle(anchor, factor, sol.zones, direction, budget)
             notes += more
         if sol is None:
             if last is not anchor:
@@ -386,12 +436,14 @@ def advance(states: list[StepSolution], target: float, step: float
     return out, ""
 
 
-def follow_path(mono, factors: Sequence[float], n_inner: int, max_step: float = 0.1
-                ) -> HistorySolution:
+def follow_path(mono, factors: Sequence[float], n_inner: int, max_step: float = 0.1,
+                max_solves: float = math.inf) -> HistorySolution:
     """The states along the load factors ``factors`` (module docstring) from ``mono``, the
     problem's monotonic solution at unit load (``solver.LiftoffSolution``, from the
     problem's own solver); ``n_inner`` collocation points of each interior slip zone, the
-    semi-infinite densities at the N, lambda_a, lambda_b and e of ``mono``."""
+    semi-infinite densities at the N, lambda_a, lambda_b and e of ``mono``; at most
+    ``max_solves`` incremental solves (a path that needs more, :func:`least_sub_steps`, is
+    refused; one that spends them stops where it is, ``message``)."""
     factors = tuple(float(v) for v in factors)
     if not factors or not all(math.isfinite(v) and v > 0 for v in factors):
         raise ValueError(f"load factors must be positive numbers, got {factors}")
@@ -399,8 +451,13 @@ def follow_path(mono, factors: Sequence[float], n_inner: int, max_step: float = 
         raise ValueError(f"the largest sub-step must lie in (0, 1], got {max_step}")
     if not n_inner >= 4:
         raise ValueError(f"an interior slip zone needs at least 4 points, got {n_inner}")
+    least = least_sub_steps(factors, max_step)
+    if least > max_solves:
+        raise ValueError(f"the path takes at least {least} sub-steps, more than the "
+                         f"{max_solves} incremental solves allowed")
+    budget = Budget(max_solves)
     settings = StepSettings(mono.n, n_inner, mono.lam_a, mono.lam_b, mono.e)
-    out = HistorySolution(mono.load, mono.f, factors, settings)
+    out = HistorySolution(mono.load, mono.f, factors, settings, budget=budget)
     try:
         state = state_from_monotonic(mono, factors[0], settings)
     except ValueError as err:
@@ -411,7 +468,7 @@ def follow_path(mono, factors: Sequence[float], n_inner: int, max_step: float = 
     peak = factors[0]
     for target in factors[1:]:
         peak = max(peak, target)
-        states, message = advance(out.states, target, max_step * peak)
+        states, message = advance(out.states, target, max_step * peak, budget)
         out.states += states
         if message:
             out.message = message
@@ -423,16 +480,28 @@ def follow_path(mono, factors: Sequence[float], n_inner: int, max_step: float = 
 def dissipation(before: StepSolution | None, after: StepSolution, points: int = 4000
                 ) -> float:
     """Frictional energy dissipated from ``before`` to ``after`` (module docstring,
-    "Energy and cycles"), 2 int_0^X (S_before + S_after)/2 (u_after - u_before) dx with X
-    8 c beyond the larger contact, per unit depth in (kappa + 1) T^2 c^2 / (2 mu)
-    ((kappa + 1) P^2 / (2 mu) for the line load, T = P/c). ``before`` None: from the
-    unloaded state along the monotonic proportional path, where S and u grow in proportion
-    and the trapezoidal rule is exact."""
-    bs = [after.b] if before is None else [before.b, after.b]
-    x = np.linspace(0.0, max(bs) + 8.0, points)
-    s0, u0 = (0.0, 0.0) if before is None else (before.tractions(x)[0], before.slip(x))
-    shear = 0.5 * (s0 + after.tractions(x)[0])
-    return float(2.0 * np.trapezoid(shear * (after.slip(x) - u0), x))
+    "Energy and cycles"), 2 int_0^X (S_before + S_after)/2 (u_after - u_before) dx over
+    the larger contact, X = max(b_before, b_after), per unit depth in (kappa + 1) T^2 c^2 /
+    (2 mu) ((kappa + 1) P^2 / (2 mu) for the line load, T = P/c). Where both states are
+    open friction does no work: the shear computed there is the discretisation's (up to
+    CHECK_TOL of the peak load) and is left out. ``before`` None: from the unloaded state
+    along the monotonic proportional path, where S and u grow in proportion and the
+    trapezoidal rule is exact."""
+    end = after.b if before is None else max(before.b, after.b)
+    x = np.linspace(0.0, end, points)
+    start = (0.0, 0.0) if before is None else _shear_and_slip(before, x)
+    return _dissipated(start, _shear_and_slip(after, x), x, end)
+
+
+def _shear_and_slip(state: StepSolution, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    return state.tractions(x)[0], state.slip(x)
+
+
+def _dissipated(before: tuple, after: tuple, x: np.ndarray, end: float) -> float:
+    """:func:`dissipation` from the shear and slip (S, u) of two states on the grid x, the
+    contact ending at ``end`` (the work density is zero there, S -> 0 at b)."""
+    work = (before[0] + after[0]) * (after[1] - before[1])
+    return float(np.trapezoid(np.where(x <= end, work, 0.0), x))
 
 
 def segments(history: HistorySolution, points: int = 4000) -> list[dict[str, float | str]]:
@@ -442,8 +511,14 @@ def segments(history: HistorySolution, points: int = 4000) -> list[dict[str, flo
     peak load) of its states, the energy dissipated (:func:`dissipation`), the largest
     slip change ``max_slip_change`` over the segment and ``cycle_slip_change`` over the
     cycle it closes (NaN where it closes none); slips in (kappa + 1) T c / (2 mu)."""
-    x = np.linspace(0.0, max(s.b for s in history.states) + 8.0, points)
+    contact = max(s.b for s in history.states)
+    x = np.linspace(0.0, contact + 8.0, points)
     slips = {i: history.states[i].slip(x) for i in history.ends}
+    # each state's shear and slip once, on one grid over the contact (consecutive steps
+    # share a state)
+    xc = np.linspace(0.0, contact, points)
+    profiles = [_shear_and_slip(s, xc) for s in history.states]
+    bs = [s.b for s in history.states]
     out: list[dict[str, float | str]] = []
     for k, end in enumerate(history.ends):
         begin = history.ends[k - 1] if k else 0
@@ -459,9 +534,9 @@ def segments(history: HistorySolution, points: int = 4000) -> list[dict[str, flo
             "equilibrium_error": max(c["equilibrium_error"] for c in certs),
             "remote_slip_error": max(c["remote_slip_error"] for c in certs),
             "admissible": all(s.admissible for s in run),
-            "dissipated": sum(dissipation(a, b, points) for a, b in
-                              zip(history.states[begin:end], history.states[begin + 1:end + 1],
-                                  strict=True)) if k else dissipation(None, state, points),
+            "dissipated": sum(_dissipated(profiles[i], profiles[i + 1], xc,
+                                          max(bs[i], bs[i + 1])) for i in range(begin, end))
+            if k else _dissipated((0.0, 0.0), profiles[end], xc, bs[end]),
             "max_slip_change": float(np.max(np.abs(slips[end] - slips[begin]))) if k
             else float(np.max(np.abs(slips[end]))),
             "cycle_slip_change": float(np.max(np.abs(slips[end] - slips[history.ends[k - 2]])))
@@ -470,5 +545,5 @@ def segments(history: HistorySolution, points: int = 4000) -> list[dict[str, flo
     return out
 
 
-__all__ = ["CHECK_TOL", "HistorySolution", "dissipation", "follow_path", "segments",
-           "state_from_monotonic"]
+__all__ = ["CHECK_TOL", "Budget", "BudgetSpent", "HistorySolution", "dissipation",
+           "follow_path", "least_sub_steps", "segments", "state_from_monotonic"]
