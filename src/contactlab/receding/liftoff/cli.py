@@ -192,7 +192,9 @@ def _history(args: argparse.Namespace) -> None:
               f"change {r['max_slip_change']:.3e}"
               + ("" if math.isnan(cycle) else f", over the cycle {cycle:.3e}"))
     if history.message:
-        print(f"  stopped: {history.message}")
+        spent = history.budget.used >= args.max_solves
+        print(f"  stopped: {history.message}" + (f" (--max-solves {args.max_solves})"
+                                                 if spent else ""))
 
 
 def _report(args: argparse.Namespace) -> None:

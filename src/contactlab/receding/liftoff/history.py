@@ -382,7 +382,7 @@ def advance(states: list[StepSolution], target: float, step: float,
         return _advance(states, target, step, budget, out)
     except BudgetSpent as spent:
         at = (out or states)[-1].factor
-        return out, f"stopped at lambda = {at:.6g} on the way to {target:.6g}: {spent}"
+        return out, f"lambda = {at:.6g} reached on the way to {target:.6g}: {spent}"
 
 
 def _advance(states: list[StepSolution], target: float, step: float, budget: Budget,
