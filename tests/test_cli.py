@@ -234,6 +234,7 @@ MINIMAL: dict[str, list[str]] = {
         "patch-sweep --problem uniform --f 0.3 --w-hat 1 --out {tmp}/uniform_0.nc",
         "patch-gather {tmp}/uniform_0.nc --out {tmp}/uniform.nc",
         "patch-profile --problem uniform --f 0.3 --w-hat 1 --out {tmp}/patch_profile.nc",
+        "history",
         "report-line-patch --line {tmp}/line.nc --patches {tmp}/uniform.nc --profiles "
         "{tmp}/line_profile.nc {tmp}/patch_profile.nc --report-dir {tmp}/report "
         "--out {tmp}/report/line_patch.html",

@@ -26,6 +26,7 @@ from contactlab.receding.options import (
     LINE,
     NAME,
     PATCHES,
+    STICK_ZONE,
     f_values,
     line_options,
     material_options,
@@ -43,6 +44,9 @@ SOURCE = ("distributed dislocations with a preformed climb distribution, thesis 
 LINES = names(family="line")
 PATCH_PROBLEMS = names(family="patch")
 LAWS = names(family="patch", shape=False)
+HISTORY = "receding.history"
+#: the problems a load path is solved for: the line load and the named patches
+HISTORY_PROBLEMS = (*LINES, *LAWS)
 
 
 def solve_problem(args: argparse.Namespace, problem: str, chaise: bool = False) -> Any:
@@ -142,6 +146,60 @@ def _patch_profile(args: argparse.Namespace) -> None:
     _profile(args, args.problem)
 
 
+def _history(args: argparse.Namespace) -> None:
+    """``receding history``: one problem along a load path, a table of its segments (or
+    JSON), the solver's message where it stopped."""
+    import json
+    import math
+
+    from contactlab.receding.core.solution import json_ready
+    from contactlab.receding.liftoff.history import MAX_ZONES, least_sub_steps, segments
+
+    problem = registry()[args.problem]
+    check_memory("--n", args.n, problem.memory(args.n))
+    # a step's dense system: both semi-infinite densities and the interior slip zones
+    check_memory("--n-inner", args.n_inner, 32.0 * (2 * args.n + MAX_ZONES * args.n_inner) ** 2)
+    least = least_sub_steps(args.path, args.max_step)
+    if least > args.max_solves:
+        raise ValueError(
+            f"--path {' '.join(map(str, args.path))} with --max-step {args.max_step} takes at "
+            f"least {least} sub-steps, more than --max-solves {args.max_solves} (one "
+            "incremental solve each); use a larger --max-step, fewer factors or a larger "
+            "--max-solves")
+    point = problem.point(args.f, getattr(args, "w_hat", None))
+    settings = {k: getattr(args, k) for k in problem.settings}
+    start = time.process_time()
+    history = problem.history(point, args.n, args.path, n_inner=args.n_inner,
+                              max_step=args.max_step, max_solves=args.max_solves, **settings)
+    rows = segments(history) if history.completed else []
+    out = {"problem": problem.name, "f": args.f, "w_hat": point.w_hat, "N": args.n,
+           "path": list(args.path), "completed": history.completed,
+           "converged": history.converged, "admissible": history.admissible,
+           "message": history.message, "solves": history.budget.used,
+           "max_solves": args.max_solves,
+           "cpu_seconds": round(time.process_time() - start, 2),
+           "segments": rows}
+    if args.json:
+        print(json.dumps(json_ready(out)))
+        return
+    print(f"{problem.title}, f = {args.f:g}, N = {args.n}, path {' '.join(map(str, args.path))}"
+          f": {history.completed} of {len(args.path)} segments, admissible "
+          f"{history.admissible}, {history.budget.used} incremental solves, "
+          f"{out['cpu_seconds']} s CPU")
+    for r in rows:
+        cycle = r["cycle_slip_change"]
+        print(f"  {r['from']:g} -> {r['to']:g} ({r['steps']} steps): {r['zones']}\n"
+              f"    residual {r['residual']:.1e}, largest check {r['max_check']:.1e}, "
+              f"equilibrium error {r['equilibrium_error']:.1e}, remote slip error "
+              f"{r['remote_slip_error']:.1e}; dissipated {r['dissipated']:.3e}, largest slip "
+              f"change {r['max_slip_change']:.3e}"
+              + ("" if math.isnan(cycle) else f", over the cycle {cycle:.3e}"))
+    if history.message:
+        spent = history.budget.used >= args.max_solves
+        print(f"  stopped: {history.message}" + (f" (--max-solves {args.max_solves})"
+                                                 if spent else ""))
+
+
 def _report(args: argparse.Namespace) -> None:
     from contactlab.receding.liftoff.report import build_section
 
@@ -202,6 +260,34 @@ COMMANDS = (
                  *robustness(PATCHES, continuation=False), *material_options(),
                  out_option()),
         run=_patch_profile),
+    Command(
+        NAME, "history", "a lift-off problem along a load path (loading, unloading)",
+        description="The line load or a pressure patch solved along a load path: the "
+                    "load factors of --path, from zero to the first monotonically, then "
+                    "incrementally, the slip of the stick zones kept (docs/FINDINGS.md, "
+                    "'Receding contacts along a load path'). Prints per segment the zones, "
+                    "residuals, contact checks, certificates, the frictional energy "
+                    "dissipated and the slip change (--json: one JSON object).",
+        options=(Option("--problem", "the lift-off problem", choices=HISTORY_PROBLEMS,
+                        key=f"{HISTORY}.problem"),
+                 Option("--f", type=float, key=f"{HISTORY}.f"),
+                 Option("--w-hat", "patch half-width w/c", float, key=f"{HISTORY}.w_hat",
+                        only=LAWS),
+                 Option("--path", "load factors lambda_1 lambda_2 ... of the problem's load",
+                        float, nargs="+", key=f"{HISTORY}.path"),
+                 Option("--n", type=int, key=f"{HISTORY}.n"),
+                 Option("--n-inner", type=int, key=f"{HISTORY}.n_inner"),
+                 Option("--max-step", type=float, key=f"{HISTORY}.max_step"),
+                 Option("--max-solves", type=int, key=f"{HISTORY}.max_solves"),
+                 *(Option(o.flag, o.help, o.type, key=dict.fromkeys(LINES, o.key),
+                          only=LINES) for o in line_options()),
+                 *(Option(o.flag, o.help, o.type, key=dict.fromkeys(LAWS, o.key), only=LAWS)
+                   for o in patch_options()),
+                 Option("--stick-zone-limit", STICK_ZONE, float,
+                        key={**dict.fromkeys(LINES, f"{LINE}.stick_zone_limit"),
+                             **dict.fromkeys(LAWS, f"{PATCHES}.stick_zone_limit")}),
+                 Option("--json", "print one JSON object", kind="flag", default=False)),
+        run=_history, select="problem"),
     Command(
         NAME, "report-line-patch", "report section of chs 6-7",
         description="HTML report fragment of the line load and pressure patches: Figs "

@@ -73,4 +73,5 @@ def schema_enums() -> dict[str, tuple[str, ...]]:
         "receding.rough.profiles[].problem": liftoff,
         "receding.rough.pairs.problem": liftoff,
         "receding.materials.sweep.problem": liftoff,
+        "receding.history.problem": liftoff,
     }

@@ -178,6 +178,19 @@ class LiftoffProblem(RecedingProblem):
         smooth = interface is None or interface.smooth
         return (1.0 if smooth else 4.0) * 250.0 * n * n
 
+    def history(self, point: Any, n: int, factors: Any, *, n_inner: int, max_step: float,
+                max_solves: float = math.inf, **settings: Any) -> Any:
+        """The problem at ``point`` along the load factors ``factors`` (a
+        ``liftoff.history.HistorySolution``): the first segment is this problem's own
+        solution (:meth:`solve` at N = ``n``, unit load, times the first factor), every
+        later one incremental (``liftoff.increment``) with ``n_inner`` points in each
+        interior slip zone and sub-steps of at most ``max_step`` of the largest factor, at
+        most ``max_solves`` incremental solves."""
+        from contactlab.receding.liftoff.history import follow_path
+
+        return follow_path(self.solve(point, n, None, **settings), factors, n_inner, max_step,
+                           max_solves)
+
     # ---- records
     def _code(self, sol: Any) -> int:
         regimes = self.regimes
