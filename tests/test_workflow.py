@@ -226,8 +226,9 @@ def test_single_target_builds_only_its_ancestors(workflow_copy: Path, snakemake)
          ["config/tests.csv", "line 3 (test RU2)", "max_normal_load_kN", "-8"]),
         (("config/config.yaml", "tests: config/tests.csv", "tests: [config/tests.csv"),
          ["config/config.yaml", "line 10", "YAML"]),
-        (("config/e2e.yaml", "SU2: {from_test: SU2, law: measured}",
-          "SU2: {from_test: SU9, law: measured}"),
+        (("config/e2e.yaml", "    pairs:\n      c: [1.0, 10.0]",
+          "    pairs:\n      tests: {SU2: {from_test: SU9, law: measured}}\n"
+          "      c: [1.0, 10.0]"),
          ["config/e2e.yaml: receding.rough.pairs.tests.SU2.from_test: \"SU9\" is no test "
           "with raw data in config/tests.csv"]),
     ],
