@@ -415,7 +415,14 @@ def _bad_input_cases(tmp: Path) -> list[tuple[list[str], list[str]]]:
     ]
 
 
-@pytest.mark.parametrize("case", range(15))
+BAD_INPUT_CASES = 16
+
+
+def test_every_bad_input_case_is_run(tmp_path: Path) -> None:
+    assert len(_bad_input_cases(tmp_path)) == BAD_INPUT_CASES
+
+
+@pytest.mark.parametrize("case", range(BAD_INPUT_CASES))
 def test_bad_input_is_refused_in_words_before_any_work(
         case: int, tmp_path: Path, repo: Path, monkeypatch: pytest.MonkeyPatch,
         capsys: pytest.CaptureFixture[str]) -> None:
