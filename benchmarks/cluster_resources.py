@@ -33,8 +33,9 @@ ROOT = Path(__file__).resolve().parents[1]
 MEASURED = ROOT / "docs" / "cluster" / "benchmarks"
 #: rule names, longest first, so that a file name maps to the rule that wrote it
 RULES = sorted(["receding_gap_sweep", "receding_line_sweep", "receding_patch_sweep",
-                "receding_rough_sweep", "receding_rough_pairs",
+                "receding_rough_sweep", "receding_rough_pairs", "receding_beta_sweep",
                 "fe_receding", "fe_receding_study", "fe_asperity", "fe_rough",
+                "fe_receding_materials", "fe_materials_compare",
                 "asperity_bem",
                 "asperity_grid_bem", "asperity_transverse", "dic_demo", "dic_fields",
                 "prediction_pair", "stiffness_demo",

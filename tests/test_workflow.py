@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import hashlib
 import html
 import json
@@ -102,6 +103,9 @@ def test_every_parameter_reaches_its_jobs_and_only_them(e2e_run: Path, snakemake
     new value on a command line (tests/config_walk.py)."""
     config = yaml.safe_load((e2e_run / "config" / "e2e.yaml").read_text())
     validate(config, str(SCHEMA_PATH))  # + defaults
+    # the tested pairs stay the schema's (the walk passes the whole section back, which
+    # would name them all, those the run leaves out for want of their tests included)
+    del config["receding"]["rough"]["pairs"]["tests"]
     schema = yaml.safe_load(SCHEMA_PATH.read_text())
     # what `contactlab studies list` calls stale after each change: the study's effective
     # config (config.yaml and e2e.yaml, defaults filled) with the walked branch replaced
@@ -110,7 +114,9 @@ def test_every_parameter_reaches_its_jobs_and_only_them(e2e_run: Path, snakemake
     effective = finish(merged_config(["config/e2e.yaml"], root=e2e_run), schema)
 
     def stale(walked: str, section: dict) -> set[str]:
-        found, _ = stale_results(record, present, {**effective, walked: section}, e2e_run)
+        found, _ = stale_results(record, present,
+                                 finish(copy.deepcopy({**effective, walked: section}), schema),
+                                 e2e_run)
         return set(found)
 
     failures = check_all(config, schema, branch,

@@ -216,7 +216,7 @@ rule fe_receding_materials:
     log:
         logs("fe/materials_{pair}_h{h}.log"),
     benchmark:
-        logs("benchmarks/fe_materials_{pair}_h{h}.tsv"),
+        logs("benchmarks/fe_receding_materials_{pair}_h{h}.tsv"),
     threads: 1
     shell:
         "contactlab fe receding {params.args:q} --threads {threads:q} --out {output:q}"

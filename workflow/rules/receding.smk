@@ -516,3 +516,4 @@ localrules:
     receding_rough_profile,
     receding_report_rough,
     receding_report_materials,
+    receding_materials_pair,

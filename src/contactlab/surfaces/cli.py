@@ -148,7 +148,9 @@ def _seq(args: argparse.Namespace) -> None:
         sq = texture["Sq"].to_series()
         refused = {surface for surface, kind, _ in refused_scans(texture) if kind == "areal"}
         ds = add_scan_seq(ds, sheet, sq, str(args.texture), refused)
-        source += f"; *_scan from the Sq computed from scans ({args.texture})"
+        # the file by name: the same result in every study that shares it (the command
+        # line with its paths is the history's)
+        source += f"; *_scan from the Sq computed from scans ({Path(args.texture).name})"
         if refused:
             source += ("; *_scan NaN where the areal scan of a surface was refused "
                        f"({', '.join(sorted(refused))}; reasons in {args.texture})")
