@@ -92,8 +92,9 @@ def timed_run(work: Path, args: list[str], env: dict[str, str]) -> tuple[float, 
     if run.returncode != 0:
         sys.exit(f"snakemake {' '.join(args)} failed in {work}:\n{run.stderr[-3000:]}")
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-    jobs = re.search(r"(\d+) of (\d+) steps \(100%\) done", run.stderr)
-    return cpu, wall, jobs.group(2) if jobs else "0"
+    # the run's own count is the last (a run of the shared inputs before it counts its own)
+    jobs = re.findall(r"\d+ of (\d+) steps \(100%\) done", run.stderr)
+    return cpu, wall, jobs[-1] if jobs else "0"
 
 
 def main() -> None:
