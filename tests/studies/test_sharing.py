@@ -60,15 +60,17 @@ def test_a_study_plans_only_the_jobs_its_values_reach(e2e_run: Path, tmp_path: P
         plans[name] = {_base(r) for r in _rules(run.stdout)}
         assert "linked from results/store/" in run.stderr, name
     # the line load's map scale reaches the line sweep, its gather and profile, and what
-    # reads them: the line/patch section, the rough interface's line load and the FE
-    # comparisons that solve the line load with the same map, and the report index
+    # reads them: the line/patch section, the rough interface's line load, the FE
+    # comparisons and the pair of materials that solve the line load with the same map, and
+    # the report index
     assert {"receding_line_sweep", "receding_line_gather", "receding_line_profile",
             "receding_report_line_patch", "report_index"} <= plans["line_lambda"]
     assert plans["line_lambda"] <= {
         "receding_line_sweep", "receding_line_gather", "receding_line_profile",
         "receding_report_line_patch", "receding_rough_sweep", "receding_rough_gather",
         "receding_rough_profile", "receding_report_rough", "fe_compare", "fe_rough_compare",
-        "fe_report", "report_index", "all"}
+        "fe_report", "receding_materials_pair", "receding_report_materials",
+        "report_index", "all"}
     # a finer friction grid of the gap problem: gap jobs and their readers only
     assert {r for r in plans["fine_friction"]
             if not r.startswith(("receding_gap_", "receding_report_gap"))} <= {
