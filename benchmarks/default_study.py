@@ -20,6 +20,7 @@ Run it on an idle machine: wall time on a shared one says more about the neighbo
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import re
@@ -30,6 +31,7 @@ import sys
 import tempfile
 import time
 from collections import defaultdict
+from collections.abc import Iterator
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -56,6 +58,28 @@ def copy_workflow(dest: Path) -> None:
             shutil.copytree(src, dest / name)
         else:
             shutil.copy2(src, dest / name)
+
+
+def scratch_parser(doc: str) -> argparse.ArgumentParser:
+    """The options every scratch-directory benchmark takes: ``--jobs`` and ``--keep``."""
+    parser = argparse.ArgumentParser(description=doc.split("\n\n")[0])
+    parser.add_argument("--jobs", type=int, default=2, help="snakemake -j (default 2)")
+    parser.add_argument("--keep", type=Path, help="run in this (new) directory and keep it")
+    return parser
+
+
+@contextlib.contextmanager
+def scratch_workflow(keep: Path | None, prefix: str) -> Iterator[Path]:
+    """A directory holding a copy of what a run needs: ``keep`` (created, left behind) or a
+    temporary one removed afterwards."""
+    work = keep or Path(tempfile.mkdtemp(prefix=prefix))
+    work.mkdir(parents=True, exist_ok=True)
+    copy_workflow(work)
+    try:
+        yield work
+    finally:
+        if keep is None:
+            shutil.rmtree(work)
 
 
 def wrapped_contactlab(bin_dir: Path) -> None:
@@ -98,19 +122,19 @@ def timed_run(work: Path, args: list[str], env: dict[str, str]) -> tuple[float, 
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--jobs", type=int, default=2, help="snakemake -j (default 2)")
-    parser.add_argument("--keep", type=Path, help="run in this (new) directory and keep it")
-    args = parser.parse_args()
-    work = args.keep or Path(tempfile.mkdtemp(prefix="contactlab-default-"))
-    work.mkdir(parents=True, exist_ok=True)
-    copy_workflow(work)
+    args = scratch_parser(__doc__).parse_args()
+    with scratch_workflow(args.keep, "contactlab-default-") as work:
+        measure_default(work, args.jobs)
+
+
+def measure_default(work: Path, jobs_wanted: int) -> None:
+    """Run the default study in ``work`` and print its CPU time split by command."""
     wrapped_contactlab(work / ".bench-bin")
     log = work / ".bench-bin" / "cpu.jsonl"
     env = dict(os.environ, CONTACTLAB_CPU_LOG=str(log), PATH=os.pathsep.join(
         [str(work / ".bench-bin"), str(Path(sys.executable).parent), os.environ["PATH"]]))
-    cpu, wall, jobs = timed_run(work, [f"-j{args.jobs}", "all"], env)
-    print(f"default study, -j{args.jobs}, {os.cpu_count()} cores: wall {wall:.0f} s, "
+    cpu, wall, jobs = timed_run(work, [f"-j{jobs_wanted}", "all"], env)
+    print(f"default study, -j{jobs_wanted}, {os.cpu_count()} cores: wall {wall:.0f} s, "
           f"CPU {cpu:.0f} s, {jobs} jobs, load now {os.getloadavg()[0]:.1f}")
     split = cpu_by_command(log)
     print(f"{'contactlab command':32s} {'jobs':>5s} {'CPU s':>8s} {'max s':>7s}")
@@ -118,8 +142,6 @@ def main() -> None:
         print(f"{command:32s} {len(times):5d} {sum(times):8.1f} {max(times):7.1f}")
     measured = sum(sum(t) for t in split.values())
     print(f"{'(Snakemake itself, shells)':32s} {'':5s} {cpu - measured:8.1f}")
-    if args.keep is None:
-        shutil.rmtree(work)
 
 
 if __name__ == "__main__":

@@ -13,58 +13,56 @@ run (the end-to-end config makes it a few minutes). Run it on an idle machine.
 
 from __future__ import annotations
 
-import argparse
 import os
 import shutil
 import sys
-import tempfile
 from pathlib import Path
 
-from default_study import ROOT, copy_workflow, timed_run
+from default_study import ROOT, scratch_parser, scratch_workflow, timed_run
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser = scratch_parser(__doc__)
     parser.add_argument("--study", default="line_lambda", help="config/studies/<study>.yaml")
     parser.add_argument("--config", type=Path, help="a further config file for every run")
-    parser.add_argument("--jobs", type=int, default=2, help="snakemake -j (default 2)")
-    parser.add_argument("--keep", type=Path, help="run in this (new) directory and keep it")
     args = parser.parse_args()
-    work = args.keep or Path(tempfile.mkdtemp(prefix="contactlab-sharing-"))
-    work.mkdir(parents=True, exist_ok=True)
-    copy_workflow(work)
+    with scratch_workflow(args.keep, "contactlab-sharing-") as work:
+        measure_sharing(work, args.study, args.config, args.jobs)
+
+
+def measure_sharing(work: Path, study_name: str, config: Path | None, jobs: int) -> None:
+    """Build the default study, then ``study_name`` shared and alone, in ``work``; print
+    their CPU, wall time and jobs."""
     files = []
-    if args.config:
-        shutil.copy2(ROOT / args.config, work / "config" / "bench.yaml")
+    if config:
+        shutil.copy2(ROOT / config, work / "config" / "bench.yaml")
         files = ["config/bench.yaml"]
-    study = f"config/studies/{args.study}.yaml"
-    alone = work / "config" / "studies" / f"{args.study}_alone.yaml"
+    study = f"config/studies/{study_name}.yaml"
+    alone = work / "config" / "studies" / f"{study_name}_alone.yaml"
     alone.write_text((work / study).read_text().replace(
-        f"study: {args.study}", f"study: {args.study}_alone"))
+        f"study: {study_name}", f"study: {study_name}_alone"))
     env = dict(os.environ, PATH=os.pathsep.join([str(Path(sys.executable).parent),
                                                  os.environ["PATH"]]))
 
     def snakemake(*configfiles: str) -> list[str]:
         chosen = [*files, *configfiles]
-        return [*(["--configfile", *chosen] if chosen else []), f"-j{args.jobs}", "all"]
+        return [*(["--configfile", *chosen] if chosen else []), f"-j{jobs}", "all"]
 
     runs = {
         "default study": timed_run(work, snakemake(), env),
-        f"{args.study} (shared)": timed_run(work, snakemake(study), env),
-        f"{args.study} alone": timed_run(work, snakemake(str(alone.relative_to(work))),
+        f"{study_name} (shared)": timed_run(work, snakemake(study), env),
+        f"{study_name} alone": timed_run(work, snakemake(str(alone.relative_to(work))),
                                          {**env, "CONTACTLAB_NO_REUSE": "1"}),
     }
-    print(f"{os.cpu_count()} cores, -j{args.jobs}, config {args.config or 'default'}, "
+    print(f"{os.cpu_count()} cores, -j{jobs}, config {config or 'default'}, "
           f"load now {os.getloadavg()[0]:.1f}")
     print(f"{'run':28s} {'jobs':>5s} {'CPU s':>8s} {'wall s':>8s}")
-    for name, (cpu, wall, jobs) in runs.items():
-        print(f"{name:28s} {jobs:>5s} {cpu:8.1f} {wall:8.1f}")
+    for name, (cpu, wall, count) in runs.items():
+        print(f"{name:28s} {count:>5s} {cpu:8.1f} {wall:8.1f}")
     default = runs["default study"][0]
-    shared = runs[f"{args.study} (shared)"][0]
-    print(f"(default + {args.study}) / default = {(default + shared) / default:.3f} "
-          f"(alone: {(default + runs[f'{args.study} alone'][0]) / default:.3f})")
-    if args.keep is None:
-        shutil.rmtree(work)
+    shared = runs[f"{study_name} (shared)"][0]
+    print(f"(default + {study_name}) / default = {(default + shared) / default:.3f} "
+          f"(alone: {(default + runs[f'{study_name} alone'][0]) / default:.3f})")
 
 
 if __name__ == "__main__":
