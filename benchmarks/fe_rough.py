@@ -19,7 +19,7 @@ from pathlib import Path
 
 from contactlab.fe.deck import RecedingModel
 from contactlab.fe.mesh2d import StripBlockGeometry
-from contactlab.fe.rough import mesh_series, run_rough
+from contactlab.fe.receding.rough import mesh_series, run_rough
 from contactlab.receding.core.interface import mindlin_ratio
 
 #: The models of the compliant-interface study: (model, strip length, block depth, x_fine),

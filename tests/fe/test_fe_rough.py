@@ -11,10 +11,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from contactlab.fe.ddt import solve
 from contactlab.fe.deck import RecedingModel
 from contactlab.fe.mesh2d import StripBlockGeometry
-from contactlab.fe.rough import mesh_series, rough_ddt, rough_table, run_rough
+from contactlab.fe.receding.ddt import solve
+from contactlab.fe.receding.rough import mesh_series, rough_ddt, rough_table, run_rough
 
 
 def smooth_ddt(problem: str, compliance: float, compliance_t: float, f: float,
