@@ -16,7 +16,7 @@ import pytest
 import xarray as xr
 
 from contactlab.cli import main
-from contactlab.dic.recovery import step_comparison, table_rows
+from contactlab.dic.image_recovery import step_comparison, table_rows
 from contactlab.io import read_table
 from contactlab.stiffness.demo import generate_test
 from contactlab.stiffness.displacement import contact_displacement
