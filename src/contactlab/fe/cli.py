@@ -146,7 +146,7 @@ def _rough_compare(args: argparse.Namespace) -> None:
     stamp(out, title="Compliant-interface transition points: FE (CalculiX) against the "
                      "distributed dislocations", source="contactlab fe rough runs, "
                      "contactlab.fe.receding.rough.rough_table; "
-                     "DDT contactlab.receding.liftoff.rough",
+                     "DDT contactlab.receding.rough.sweep",
           history=args.history, inputs=runs)
     write_netcdf(out, args.out)
 

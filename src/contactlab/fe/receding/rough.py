@@ -203,11 +203,11 @@ def rough_table(runs: Sequence[xr.Dataset], ddt: DdtSolver) -> xr.Dataset:
 def rough_ddt(*, n: Mapping[str, int], refine_max_n: Mapping[str, int],
               lam: Mapping[str, float], e_extra: Mapping[str, float]) -> DdtSolver:
     """The DDT side of :func:`rough_table`: the compliant-interface solution of the same
-    problem (:func:`contactlab.receding.liftoff.rough.rough_point`, linear law, C and C_T as
+    problem (:func:`contactlab.receding.rough.sweep.rough_point`, linear law, C and C_T as
     given) at N = ``n[problem]``, refined up to ``refine_max_n[problem]`` if a contact check
     fails; ``lam`` and ``e_extra`` per problem (the line load's lambda and e, a patch's
     lambda_b and e - w). A point that does not converge gives NaN."""
-    from contactlab.receding.liftoff.rough import rough_point
+    from contactlab.receding.rough.sweep import rough_point
 
     def ddt(problem: str, compliance: float, compliance_t: float, f: float,
             w_hat: float) -> dict[str, float]:
@@ -225,9 +225,9 @@ def ddt_curves(table: xr.Dataset, *, points: int, n: Mapping[str, int],
                e_extra: Mapping[str, float]) -> xr.Dataset:
     """b and a of the DDT over C (``points`` log-spaced from a third of the smallest to three
     times the largest C of ``table``) for each problem of the FE comparison ``table``, at
-    its f, w/c and C_T/C (:func:`contactlab.receding.liftoff.rough.sweep_rough`): variables
+    its f, w/c and C_T/C (:func:`contactlab.receding.rough.sweep.sweep_rough`): variables
     ``curve_b``, ``curve_a`` on (``curve_problem``, ``curve_C``)."""
-    from contactlab.receding.liftoff.rough import sweep_rough
+    from contactlab.receding.rough.sweep import sweep_rough
 
     problems = list(dict.fromkeys(str(p) for p in table["problem"].values))
     C = table["compliance"].values
