@@ -41,7 +41,7 @@ tractions; the system returned is the last linearisation, whose solution is the 
 one (so the root finder of ``core.solve`` is unchanged).
 
 With C = C_T = 0 none of this is assembled: the smooth interface gives today's answers
-exactly (tests/receding/test_solver_reference.py).
+exactly (tests/receding/liftoff/test_solver_reference.py).
 """
 
 from __future__ import annotations

@@ -3,7 +3,7 @@ agreement of FE and DDT on a rough interface (transition points within 2 % at th
 compliances and more, one of them moving b by more than 10 % from the smooth answer).
 
 The table's plumbing is also exercised with the smooth solvers at C = 0 (the gap problem's
-coarse run, whose agreement with the DDT is known: tests/fe/test_receding.py).
+coarse run, whose agreement with the DDT is known: tests/fe/receding/test_receding.py).
 """
 
 from __future__ import annotations
