@@ -9,7 +9,7 @@ from __future__ import annotations
 import sys
 import time
 
-from contactlab.fe.asperity import AsperityModel, run_asperity
+from contactlab.fe.stuck_asperity import AsperityModel, run_asperity
 
 
 def main(sizes: list[float]) -> None:

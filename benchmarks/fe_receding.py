@@ -14,7 +14,7 @@ import time
 
 from contactlab.fe.deck import RecedingModel
 from contactlab.fe.mesh2d import StripBlockGeometry
-from contactlab.fe.receding import STICK_SLIP_NAME, run_receding
+from contactlab.fe.receding.run import STICK_SLIP_NAME, run_receding
 
 #: The thesis's models (sec. 8.2) as half models: (model, strip length, block depth, x_fine).
 MODELS = {

@@ -3,7 +3,7 @@
 Run: ``python benchmarks/fe_rough.py [--h 0.05 0.025 0.0125] [--compliance 0.1 0.3 1 3]
 [--problems line uniform] [--save DIR]``. For each problem (line load f = 0.5; uniform
 patch w/c = 2.5, f = 0.3; far-field block edges with two passes, as the mesh study of
-docs/FINDINGS.md), each C (C_T = C/m, Mindlin's m = 2(1 - nu)/(2 - nu); C = 0 the smooth
+docs/findings/fe.md), each C (C_T = C/m, Mindlin's m = 2(1 - nu)/(2 - nu); C = 0 the smooth
 hard penalty) and each h/c it prints the element count, wall time, ccx CPU time (both
 passes), Newton iterations and b, a; then the mesh series with its h -> 0 limits. With
 ``--save`` every run's Dataset is written there (``{problem}_C{C}_h{h}.nc``).
@@ -19,7 +19,7 @@ from pathlib import Path
 
 from contactlab.fe.deck import RecedingModel
 from contactlab.fe.mesh2d import StripBlockGeometry
-from contactlab.fe.rough import mesh_series, run_rough
+from contactlab.fe.receding.rough import mesh_series, run_rough
 from contactlab.receding.core.interface import mindlin_ratio
 
 #: The models of the compliant-interface study: (model, strip length, block depth, x_fine),

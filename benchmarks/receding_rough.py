@@ -25,8 +25,8 @@ from functools import partial
 from contactlab.blas import single_thread
 from contactlab.receding.core.interface import linear_interface, measured_interface
 from contactlab.receding.liftoff.loading import make_load
-from contactlab.receding.liftoff.rough import solve_rough, sweep_rough
 from contactlab.receding.liftoff.solver import assemble
+from contactlab.receding.rough.sweep import solve_rough, sweep_rough
 
 LINEAR = linear_interface(1.0, 1.2)
 MEASURED = measured_interface(1.0, 1.2, 0.5)

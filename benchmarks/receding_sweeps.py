@@ -19,8 +19,8 @@ import numpy as np
 
 from contactlab.blas import single_thread
 from contactlab.receding.gap.sweep import sweep_dataset
-from contactlab.receding.liftoff.rough import sweep_rough
 from contactlab.receding.liftoff.sweep import sweep_line, sweep_patch
+from contactlab.receding.rough.sweep import sweep_rough
 
 #: name -> (sweep, points)
 SWEEPS: dict[str, tuple[Callable[[], object], int]] = {

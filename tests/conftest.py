@@ -39,7 +39,7 @@ def typed_by_hand(monkeypatch: pytest.MonkeyPatch) -> None:
     """Every test starts outside a workflow run: a test that starts the Snakefile in this
     process leaves the run's provenance in ``os.environ``, which would make a command run
     in-process take its values as a job's, checked at the run's start."""
-    from contactlab.study import PROVENANCE_ENV, STUDIES_ENV
+    from contactlab.provenance import PROVENANCE_ENV, STUDIES_ENV
 
     for var in (STUDIES_ENV, *PROVENANCE_ENV.values()):
         monkeypatch.delenv(var, raising=False)

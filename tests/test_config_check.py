@@ -1,8 +1,9 @@
 """The workflow's start-up checks of the configuration, called as functions.
 
 ``workflow/rules/common.smk`` merges the config files, coerces the ``--config`` values
-(:func:`contactlab.study.coerce`) and checks them (:func:`contactlab.config_check.check_config`);
-the Snakefile reads ``config/config.yaml`` with :func:`contactlab.config_check.load_yaml_file`.
+(:func:`contactlab.provenance.coerce`) and checks them
+(:func:`contactlab.config_check.check_config`); the Snakefile reads ``config/config.yaml``
+with :func:`contactlab.config_check.load_yaml_file`.
 These tests call the same functions on the same inputs as the workflow tests' dry runs, without
 a Snakemake process each; ``tests/test_workflow.py`` keeps a few real runs that show the
 messages reach the user as one line.
@@ -18,7 +19,7 @@ import pytest
 from config_walk import _set, walk
 
 from contactlab.config_check import ConfigError, check_config, load_yaml_file, parse_yaml
-from contactlab.study import coerce
+from contactlab.provenance import coerce
 
 
 def _schema(repo: Path) -> dict[str, Any]:

@@ -3,7 +3,7 @@
 The map (also in docs/CONVENTIONS.md, "Layers"), lowest first; a module may import modules
 of its own layer and of the layers below it, never above:
 
-0. ground floor: ``contactlab`` itself, ``io``, ``display``, ``schema``, ``study``,
+0. ground floor: ``contactlab`` itself, ``io``, ``display``, ``schema``, ``provenance``,
    ``published``, ``testsheet``, ``csvlines``, ``config_check``, ``config_docs``,
    ``setup_check``, ``progress``, ``blas``, ``allocator`` -- files, how tables show numbers
    and units, provenance, the thesis's transcribed tables, the test sheet, the set-up's
@@ -37,7 +37,7 @@ SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = SRC / "contactlab"
 GROUND = {"contactlab", "contactlab.__init__", "contactlab.atomic", "contactlab.io",
           "contactlab.schema",
-          "contactlab.study",
+          "contactlab.provenance",
           "contactlab.published", "contactlab.testsheet", "contactlab.csvlines",
           "contactlab.config_check", "contactlab.config_docs", "contactlab.setup_check",
           "contactlab.progress", "contactlab.blas", "contactlab.allocator",

@@ -53,8 +53,8 @@ WORDS = frozenset({"say", "join", "format", "str", "repr"})
 #: Known arithmetic left to the branch that owns the builder: (builder relative to
 #: src/contactlab, the expression as ``ast.unparse`` writes it) -> why.
 _DIC = ("the image-correlation branch (speed) owns dic/: its quality fractions, "
-        "differences and counts belong in dic.quality and dic.recovery")
-_FE = "the materials branch owns fe/: the load ratio belongs in fe.asperity's result"
+        "differences and counts belong in dic.quality and dic.image_recovery")
+_FE = "the materials branch owns fe/: the load ratio belongs in fe.stuck_asperity's result"
 _RECEDING = ("the receding problem objects (branch recobj) own the receding builders' "
              "inputs; this branch's edits there are units and labels only")
 PENDING: dict[tuple[str, str], str] = {

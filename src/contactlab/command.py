@@ -58,12 +58,12 @@ def _plain(value: Any) -> Any:
 def from_checked_config() -> bool:
     """The command runs as a job of a workflow run, whose rule passed the values of the
     run's effective config, checked against the schema when the run started (the run
-    hands its config hash to its jobs: :data:`contactlab.study.PROVENANCE_ENV`). Its
+    hands its config hash to its jobs: :data:`contactlab.provenance.PROVENANCE_ENV`). Its
     values are not checked again (reading the schema and jsonschema cost ~80 ms of CPU per
     job, measured)."""
     import os
 
-    from contactlab.study import PROVENANCE_ENV
+    from contactlab.provenance import PROVENANCE_ENV
 
     return bool(os.environ.get(PROVENANCE_ENV["config_sha256"]))
 

@@ -18,7 +18,7 @@ import xarray as xr
 
 from contactlab import __version__
 from contactlab.atomic import atomic_path, write_failure
-from contactlab.study import provenance
+from contactlab.provenance import provenance
 
 LOG = logging.getLogger(__name__)
 
@@ -68,7 +68,7 @@ def stamp(ds: xr.Dataset, *, title: str, source: str, history: str,
     dated by the log format).
     ``source`` names the method and the contactlab version; no ``institution``, which is
     the user's to say. Inside a workflow run the attributes include the study name, the
-    hash of the effective config and the git commit (:func:`contactlab.study.provenance`).
+    hash of the effective config and the git commit (:func:`contactlab.provenance.provenance`).
     """
     command = history
     when = history_time()

@@ -426,7 +426,7 @@ def ddt_inputs(fe: dict, problem: str, targets: list[str]) -> list[str]:
 
 
 #: The module of the receding solver each FE problem is checked against (the functions
-#: are ``contactlab.fe.ddt.SOLVERS``; named here so the DAG does not import the solvers).
+#: are ``contactlab.fe.receding.ddt.SOLVERS``; named here so the DAG does not import the solvers).
 DDT_SOLVER_MODULES = {
     "gap": "contactlab.receding.gap.solver",
     "line": "contactlab.receding.liftoff.line",

@@ -4,7 +4,7 @@ displacement -> fits -> tables recover the published fits within their margins.
 Through the command line as the workflow runs it (``dic demo``, ``dic fields``,
 ``stiffness process``, ``stiffness summarize``, ``dic report``), on all 291 frames of RU1
 cut to 256 x 128 px (2 x 2 x 3 subsets; about 10 s). The default study's 640 x 512 px
-frames (16 x 15 subsets) are closer still (docs/FINDINGS.md).
+frames (16 x 15 subsets) are closer still (docs/findings/stiffness.md).
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ import pytest
 import xarray as xr
 
 from contactlab.cli import main
-from contactlab.dic.recovery import step_comparison, table_rows
+from contactlab.dic.image_recovery import step_comparison, table_rows
 from contactlab.io import read_table
 from contactlab.stiffness.demo import generate_test
 from contactlab.stiffness.displacement import contact_displacement

@@ -23,9 +23,9 @@ from contactlab.stiffness import demo
 from contactlab.stiffness.compare import THESIS_DISCREPANCIES, summary_within_margins
 from contactlab.stiffness.demo import generate_test, write_demo
 from contactlab.stiffness.errors import ErrorModel
+from contactlab.stiffness.fit_recovery import recovery_table
 from contactlab.stiffness.process import load_inputs, process_test
 from contactlab.stiffness.raw_summary import summarize_raw
-from contactlab.stiffness.recovery import recovery_table
 
 
 @pytest.fixture(scope="module")

@@ -9,9 +9,9 @@ import pytest
 from snakemake.utils import validate
 
 from contactlab.config_check import ConfigError, load_yaml_file
+from contactlab.provenance import coerce
 from contactlab.schema import SCHEMA_PATH
 from contactlab.studies.effective import effective_config, fill_defaults, merge
-from contactlab.study import coerce
 
 
 def test_merge_is_snakemakes_update_config() -> None:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pytest
 
+from contactlab.provenance import check_study_name, results_dir
 from contactlab.studies.family import (
     FamilyError,
     expand_grid,
@@ -12,7 +13,6 @@ from contactlab.studies.family import (
     split_family,
     variant_config,
 )
-from contactlab.study import check_study_name, results_dir
 
 
 def test_grid_expands_to_every_combination_with_names_from_the_values() -> None:

@@ -7,7 +7,7 @@ import os
 
 import pytest
 
-from contactlab.study import (
+from contactlab.provenance import (
     PROVENANCE_ENV,
     STUDIES_ENV,
     config_sha256,

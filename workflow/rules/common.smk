@@ -36,7 +36,7 @@ from contactlab.rulehelpers import (
 )
 from contactlab.schema import SCHEMA_PATH, schema_file
 from contactlab.studies import names, reads, shared
-from contactlab.study import changes, coerce, export_provenance, logs_dir, results_dir
+from contactlab.provenance import changes, coerce, export_provenance, logs_dir, results_dir
 from contactlab.surfaces.sheet import check_demo_scan_surfaces, read_surface_sheet
 from contactlab.testsheet import (
     TestSheetError,

@@ -21,7 +21,7 @@ from contactlab.rulehelpers import demo_image_folders
 from contactlab.schema import SCHEMA_PATH
 from contactlab.studies import cluster, manifest, names, reads, reuse, shared
 from contactlab.studies.jobkeys import StudyFolders
-from contactlab.study import STUDIES_ENV, PROVENANCE_ENV, coerce
+from contactlab.provenance import STUDIES_ENV, PROVENANCE_ENV, coerce
 
 _FAMILY_FILE = next((str(f) for f in workflow.config_settings.configfiles
                      if "family" in load_yaml_file(f)), "--config")
@@ -46,7 +46,7 @@ for _variant in VARIANTS:
     except ConfigError as exc:
         refuse(str(exc))
 
-# the variants' jobs find their own study's provenance in this table (contactlab.study)
+# the variants' jobs find their own study's provenance in this table (contactlab.provenance)
 for _var in (STUDIES_ENV, *PROVENANCE_ENV.values()):
     os.environ.pop(_var, None)
 for _i, _variant in enumerate(VARIANTS):

@@ -8,7 +8,7 @@ contact displacement. For the RECONSTRUCTED image demo (its fields name the thes
 they were rendered from): uc, vc from images minus those from the demo's fields, and the
 fits from images beside the fits from the demo's fields and the published fits the demo
 was built from, with their margins, per step and for the test's rows of Tables 2.1, 2.2,
-2.4 (2.7-2.9) (:mod:`contactlab.dic.recovery`).
+2.4 (2.7-2.9) (:mod:`contactlab.dic.image_recovery`).
 """
 
 from __future__ import annotations
@@ -21,14 +21,14 @@ import pandas as pd
 import xarray as xr
 
 from contactlab.dic.correlate import NO_SUBSET, REJECTED, STATUS_MEANINGS, VALID
-from contactlab.dic.quality import frame_quality, quality_summary, worst_frame
-from contactlab.dic.recovery import (
+from contactlab.dic.image_recovery import (
     STEP_COLUMNS,
     TABLE_ROW_COLUMNS,
     frame_differences,
     step_comparison,
     table_rows,
 )
+from contactlab.dic.quality import frame_quality, quality_summary, worst_frame
 from contactlab.report.section import ReportSection, save_figure
 from contactlab.stiffness.tables import UNITS
 

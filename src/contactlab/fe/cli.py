@@ -80,7 +80,7 @@ def _model(args: argparse.Namespace) -> tuple:
 
 
 def _receding(args: argparse.Namespace) -> None:
-    from contactlab.fe.receding import run_receding
+    from contactlab.fe.receding.run import run_receding
     from contactlab.io import stamp, write_netcdf
 
     model, geom = _model(args)
@@ -95,7 +95,7 @@ def _receding(args: argparse.Namespace) -> None:
 
 
 def _rough(args: argparse.Namespace) -> None:
-    from contactlab.fe.rough import run_rough
+    from contactlab.fe.receding.rough import run_rough
     from contactlab.io import stamp, write_netcdf
 
     model, geom = _model(args)
@@ -106,7 +106,7 @@ def _rough(args: argparse.Namespace) -> None:
         title=f"FE solution (CalculiX) of the receding contact problem '{args.problem}' on a "
               f"compliant interface, C = {args.compliance:g}, C_T = {args.compliance_t:g}",
         source="plane-strain strip on block, gmsh mesh, CalculiX ccx, penalty contact of "
-               "stiffness k_n and stick slope k_t per unit area (contactlab.fe.rough)",
+               "stiffness k_n and stick slope k_t per unit area (contactlab.fe.receding.rough)",
         history=args.history,
     )
     write_netcdf(ds, args.out)
@@ -117,7 +117,7 @@ def _rough_compare(args: argparse.Namespace) -> None:
 
     import numpy as np
 
-    from contactlab.fe.rough import ddt_curves, rough_ddt, rough_table
+    from contactlab.fe.receding.rough import ddt_curves, rough_ddt, rough_table
     from contactlab.io import load_datasets, stamp, write_netcdf
 
     runs = load_datasets(args.runs, "FE run")
@@ -145,7 +145,8 @@ def _rough_compare(args: argparse.Namespace) -> None:
                                             for p, v in d.items()})
     stamp(out, title="Compliant-interface transition points: FE (CalculiX) against the "
                      "distributed dislocations", source="contactlab fe rough runs, "
-                     "contactlab.fe.rough.rough_table; DDT contactlab.receding.liftoff.rough",
+                     "contactlab.fe.receding.rough.rough_table; "
+                     "DDT contactlab.receding.rough.sweep",
           history=args.history, inputs=runs)
     write_netcdf(out, args.out)
 
@@ -153,9 +154,9 @@ def _rough_compare(args: argparse.Namespace) -> None:
 def _compare(args: argparse.Namespace) -> None:
     import xarray as xr
 
-    from contactlab.fe.compare import agreement
-    from contactlab.fe.ddt import reference
-    from contactlab.fe.study import run_materials
+    from contactlab.fe.receding.compare import agreement
+    from contactlab.fe.receding.ddt import reference
+    from contactlab.fe.receding.mesh_study import run_materials
     from contactlab.io import stamp, write_netcdf
 
     with xr.open_dataset(args.run) as fe:
@@ -181,7 +182,7 @@ def _compare(args: argparse.Namespace) -> None:
 
 def _convergence(args: argparse.Namespace) -> None:
 
-    from contactlab.fe.compare import convergence
+    from contactlab.fe.receding.compare import convergence
     from contactlab.io import load_datasets, stamp, write_netcdf
 
     runs = load_datasets(args.runs, "FE run")
@@ -197,7 +198,7 @@ def _convergence(args: argparse.Namespace) -> None:
 
 
 def _study(args: argparse.Namespace) -> None:
-    from contactlab.fe.study import study
+    from contactlab.fe.receding.mesh_study import study
     from contactlab.io import load_datasets, stamp, write_netcdf
 
     runs = load_datasets(args.runs, "FE run")
@@ -220,7 +221,7 @@ def _study(args: argparse.Namespace) -> None:
 
 
 def _materials_compare(args: argparse.Namespace) -> None:
-    from contactlab.fe.materials import pair_table
+    from contactlab.fe.receding.materials import pair_table
     from contactlab.io import load_datasets, stamp, write_netcdf
 
     runs = load_datasets(args.runs, "FE run")
@@ -237,7 +238,7 @@ def _materials_compare(args: argparse.Namespace) -> None:
 
 
 def _asperity(args: argparse.Namespace) -> None:
-    from contactlab.fe.asperity import AsperityModel, run_asperity
+    from contactlab.fe.stuck_asperity import AsperityModel, run_asperity
     from contactlab.io import stamp, write_netcdf
 
     model = AsperityModel(
@@ -259,7 +260,7 @@ def _asperity(args: argparse.Namespace) -> None:
 
 def _asperity_gather(args: argparse.Namespace) -> None:
 
-    from contactlab.fe.asperity import gather
+    from contactlab.fe.stuck_asperity import gather
     from contactlab.io import load_datasets, stamp, write_netcdf
 
     runs = load_datasets(args.runs, "FE run")

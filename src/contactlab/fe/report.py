@@ -16,7 +16,7 @@ import pandas as pd
 import xarray as xr
 from matplotlib.ticker import NullFormatter
 
-from contactlab.fe.receding import STICK_SLIP_NAME
+from contactlab.fe.receding.run import STICK_SLIP_NAME
 from contactlab.io import load_datasets
 from contactlab.report.section import ReportSection
 

@@ -24,10 +24,12 @@ the report read); the science is in three sub-packages, pure cores first, I/O at
              method of secs 6.2-6.4, 7.4), ``line`` (ch. 6, with the Chaise et al.
              model), ``patch`` (ch. 7), ``frictionless`` (f = 0), ``sweep``, ``cli``
              (``receding line-sweep``, ``patch-sweep``, ``liftoff-...``), ``report``;
-             ``compliant`` and ``rough``: the same problems on a rough interface
+             ``compliant``: the same solver's rows for a rough interface
+``rough``    the rough interface: ``sweep`` (points, sweeps over the compliance,
+             profiles, the tested pairs), ``cli`` (``receding rough-...``), ``report``
 
 ``cli`` holds the ``receding`` command group and ``receding solve`` for any problem on any
-interface law it takes; ``rough`` the rough interface's commands and report.
+interface law it takes.
 
 Normalisation used throughout (Part III): lengths in units of the layer thickness c
 (``x_hat = x/c``), tractions in units of the applied pressure p, dislocation densities as

@@ -13,8 +13,8 @@ from contactlab.command import Command, Group, Option
 
 
 def _index(args: argparse.Namespace) -> None:
+    from contactlab.provenance import provenance
     from contactlab.report.index import build_index
-    from contactlab.study import provenance
 
     changes = args.changes or {}
     comparisons = [tuple(link) for link in (args.comparisons or [])]

@@ -31,8 +31,8 @@ from contactlab.stiffness.compare import (
     within_by_quantity,
     within_totals,
 )
+from contactlab.stiffness.fit_recovery import recovery_by_test, recovery_table, recovery_totals
 from contactlab.stiffness.process import flagged_steps
-from contactlab.stiffness.recovery import recovery_by_test, recovery_table, recovery_totals
 
 __all__ = ["TEST_FIGURES", "build_section", "summary_figure", "test_figures"]
 

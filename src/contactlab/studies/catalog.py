@@ -38,18 +38,18 @@ from pathlib import Path
 from typing import Any
 
 from contactlab.config_check import ConfigError, load_yaml_file
-from contactlab.studies.effective import finish, finish_variant, load_schema, merged_config
-from contactlab.studies.family import FamilyError, split_family
-from contactlab.studies.manifest import netcdf_provenance, read_manifest, result_reads
-from contactlab.studies.shared import SHARED_FOLDERS
-from contactlab.studies.store import STORE
-from contactlab.study import (
+from contactlab.provenance import (
     changes,
     check_study_name,
     config_sha256,
     git_commit,
     results_dir,
 )
+from contactlab.studies.effective import finish, finish_variant, load_schema, merged_config
+from contactlab.studies.family import FamilyError, split_family
+from contactlab.studies.manifest import netcdf_provenance, read_manifest, result_reads
+from contactlab.studies.shared import SHARED_FOLDERS
+from contactlab.studies.store import STORE
 
 STUDIES_DIR = "config/studies"
 FAMILIES_DIR = "config/families"

@@ -98,7 +98,7 @@ def index_links(report_dir: str | os.PathLike[str] = "results/report",
 
 def study_results(name: str) -> str:
     """The results folder of the study ``name`` (``default``: ``results/``)."""
-    from contactlab.study import results_dir
+    from contactlab.provenance import results_dir
 
     return results_dir(None if name == "default" else name)
 

@@ -3,8 +3,8 @@
 A run's config is built by Snakemake and the Snakefile's start-up (``workflow/rules/
 common.smk``): ``config/config.yaml``, then each ``--configfile`` in order, then the
 ``--config`` values, merged key by key (lists replaced whole); strings coerced to the
-schema's types (:func:`contactlab.study.coerce`); the schema's defaults filled in as
-``snakemake.utils.validate`` does; the hash is :func:`contactlab.study.config_sha256` of
+schema's types (:func:`contactlab.provenance.coerce`); the schema's defaults filled in as
+``snakemake.utils.validate`` does; the hash is :func:`contactlab.provenance.config_sha256` of
 the result. This module repeats those steps without Snakemake, so that the catalog can say
 what a run would use now. Only the standard library, PyYAML and jsonschema are imported.
 """
@@ -17,8 +17,8 @@ from pathlib import Path
 from typing import Any
 
 from contactlab.config_check import ConfigError, load_yaml_file
+from contactlab.provenance import coerce, config_sha256
 from contactlab.schema import SCHEMA_PATH
-from contactlab.study import coerce, config_sha256
 
 #: The default study's config file and the config schema, relative to the repository root.
 DEFAULT_CONFIG = "config/config.yaml"

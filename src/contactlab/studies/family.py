@@ -36,8 +36,8 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+from contactlab.provenance import STUDY_NAME, VARIANT_NAME, check_study_name
 from contactlab.studies.effective import merge, set_dotted
-from contactlab.study import STUDY_NAME, VARIANT_NAME, check_study_name
 
 #: The keys a family file adds to a config file (``compare``: the headline quantities of
 #: the family's comparison page, default all that its variants make).

@@ -1,7 +1,7 @@
 """The record a run leaves in its study's log folder: ``<logs>/study.json``.
 
 The log folder is ``logs/`` for the default study and ``results/studies/<name>/logs/`` for a
-named one (:func:`contactlab.study.logs_dir`): the record sits beside the run's logs, not
+named one (:func:`contactlab.provenance.logs_dir`): the record sits beside the run's logs, not
 among the results (it is no rule's output, and holds times). Written by the Snakefile's
 ``onsuccess`` and ``onerror`` handlers after every run that executed jobs (not after dry
 runs, nor after runs with nothing to do), atomically. It holds

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from contactlab.study import STUDY_NAME
+from contactlab.provenance import STUDY_NAME
 
 STUDIES_DIR = "config/studies"
 FAMILIES_DIR = "config/families"

@@ -32,7 +32,7 @@ COLUMNS = ("surface", "objective", "areal_scan", "profile_scan", "profile_axis",
 #: Columns a sheet may leave out (blank in every row).
 OPTIONAL = ("sampling_length_um",)
 DIRECTIONS = ("lengthwise", "normal_to_pattern", "parallel_to_pattern")
-#: Values of the ``objective`` column (docs/FINDINGS.md, Surface texture).
+#: Values of the ``objective`` column (docs/findings/surfaces.md).
 OBJECTIVES = ("20x", "100x", "other")
 #: Ids that would collide with other files in results/surfaces/.
 RESERVED = ("seq", "texture", "demo_scans")

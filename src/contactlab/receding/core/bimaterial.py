@@ -32,7 +32,7 @@ read
 
 (odd kernels extend to k < 0 as odd functions, even ones as even). The system was solved
 symbolically and is checked against a numerical solution of the six equations
-(tests/receding/test_bimaterial.py). H_xyy = -H_yxy for every alpha, beta (Betti's
+(tests/receding/core/test_bimaterial.py). H_xyy = -H_yxy for every alpha, beta (Betti's
 reciprocity, not imposed). For one material Delta = 1 and these are the transforms of
 App. B.1: -i pi (1 - e^{-2k} (1 -+ 2k + 2k^2)) and -2 pi k^2 e^{-2k}.
 

@@ -7,7 +7,7 @@ surface y = c, gives on the line y = 0 the stresses
     sigma_yy = 2 mu / (pi (kappa + 1)) * (H_xyy b_x + H_yyy b_y) / c
 
 with every H a function of d = x_hat - xi_hat only. The expressions of App. B.1 were
-checked numerically (tests/receding/test_kernels.py): the infinite-plane dislocation field
+checked numerically (tests/receding/core/test_kernels.py): the infinite-plane dislocation field
 plus the Flamant/Cerruti field of the surface tractions it leaves at y = c reproduce them
 to 1e-12. Sign convention (Hills et al.): H_xxy and H_yyy start with +1/d, so the relative
 displacement of the layer (y > 0) over the half-plane is ``-int_{-inf}^{x} B dxi``

@@ -31,7 +31,7 @@ ln z]), and the regular kernels are rational with poles at d = +-2i only, so
 
 with d_m the coefficients of 1/(d + 2i)^m in K(d): H_xxy - 1/d has d_1 = -1/2, d_2 = i,
 d_3 = 2; H_xyy has d_3 = -2i (checked against adaptive quadrature in
-tests/receding/test_limit.py).
+tests/receding/core/test_limit.py).
 
 The inner end of the stick zone follows by matching: near a zone [-a1, a1] the glide
 density is -(2k/pi) arccosh(|x|/a1) (its transform is k sign(x) beyond a1), which for

@@ -264,8 +264,8 @@ COMMANDS = (
         NAME, "history", "a lift-off problem along a load path (loading, unloading)",
         description="The line load or a pressure patch solved along a load path: the "
                     "load factors of --path, from zero to the first monotonically, then "
-                    "incrementally, the slip of the stick zones kept (docs/FINDINGS.md, "
-                    "'Receding contacts along a load path'). Prints per segment the zones, "
+                    "incrementally, the slip of the stick zones kept (docs/findings/"
+                    "receding_history.md). Prints per segment the zones, "
                     "residuals, contact checks, certificates, the frictional energy "
                     "dissipated and the slip change (--json: one JSON object).",
         options=(Option("--problem", "the lift-off problem", choices=HISTORY_PROBLEMS,

@@ -41,7 +41,7 @@ tractions; the system returned is the last linearisation, whose solution is the 
 one (so the root finder of ``core.solve`` is unchanged).
 
 With C = C_T = 0 none of this is assembled: the smooth interface gives today's answers
-exactly (tests/receding/test_solver_reference.py).
+exactly (tests/receding/liftoff/test_solver_reference.py).
 """
 
 from __future__ import annotations
@@ -65,7 +65,8 @@ from contactlab.receding.core.solve import LinearSystem
 #: b within 2e-6 for 0.05-0.5, line load, f = 0.5, C = 1, N = 100-400)
 BRIDGE_WIDTH = 0.2
 #: a stick zone counts as resolved where it spans this many node spacings of the slip
-#: zone's glide density (a is then within about 10 % of its limit in N, FINDINGS)
+#: zone's glide density (a is then within about 10 % of its limit in N,
+#: docs/findings/receding_rough.md)
 RESOLVED_NODES = 8
 #: Newton steps of the measured law at fixed transition points, and their tolerance on P
 NEWTON_STEPS = 40

@@ -22,8 +22,8 @@ A step starts from the zones of the previous one; where the load turns round (lo
 after unloading or the reverse), from stick everywhere but next to b, where the edge
 slips with the new direction of the load (the pressure vanishes at b, so no shear can be
 held there). The first step down from the monotonic state then finds what the finite
-elements show (``docs/FINDINGS.md``): the edge slips back, and a zone around the old
-stick-slip point slips on forwards, as the pressure there falls faster than the shear
+elements show (``docs/findings/receding_history.md``): the edge slips back, and a zone
+around the old stick-slip point slips on forwards, as the pressure there falls faster than the shear
 held by the frozen slip.
 
 **Episodes.** A step's slip increment is counted from its anchor. While no point that

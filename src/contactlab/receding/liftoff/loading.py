@@ -28,7 +28,7 @@ remote climb form of eq. (7.14),
 
 is the same sum (with its derivative and antiderivative). Closed forms of g for the named
 laws (``remote_form_closed``) are kept as an independent check. Misprints found in eqs
-(7.12)-(7.17) (checked in tests/receding/test_loading.py):
+(7.12)-(7.17) (checked in tests/receding/liftoff/test_loading.py):
 
 * (7.12) reads ln(w_hat - x_hat); for x > w it must be ln(x_hat - w_hat) (the printed
   form has no real value there). Normalised: g = ln((x+w)/(x-w)) / (4 pi w).

@@ -19,7 +19,7 @@ For the line load (Y = -K + k2/e, Y' = -k2/e^2) this is
 R1 = (-3 e^2 K + 4 e k2 - b k2) / (e^2 (e - b)^2) and R2 = (2 e^2 K - 3 e k2 + b k2) /
 (e^2 (e - b)^3). **Misprint in eq. (6.9)**: the printed R2 = -(-b k2 - 3 e k2 + 2 e^2 k_l) /
 (e^2 (e - b)^3) has the wrong sign on the e^2 k_l and e k2 terms (equivalently on b k2
-without the leading minus); it misses R(e) = Y by O(K) (tests/receding/test_preformed.py
+without the leading minus); it misses R(e) = Y by O(K) (tests/receding/liftoff/test_preformed.py
 evaluates the end conditions of the printed and corrected cubics). R1 as printed,
 -(b k2 - 4 e k2 + 3 e^2 k_l)/(e^2 (b - e)^2), is right. The negative-x branch
 -R1 (x + b)^2 + R2 (x + b)^3 is the odd extension, right as printed.

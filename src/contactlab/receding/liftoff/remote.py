@@ -20,10 +20,10 @@ Table 6.1 to zero gives, from the x^-4 terms of N (eq. 6.27) and the x^-3 terms 
 **Misprint in eq. (6.32)** (and (7.32)): the printed relation has +K/(2 pi) (after the
 factor M = 1/pi); eqs (6.27)-(6.29) and Table 6.1 give -K/(2 pi) (eq. 6.29 prints
 -k_l/2 itself). Evidence: Table 6.1's climb entries evaluated directly (the preformed
-quadrature, tests/receding/test_preformed.py::test_table_6_1_by_direct_evaluation) are as
+quadrature, tests/receding/liftoff/test_preformed.py::test_table_6_1_by_direct_evaluation) are as
 printed; on converged solutions the relation with -K/2 holds to ~1e-3 (f > 0, lhs about
 -0.16) and to ~1e-6 in the frictionless limit, while the printed +K/2 misses by K
-(~0.13; tests/receding/test_line.py). The same sign holds for the patches (eq. 7.32,
+(~0.13; tests/receding/liftoff/test_line.py). The same sign holds for the patches (eq. 7.32,
 ``remote_slip_error`` of every solution).
 
 Table 6.1 entries (normalised, M -> 1/pi, x >> c): line load -2/(pi x^4), 2/(pi x^3);

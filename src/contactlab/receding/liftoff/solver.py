@@ -22,7 +22,7 @@ For fixed (a, b) these are linear in (phi_x, phi_y, K): one collocation row of e
 (the one nearest t = 0) is left out, the square system of 2N + 1 rows solved, and a and b
 are the roots of the two rows left out (``solve.find_transitions``).
 
-Corrections to the printed equations (checked numerically, tests/receding/test_line*.py):
+Corrections to the printed equations (checked numerically, tests/receding/liftoff/test_line*.py):
 
 * (6.18) as printed has the bilateral and preformed tractions on the right-hand side with
   a plus sign; N = 0 requires minus: M (...) = -(sigma_yy^b + sigma_yy^A)/(P/c), as the

@@ -32,7 +32,7 @@ import xarray as xr
 from contactlab.receding.core.materials import ONE_MATERIAL, Materials, from_dundurs
 from contactlab.receding.core.problem import OUTWARD, Continuation
 from contactlab.receding.core.sweep import Sweep, check_refine, record_variables
-from contactlab.receding.liftoff.rough import PROBLEMS, liftoff_problem, settings
+from contactlab.receding.rough.sweep import PROBLEMS, liftoff_problem, settings
 
 ONE = "1"
 #: profile variables of the sweep (``_profiles``)

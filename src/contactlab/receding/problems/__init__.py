@@ -5,7 +5,7 @@ Every module of this package declares its problems in a module-level ``PROBLEMS`
 ch. 5; ``line``: the line load of ch. 6; ``patch``: the pressure patches of ch. 7 and a
 user's pressure shape). :func:`registry` collects them, ordered by their ``order``; the
 commands' choices, the config schema's problem lists (:func:`schema_enums`, kept in step
-by ``tests/receding/test_problems.py``) and the report sections read the list here, so a
+by ``tests/receding/problems/test_problems.py``) and the report sections read the list here, so a
 new problem is a new module of this package (and its test, its schema entry and its report
 text). Standard library only at import, like the problem modules: the command line reads
 this list without loading numpy.

@@ -57,7 +57,7 @@ VARIABLES = {
     "flags": Variable("", "int8", kind="flags"),
 }
 
-#: A sweep over the interface's compliance C (``liftoff.rough.sweep_rough``): each point
+#: A sweep over the interface's compliance C (``rough.sweep.sweep_rough``): each point
 #: seeded by the last converged one with a resolved stick zone at the next smaller C, a
 #: point whose seed fails solved cold (flagged ``continuation``), each refined in N before
 #: it seeds the next.

@@ -210,7 +210,7 @@ def _sweep(args: argparse.Namespace) -> None:
     check_numbers("--ct-ratios", args.ct_ratios)
     from contactlab.io import stamp, write_netcdf
     from contactlab.receding.core.summary import log_summary
-    from contactlab.receding.liftoff.rough import sweep_rough
+    from contactlab.receding.rough.sweep import sweep_rough
 
     lam, e_extra = lam_e(args, args.problem)
     ratios = mindlin_ct_ratios(args.ct_ratios, args.nu)
@@ -246,7 +246,7 @@ def _profile(args: argparse.Namespace) -> None:
     check_numbers("--ct-ratios", args.ct_ratios)
     from contactlab.io import stamp, write_netcdf
     from contactlab.receding.core.interface import linear_interface
-    from contactlab.receding.liftoff.rough import rough_profile
+    from contactlab.receding.rough.sweep import rough_profile
 
     lam, e_extra = lam_e(args, args.problem)
     ratio = mindlin_ct_ratios(args.ct_ratios, args.nu)[0]
@@ -275,7 +275,7 @@ def _pairs(args: argparse.Namespace) -> None:
 
     from contactlab.io import stamp, write_netcdf
     from contactlab.receding.core.measured_law import pair_law
-    from contactlab.receding.liftoff.rough import tested_pairs
+    from contactlab.receding.rough.sweep import tested_pairs
 
     summary = None
     if args.summary is not None:

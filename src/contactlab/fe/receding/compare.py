@@ -1,9 +1,9 @@
 """Agreement of the FE models with the distributed-dislocation solutions (secs 8.2-8.3).
 
-:func:`agreement` adds to an FE solution (from :func:`contactlab.fe.receding.run_receding`)
+:func:`agreement` adds to an FE solution (from :func:`contactlab.fe.receding.run.run_receding`)
 the DDT transition points ``b_ddt`` and ``a_ddt`` (``a3_ddt`` for the gap problem), the
 differences in percent, the same points placed inside the element (``b_sep_fe``,
-``a_slip_fe``: :mod:`contactlab.fe.study`), and the DDT profiles on the FE grid.
+``a_slip_fe``: :mod:`contactlab.fe.receding.mesh_study`), and the DDT profiles on the FE grid.
 :func:`convergence` stacks the transition points and sizes of several meshes of one
 problem (sec. 8.3).
 """
@@ -13,10 +13,10 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from contactlab.fe.ddt import DdtReference
-from contactlab.fe.interface import profile_difference
-from contactlab.fe.receding import STICK_SLIP_NAME
-from contactlab.fe.study import run_quantities
+from contactlab.fe.receding.ddt import DdtReference
+from contactlab.fe.receding.mesh_study import run_quantities
+from contactlab.fe.receding.profiles import profile_difference
+from contactlab.fe.receding.run import STICK_SLIP_NAME
 from contactlab.io import variable
 
 

@@ -1,7 +1,7 @@
 """Lifting-off receding contacts on a rough (compliant) interface: points, sweeps, profiles.
 
 The solvers of chs 6-7 take an ``interface`` (``core.interface``: smooth, linear or the
-measured law; ``compliant`` for the method). Here:
+measured law; ``liftoff.compliant`` for the method). Here:
 
 ``solve_rough``     one problem (line, uniform, hertz, punch) at (f, w/c) on an interface:
                     a :class:`~contactlab.receding.liftoff.solver.LiftoffSolution`;

@@ -174,7 +174,8 @@ def test_two_materials_line_load_converges_and_lifts_off() -> None:
     for name, tol in (("a", 1e-3), ("b", 3e-3), ("K_T", 3e-3)):
         assert getattr(fine, name) == pytest.approx(getattr(coarse, name), abs=tol)
     # the softer layer's contact is shorter than one material's (b 1.594 against 1.799;
-    # CalculiX gives b_sep = 1.588, docs/FINDINGS.md), its stick zone hardly changes
+    # CalculiX gives b_sep = 1.588, docs/findings/receding_materials.md), its stick zone
+    # hardly changes
     assert fine.b == pytest.approx(1.594, abs=3e-3) and fine.a == pytest.approx(0.2538, abs=1e-3)
 
 

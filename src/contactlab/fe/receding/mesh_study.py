@@ -25,10 +25,10 @@ import numpy as np
 import xarray as xr
 
 from contactlab.fe import extrapolate as ex
-from contactlab.fe.ddt import profile_scale, solve
 from contactlab.fe.deck import kolosov
-from contactlab.fe.interface import onset_point, plastic_slip, remote_slope
-from contactlab.fe.receding import STICK_SLIP_NAME
+from contactlab.fe.receding.ddt import profile_scale, solve
+from contactlab.fe.receding.profiles import onset_point, plastic_slip, remote_slope
+from contactlab.fe.receding.run import STICK_SLIP_NAME
 
 QUANTITIES = ("b", "b_sep", "a", "a_slip", "K_T")
 
@@ -74,7 +74,7 @@ def run_quantities(run: xr.Dataset) -> dict[str, float]:
 def ddt_quantities(problem: str, f: float, w: float, ns: list[int],
                    **settings) -> tuple[np.ndarray, np.ndarray]:
     """(values[quantity, N], converged[N]) of the DDT solutions (b_sep repeats b, a_slip a);
-    ``settings`` as :func:`contactlab.fe.ddt.solve` (``materials`` included)."""
+    ``settings`` as :func:`contactlab.fe.receding.ddt.solve` (``materials`` included)."""
     out = np.full((len(QUANTITIES), len(ns)), np.nan)
     conv = np.zeros(len(ns), dtype=bool)
     name = STICK_SLIP_NAME[problem]
@@ -101,7 +101,7 @@ def study(runs: list[xr.Dataset], h_ref: float, length: float, ddt_n: int,
     ``runs``: outputs of ``contactlab fe receding`` of one problem, any block edges;
     the mesh series is every run on the strip length ``length`` (over c), the domain
     series every run with h/c = ``h_ref``. ``settings``: the DDT discretisation
-    (:func:`contactlab.fe.ddt.solve`).
+    (:func:`contactlab.fe.receding.ddt.solve`).
     """
     if not runs:
         raise ValueError("the FE study needs runs")

@@ -3,7 +3,7 @@ agreement of FE and DDT on a rough interface (transition points within 2 % at th
 compliances and more, one of them moving b by more than 10 % from the smooth answer).
 
 The table's plumbing is also exercised with the smooth solvers at C = 0 (the gap problem's
-coarse run, whose agreement with the DDT is known: tests/fe/test_receding.py).
+coarse run, whose agreement with the DDT is known: tests/fe/receding/test_receding.py).
 """
 
 from __future__ import annotations
@@ -11,10 +11,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from contactlab.fe.ddt import solve
 from contactlab.fe.deck import RecedingModel
 from contactlab.fe.mesh2d import StripBlockGeometry
-from contactlab.fe.rough import mesh_series, rough_ddt, rough_table, run_rough
+from contactlab.fe.receding.ddt import solve
+from contactlab.fe.receding.rough import mesh_series, rough_ddt, rough_table, run_rough
 
 
 def smooth_ddt(problem: str, compliance: float, compliance_t: float, f: float,
@@ -64,7 +64,7 @@ def test_mesh_series_groups_cases_and_extrapolates(gap_coarse) -> None:
 def test_coarse_compliant_line_load() -> None:
     """Line load, f = 0.5, C = 1, C_T = C/m (m = 2(1 - nu)/(2 - nu)), far-field edges, two
     passes, h/c = 0.1: b and a within 0.003 of the mesh-converged FE values (h/c = 0.0125,
-    docs/FINDINGS.md), b 18 % beyond the smooth 1.80."""
+    docs/findings/fe.md), b 18 % beyond the smooth 1.80."""
     model = RecedingModel("line", f=0.5, young=20000.0, edges="farfield", farfield_passes=2)
     geom = StripBlockGeometry(length=10.0, depth=20.0, h=0.1, x_fine=4.0, layer_rows=8)
     ds = run_rough(model, geom, 1.0, 1.0 / (1.4 / 1.7))
@@ -98,7 +98,7 @@ def test_small_compliance_approaches_the_smooth_run() -> None:
 def test_coarse_compliant_patch_moves_b_beyond_ten_percent() -> None:
     """Uniform patch w/c = 2.5, f = 0.3, C = 3, far field (two passes), h/c = 0.1: b and a
     within 0.005 of the mesh-converged FE values 3.864 and 2.080 (h/c = 0.0125,
-    docs/FINDINGS.md), b 11 % beyond the smooth interface's DDT b."""
+    docs/findings/fe.md), b 11 % beyond the smooth interface's DDT b."""
     model = RecedingModel("uniform", w=2.5, f=0.3, young=20000.0, edges="farfield",
                           farfield_passes=2)
     geom = StripBlockGeometry(length=12.5, depth=25.0, h=0.1, x_fine=6.0, layer_rows=8)

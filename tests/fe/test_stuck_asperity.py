@@ -10,7 +10,7 @@ import pytest
 import xarray as xr
 
 from contactlab.cli import main
-from contactlab.fe.asperity import (
+from contactlab.fe.stuck_asperity import (
     AsperityModel,
     asperity_deck,
     reaction_totals,

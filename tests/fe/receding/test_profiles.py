@@ -1,11 +1,11 @@
-"""Transition points from interface profiles (pure functions of contactlab.fe.interface)."""
+"""Transition points from interface profiles (pure functions of contactlab.fe.receding.profiles)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from contactlab.fe.interface import (
+from contactlab.fe.receding.profiles import (
     mobilisation,
     profile_difference,
     separation_point,
@@ -45,7 +45,7 @@ def test_mobilisation_and_difference() -> None:
 
 
 def test_closure_point_is_the_zero_of_the_separation() -> None:
-    from contactlab.fe.interface import closure_point
+    from contactlab.fe.receding.profiles import closure_point
 
     x = np.linspace(0.0, 4.0, 41)  # b = 2.13 lies between nodes
     c = 0.7
@@ -59,7 +59,7 @@ def test_closure_point_is_the_zero_of_the_separation() -> None:
 
 
 def test_excess_point_finds_where_slip_passes_the_elastic_limit() -> None:
-    from contactlab.fe.interface import excess_point, slip_excess
+    from contactlab.fe.receding.profiles import excess_point, slip_excess
 
     x = np.linspace(0.0, 3.0, 31)
     compliance, compliance_t, f, a = 1.0, 1.2, 0.5, 0.917

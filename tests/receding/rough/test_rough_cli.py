@@ -13,7 +13,7 @@ import xarray as xr
 from contactlab.cli import main
 from contactlab.receding.core.interface import mindlin_ratio
 from contactlab.receding.core.materials import ONE_MATERIAL
-from contactlab.receding.liftoff.rough import rough_point
+from contactlab.receding.rough.sweep import rough_point
 from contactlab.schema import schema_default
 
 KEY = "receding.rough.pairs.tests"

@@ -5,8 +5,8 @@ The interface closes by p/k_n and shears elastically by q/k_t up to slip at |q| 
 (:mod:`contactlab.fe.interface_law`: CalculiX's surface-to-surface penalty contact with
 the linear pressure-overclosure slope k_n and the stick slope k_t, per unit area, given
 as the dimensionless compliances C and C_T). The problems, meshes and block edges are
-those of the smooth models (:mod:`contactlab.fe.receding`, thesis ch. 8); the transition
-points are read off the interface displacements (:func:`contactlab.fe.receding.transitions`):
+those of the smooth models (:mod:`contactlab.fe.receding.run`, thesis ch. 8); the transition
+points are read off the interface displacements (:func:`contactlab.fe.receding.run.transitions`):
 
 ``b``   separation point (contact extent): the separation passes from closure to opening;
 ``a``   stick-slip point (``a3`` for the gap problem): the slip passes the interface's
@@ -28,7 +28,7 @@ import xarray as xr
 from contactlab.fe.deck import RecedingModel
 from contactlab.fe.extrapolate import richardson
 from contactlab.fe.mesh2d import StripBlockGeometry
-from contactlab.fe.receding import STICK_SLIP_NAME, run_receding
+from contactlab.fe.receding.run import STICK_SLIP_NAME, run_receding
 
 #: The DDT side of :func:`rough_table`: ``ddt(problem, compliance, compliance_t, f, w_hat)``
 #: returns the transition points in units of c, ``{"b": ..., "a": ...}`` ("a" is a3 for the
@@ -46,7 +46,7 @@ def run_rough(model: RecedingModel, geom: StripBlockGeometry, compliance: float,
               keep: str | None = None) -> xr.Dataset:
     """One FE solution of ``model`` with the compliant interface (C, C_T) on ``geom``.
 
-    The Dataset of :func:`contactlab.fe.receding.run_receding`: interface profiles (N, S,
+    The Dataset of :func:`contactlab.fe.receding.run.run_receding`: interface profiles (N, S,
     separation, slip; Part III normalisation, the separation in contact being the closure
     -C |N|), ``b_fe`` and ``a_fe`` (``a3_fe``) read off the displacements,
     ``b_traction_fe``/``a_traction_fe`` from the traction thresholds of the smooth models
@@ -140,7 +140,7 @@ def mesh_series(runs: Sequence[xr.Dataset]) -> xr.Dataset:
         },
         coords={"h": ("h", sizes, {"long_name": "interface element size h/c", "units": "1"})},
         attrs={"title": "FE transition points of the compliant interface over the meshes",
-               "source": "contactlab.fe.rough.mesh_series"},
+               "source": "contactlab.fe.receding.rough.mesh_series"},
     )
 
 
@@ -196,18 +196,18 @@ def rough_table(runs: Sequence[xr.Dataset], ddt: DdtSolver) -> xr.Dataset:
                          {"long_name": "finest interface element size h/c", "units": "1"}),
         },
         attrs={"title": "compliant-interface transition points: FE against DDT",
-               "source": "contactlab.fe.rough.rough_table"},
+               "source": "contactlab.fe.receding.rough.rough_table"},
     )
 
 
 def rough_ddt(*, n: Mapping[str, int], refine_max_n: Mapping[str, int],
               lam: Mapping[str, float], e_extra: Mapping[str, float]) -> DdtSolver:
     """The DDT side of :func:`rough_table`: the compliant-interface solution of the same
-    problem (:func:`contactlab.receding.liftoff.rough.rough_point`, linear law, C and C_T as
+    problem (:func:`contactlab.receding.rough.sweep.rough_point`, linear law, C and C_T as
     given) at N = ``n[problem]``, refined up to ``refine_max_n[problem]`` if a contact check
     fails; ``lam`` and ``e_extra`` per problem (the line load's lambda and e, a patch's
     lambda_b and e - w). A point that does not converge gives NaN."""
-    from contactlab.receding.liftoff.rough import rough_point
+    from contactlab.receding.rough.sweep import rough_point
 
     def ddt(problem: str, compliance: float, compliance_t: float, f: float,
             w_hat: float) -> dict[str, float]:
@@ -225,9 +225,9 @@ def ddt_curves(table: xr.Dataset, *, points: int, n: Mapping[str, int],
                e_extra: Mapping[str, float]) -> xr.Dataset:
     """b and a of the DDT over C (``points`` log-spaced from a third of the smallest to three
     times the largest C of ``table``) for each problem of the FE comparison ``table``, at
-    its f, w/c and C_T/C (:func:`contactlab.receding.liftoff.rough.sweep_rough`): variables
+    its f, w/c and C_T/C (:func:`contactlab.receding.rough.sweep.sweep_rough`): variables
     ``curve_b``, ``curve_a`` on (``curve_problem``, ``curve_C``)."""
-    from contactlab.receding.liftoff.rough import sweep_rough
+    from contactlab.receding.rough.sweep import sweep_rough
 
     problems = list(dict.fromkeys(str(p) for p in table["problem"].values))
     C = table["compliance"].values

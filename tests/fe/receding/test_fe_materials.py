@@ -77,8 +77,8 @@ def test_three_pairs_agree_with_the_distributed_dislocations() -> None:
     Ti-6Al-4V and a soft layer on steel (beta = -0.28) on h/c = 0.1, 0.05, 0.025,
     extrapolated as the FE study does, against the DDT at N = 400 (spread from N = 200):
     b and a placed inside the element (b_sep, a_slip) and K_T within 2 %."""
-    from contactlab.fe.materials import pair_table
-    from contactlab.fe.receding import run_receding
+    from contactlab.fe.receding.materials import pair_table
+    from contactlab.fe.receding.run import run_receding
 
     runs = []
     for strip, nu1, block, nu2 in PAIRS.values():

@@ -28,7 +28,7 @@ from contactlab.receding.problems import (
 )
 from contactlab.schema import SCHEMA_PATH
 
-SECTIONS = Path(__file__).resolve().parents[2] / "src" / "contactlab" / "report" / "sections"
+SECTIONS = Path(__file__).resolve().parents[3] / "src" / "contactlab" / "report" / "sections"
 
 
 def _enum(schema: dict, path: str) -> list[str]:
@@ -238,7 +238,7 @@ def test_the_patch_seed_table_is_recomputed_by_the_solver() -> None:
 
 def test_no_receding_module_imports_one_that_imports_it_back() -> None:
     """Every import counts (top of a module or inside a function): no circle."""
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2]))
     from test_layers import MODULES, _existing, imports, module_name
 
     graph = {}

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from contactlab.fe.receding import STICK_SLIP_NAME
+from contactlab.fe.receding.run import STICK_SLIP_NAME
 from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.core.solution import ContactSolution
 from contactlab.receding.gap.solver import solve_gap

@@ -14,8 +14,8 @@ from contactlab.cli import command, main
 from contactlab.fe import extrapolate as ex
 from contactlab.fe.deck import RecedingModel, receding_deck
 from contactlab.fe.farfield import flamant_displacements, halfplane_displacements
-from contactlab.fe.interface import onset_point, plastic_slip, remote_slope
 from contactlab.fe.mesh2d import StripBlockGeometry, strip_on_block
+from contactlab.fe.receding.profiles import onset_point, plastic_slip, remote_slope
 
 
 def test_richardson_recovers_limit_and_order() -> None:
@@ -83,7 +83,7 @@ def test_halfplane_field_superposes_point_forces() -> None:
 
 
 def test_interface_forces_carry_the_load() -> None:
-    from contactlab.fe.receding import interface_forces
+    from contactlab.fe.receding.run import interface_forces
 
     x = np.linspace(0.0, 2.0, 41)
     prof = {"x": x, "N": -np.sqrt(np.clip(1 - (x / 1.8) ** 2, 0, None)), "S": 0.2 * x}

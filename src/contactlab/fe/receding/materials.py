@@ -4,7 +4,7 @@ Each pair (the strip's E, nu and the block's) is run on a mesh series (``fe rece
 ``--young-half-plane``, ``--poisson-half-plane``: the block's elements get the half-plane's
 material, the far-field edges its Flamant field, and separation, slip and K_T are
 normalised by the composite compliance C*; :mod:`contactlab.fe.deck`). The FE values are
-those of the mesh and domain study (:mod:`contactlab.fe.study`): b and a node by node,
+those of the mesh and domain study (:mod:`contactlab.fe.receding.mesh_study`): b and a node by node,
 b_sep and a_slip from the onset of separation and slip inside the element, K_T the slope
 of the separation beyond b; each extrapolated to h -> 0 by Richardson with the observed
 order where the series is monotone (:func:`contactlab.fe.extrapolate.richardson`; else the
@@ -21,9 +21,9 @@ import numpy as np
 import xarray as xr
 
 from contactlab.fe import extrapolate as ex
-from contactlab.fe.ddt import solve
-from contactlab.fe.receding import STICK_SLIP_NAME
-from contactlab.fe.study import QUANTITIES, run_materials, run_quantities
+from contactlab.fe.receding.ddt import solve
+from contactlab.fe.receding.mesh_study import QUANTITIES, run_materials, run_quantities
+from contactlab.fe.receding.run import STICK_SLIP_NAME
 
 #: the quantities compared: FE name -> DDT name (the sub-element points estimate b and a)
 COMPARED = {"b": "b", "b_sep": "b", "a": "a", "a_slip": "a", "K_T": "K_T"}
@@ -39,7 +39,7 @@ def pair_table(runs: Sequence[xr.Dataset], ddt_n: Sequence[int],
                **settings: float | None) -> xr.Dataset:
     """One row per (pair, quantity): the FE mesh series extrapolated to h -> 0 beside the
     DDT (``settings``: the line load's ``lam``, ``e`` or the patch's ``lam_b``,
-    ``e_minus_w``, as :func:`contactlab.fe.ddt.solve`). Runs are grouped by their
+    ``e_minus_w``, as :func:`contactlab.fe.receding.ddt.solve`). Runs are grouped by their
     materials; each group must be one problem at one f (and w/c)."""
     groups: dict = {}
     for run in runs:

@@ -30,7 +30,8 @@ from contactlab.fe.deck import (
     traction_unit,
 )
 from contactlab.fe.frd import read_dat_displacements
-from contactlab.fe.interface import (
+from contactlab.fe.mesh2d import PlaneMesh, StripBlockGeometry, strip_on_block
+from contactlab.fe.receding.profiles import (
     N_TOL,
     SLIP_TOL,
     closure_point,
@@ -40,7 +41,6 @@ from contactlab.fe.interface import (
     slip_excess,
     stick_slip_point,
 )
-from contactlab.fe.mesh2d import PlaneMesh, StripBlockGeometry, strip_on_block
 from contactlab.io import variable
 
 #: Name of the stick-slip point of each problem (a3 in ch. 5, a in chs 6-7).

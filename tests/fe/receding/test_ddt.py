@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from contactlab.fe.ddt import SOLVERS, reference
+from contactlab.fe.receding.ddt import SOLVERS, reference
 from contactlab.receding.gap.solver import solve_gap
 from contactlab.receding.liftoff.line import solve_line
 from contactlab.receding.liftoff.patch import solve_patch

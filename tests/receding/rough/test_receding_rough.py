@@ -30,7 +30,7 @@ from contactlab.receding.liftoff.frictionless import solve_frictionless
 from contactlab.receding.liftoff.line import solve_line
 from contactlab.receding.liftoff.loading import make_load
 from contactlab.receding.liftoff.patch import solve_patch
-from contactlab.receding.liftoff.rough import (
+from contactlab.receding.rough.sweep import (
     rough_point,
     rough_profile,
     solve_rough,
@@ -329,7 +329,7 @@ def test_tested_pairs_against_their_linearisation(published_summary) -> None:
     """SU3 on a 10 mm layer: the measured law (soft near the edges) spreads the contact
     beyond the law linearised at the mean pressure, which spreads it beyond the smooth
     one; RU1's measured law is refused with its reason, its linearisation is solved."""
-    from contactlab.receding.liftoff.rough import tested_pairs
+    from contactlab.receding.rough.sweep import tested_pairs
 
     laws = {t: law_from_summary(published_summary, t, normal_direction="loading",
                                 tangential_direction="combined", cc_basis="mean")

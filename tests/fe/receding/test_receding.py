@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from contactlab.fe.compare import agreement, convergence, percent_difference
-from contactlab.fe.ddt import DdtReference, reference
+from contactlab.fe.receding.compare import agreement, convergence, percent_difference
+from contactlab.fe.receding.ddt import DdtReference, reference
 
 
 @pytest.fixture(scope="module")
