@@ -425,8 +425,7 @@ COMMANDS = (
             Option("--path", "load factors lambda_1 lambda_2 ... of the problem's load",
                    number_in(0), nargs="+", key="fe.history.path"),
             *(o for o in _model_options() if o.flag not in ("--increments", "--level")),
-            Option("--increments", "least increments of each load step", int,
-                   key="fe.history.increments"),
+            Option("--increments", type=int, key="fe.history.increments"),
             Option("--level", "mesh level: a name of fe.levels, whose h/c the run takes "
                    "unless --h is given; recorded with the result", key="fe.history.level"),
             *_ccx(), out_option()),

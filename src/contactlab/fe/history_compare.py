@@ -10,6 +10,8 @@ each mesh of the runs and extrapolated to h -> 0 (Richardson with the observed o
 pressure profiles at each step's end are compared at the FE nodes in contact (largest
 difference in units of the load scale q at lambda = 1), and the frictional energy
 dissipated per step beside the DDT's (:func:`contactlab.receding.liftoff.history.segments`).
+The DDT's patch tractions (units of T/c, T = 2 p w) and slips are brought to the FE's
+pressure scale p by :func:`contactlab.fe.ddt.profile_scale`, its energies by its square.
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ import numpy as np
 import xarray as xr
 
 from contactlab.fe import extrapolate as ex
+from contactlab.fe.ddt import profile_scale
 from contactlab.fe.load_path import (
     OPEN,
     SLIP_BACKWARD,
@@ -94,6 +97,8 @@ def compare_history(runs: list[xr.Dataset], history) -> xr.Dataset:
     dn_max = np.full(steps, np.nan)
     ddt_words, fe_words = [], []
     finest = runs[-1]
+    w = float(first.get("w_hat", np.nan))
+    scale = profile_scale(first["problem"], w)
     x = finest["x"].values
     for k, state in enumerate(states):
         ends, codes = ddt_zones(state)
@@ -108,12 +113,16 @@ def compare_history(runs: list[xr.Dataset], history) -> xr.Dataset:
         for i in range(len(ends)):
             m = ex.richardson(h, fe[k, i])
             limit[k, i], uncertainty[k, i], order[k, i] = m.value, m.uncertainty, m.order
-        s_ddt, n_ddt = state.tractions(x)
+        s_ddt, n_ddt = (scale * v for v in state.tractions(x))
         contact = -finest["N"].values[k] > float(finest.attrs["n_tol"]) * path[k]
         contact &= x < state.b
         if contact.any():
             ds_max[k] = float(np.max(np.abs(finest["S"].values[k] - s_ddt)[contact]))
             dn_max[k] = float(np.max(np.abs(finest["N"].values[k] - n_ddt)[contact]))
+    ddt_b = np.array([s.b for s in states])
+    b_sep = np.array([[m.value, m.uncertainty] for m in
+                      (ex.richardson(h, np.array([float(r["b_sep_fe"][k]) for r in runs]))
+                       for k in range(steps))]).T
     with np.errstate(invalid="ignore", divide="ignore"):
         diff = 100.0 * (limit - ddt) / ddt
         raw = 100.0 * (fe[:, :, -1] - ddt) / ddt
@@ -136,6 +145,12 @@ def compare_history(runs: list[xr.Dataset], history) -> xr.Dataset:
             "fe_order": var(se, order, "observed order of the mesh series"),
             "difference": var(se, diff, "(extrapolated FE - DDT) / DDT", "percent"),
             "raw_difference": var(se, raw, "(finest FE - DDT) / DDT", "percent"),
+            "fe_b_sep": var(("step", "h"), np.array([r["b_sep_fe"].values for r in runs]).T,
+                            "FE b/c from the onset of separation"),
+            "fe_b_sep_limit": var(("step",), b_sep[0], "FE b_sep extrapolated to h -> 0"),
+            "fe_b_sep_uncertainty": var(("step",), b_sep[1], "its uncertainty"),
+            "b_sep_difference": var(("step",), 100.0 * (b_sep[0] - ddt_b) / ddt_b,
+                                    "(extrapolated FE b_sep - DDT b) / DDT b", "percent"),
             "max_shear_difference": var(("step",), ds_max, "largest |S_FE - S_DDT| over q "
                                         "at the FE nodes in contact, finest mesh"),
             "max_pressure_difference": var(("step",), dn_max, "largest |N_FE - N_DDT| over "
@@ -143,7 +158,7 @@ def compare_history(runs: list[xr.Dataset], history) -> xr.Dataset:
             "fe_dissipated": var(("step", "h"), np.array([r["dissipated"].values
                                                           for r in runs]).T,
                                  "FE energy dissipated over the step, (kappa+1) q^2 c^2/(2 mu)"),
-            "ddt_dissipated": var(("step",), [r["dissipated"] for r in rows],
+            "ddt_dissipated": var(("step",), [scale**2 * r["dissipated"] for r in rows],
                                   "DDT energy dissipated over the step, (kappa+1) q^2 c^2/(2 mu)"),
         },
         coords={"step": ("step", np.arange(1, steps + 1)),
@@ -151,7 +166,7 @@ def compare_history(runs: list[xr.Dataset], history) -> xr.Dataset:
                 "end": ("end", np.arange(width))},
     )
     out.attrs.update(problem=runs[0].attrs["problem"], f=float(runs[0].attrs["f"]),
-                     w_hat=float(runs[0].attrs.get("w_hat", np.nan)), path=path,
+                     w_hat=w, path=path,
                      ddt_zones=" | ".join(ddt_words), fe_zones=" | ".join(fe_words),
                      edges=runs[0].attrs["edges"],
                      farfield_passes=int(runs[0].attrs["farfield_passes"]),

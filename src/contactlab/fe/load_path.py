@@ -34,7 +34,14 @@ lambda = 1, slips over (kappa + 1) q c / (2 mu) as in :mod:`contactlab.fe.recedi
 
 Zone ends lie where the class changes between two neighbouring nodes, at the crossing of
 the mobilisation through 1 - ``slip_tol`` between them (stick/slip) or of the pressure
-through ``n_tol`` (b), as :mod:`contactlab.fe.interface` reads b and a.
+through ``n_tol`` (b), as :mod:`contactlab.fe.interface` reads b and a; these move in
+steps of h. ``b_sep_fe`` places b inside its element from the onset of separation
+(separation ~ (x - b)^(3/2), :func:`contactlab.fe.interface.onset_point`).
+
+Cycles: where a step's factor is that of two steps before it closes a cycle; the largest
+plastic slip change over the cycle where the interface is closed at both of its ends is
+zero when the slip has stopped (shakedown), and the energy dissipated over its two steps
+is the energy per cycle.
 
 The energy dissipated by friction over an increment is the interface integral of the
 mean shear of its two ends times the plastic slip increment, 2 int_0^X S du dx over the
@@ -61,7 +68,7 @@ from contactlab.fe.deck import (
     receding_deck,
     traction_unit,
 )
-from contactlab.fe.interface import N_TOL, SLIP_TOL, mobilisation, plastic_slip
+from contactlab.fe.interface import N_TOL, SLIP_TOL, mobilisation, onset_point, plastic_slip
 from contactlab.fe.mesh2d import PlaneMesh, StripBlockGeometry
 
 #: Plastic slip change over a step, as a fraction of the largest slip so far, below which
@@ -289,6 +296,20 @@ def step_zones(x: np.ndarray, n: np.ndarray, s: np.ndarray, plastic: np.ndarray,
     return codes, table, kinds, words, b
 
 
+def slip_change(plastic: np.ndarray, codes: np.ndarray, lag: int) -> np.ndarray:
+    """Largest |u_k - u_(k - lag)| of the plastic slip over the nodes closed (not OPEN) at
+    both states, per step k (the first ``lag`` steps: from the unloaded state, over their
+    closed nodes); the relative displacement of faces apart is no frictional slip."""
+    out = np.zeros(len(plastic))
+    for k in range(len(plastic)):
+        closed = codes[k] != OPEN
+        before = np.zeros_like(plastic[k]) if k < lag else plastic[k - lag]
+        if k >= lag:
+            closed &= codes[k - lag] != OPEN
+        out[k] = float(np.max(np.abs(plastic[k] - before)[closed], initial=0.0))
+    return out
+
+
 def _var(dims, values, long_name: str, units: str = "1", **attrs) -> xr.Variable:
     return xr.Variable(dims, np.asarray(values), {"long_name": long_name, "units": units,
                                                   **attrs})
@@ -339,6 +360,11 @@ def path_dataset(prof: dict[str, np.ndarray], ends: np.ndarray, model: RecedingM
     du = np.diff(np.vstack([np.zeros_like(u_end[:1]), u_end]), axis=0)
     n, s = prof["N"][ends], prof["S"][ends]
     codes, table, kinds, words, b = step_zones(x, n, s, u_end, factors, model.f)
+    b_sep = np.array([onset_point(x, prof["separation"][i], b[k], True)
+                      for k, i in enumerate(ends)])
+    closes = np.array([k >= 2 and factors[k] == factors[k - 2] for k in range(len(factors))])
+    cycle_change = np.where(closes, slip_change(u_end, codes, 2), np.nan)
+    cycle_energy = np.where(closes, per_step + np.r_[0.0, per_step[:-1]], np.nan)
     q = traction_unit(model, geom.thickness)
     applied = np.array([0.5 * v * model.load if model.problem == "line" else
                         v * model.load * model.w * geom.thickness for v in factors])
@@ -371,10 +397,18 @@ def path_dataset(prof: dict[str, np.ndarray], ends: np.ndarray, model: RecedingM
             "zone_kind": _var(("step", "zone"), kinds, "zone code of each zone from x = 0 "
                               "outwards (-1: none)"),
             "b_fe": _var(step_dim, b, "separation point b/c at the step's end"),
+            "b_sep_fe": _var(step_dim, b_sep, "separation point b/c placed inside its "
+                             "element from the onset of separation (interface.onset_point)"),
             "dissipated": _var(step_dim, per_step, "frictional energy dissipated over the "
                                "step, 2 int S du dx, over (kappa+1) q^2 c^2 / (2 mu)"),
-            "max_slip_change": _var(step_dim, np.max(np.abs(du), axis=1),
-                                    "largest plastic slip change over the step"),
+            "max_slip_change": _var(step_dim, slip_change(u_end, codes, 1),
+                                    "largest plastic slip change over the step where the "
+                                    "interface is closed at both ends"),
+            "cycle_slip_change": _var(step_dim, cycle_change, "largest plastic slip change "
+                                      "over the cycle the step closes (its factor that of two "
+                                      "steps before; NaN: none), closed at both ends"),
+            "cycle_dissipated": _var(step_dim, cycle_energy, "frictional energy dissipated "
+                                     "over the cycle the step closes (NaN: none)"),
             "equilibrium_error": _var(step_dim, equilibrium, "interface normal force over "
                                       "the applied load minus 1"),
             "increments": _var(step_dim, np.diff(np.r_[-1, ends]), "converged increments "
