@@ -29,7 +29,7 @@ EXAMPLES = """\
   contactlab fe receding --problem gap --h 0.1 --out gap.nc
   contactlab fe receding --problem uniform --level coarse --edges encastre --out run.nc
   contactlab fe history --problem line --path 1 0.5 --h 0.05 --out path.nc
-  contactlab fe history-compare path_h*.nc --out history_compare.nc
+  contactlab fe history-compare path.nc --out history_compare.nc
   contactlab fe compare --problem uniform --run run.nc --ddt-n 50 --out uniform.nc
   contactlab fe convergence gap_coarse.nc gap_medium.nc --out convergence_gap.nc
   contactlab fe study --problem line line_*.nc --out study_line.nc
