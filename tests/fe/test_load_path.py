@@ -111,9 +111,10 @@ COARSE_TOL = 0.12
 
 
 @pytest.mark.slow
-def test_unloading_line_load_matches_the_ddt_history_at_a_coarse_mesh() -> None:
+def test_unloading_line_load_matches_the_ddt_history_at_a_coarse_mesh(tmp_path) -> None:
     from contactlab.fe.history_compare import compare_history, ddt_history
     from contactlab.fe.load_path import run_load_path
+    from contactlab.io import write_netcdf
 
     model = RecedingModel("line", f=0.5, young=20000.0, edges="farfield", farfield_passes=1)
     run = run_load_path(model, COARSE, [1.0, 0.5], increments=4, level="medium")
@@ -134,6 +135,9 @@ def test_unloading_line_load_matches_the_ddt_history_at_a_coarse_mesh() -> None:
     assert np.allclose(out["fe_dissipated"].values[:, 0], out["ddt_dissipated"].values,
                        rtol=0.15)
     assert float(run["equilibrium_error"].max()) < 1e-2
+    # both results pass the house's netCDF checks (CF attributes of every variable)
+    write_netcdf(run, tmp_path / "run.nc")
+    write_netcdf(out, tmp_path / "compare.nc")
 
 
 @pytest.mark.slow

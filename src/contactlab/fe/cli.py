@@ -97,9 +97,13 @@ def _receding(args: argparse.Namespace) -> None:
 
 
 def _history(args: argparse.Namespace) -> None:
-    from contactlab.fe.load_path import run_load_path
+    from contactlab.fe.load_path import check_path, run_load_path
     from contactlab.io import stamp, write_netcdf
 
+    try:
+        check_path(args.path)
+    except ValueError as err:
+        raise ValueError(f"--path {' '.join(map(str, args.path))}: {err}") from None
     model, geom = _model(args)
     ds = run_load_path(model, geom, args.path, increments=args.increments, level=args.level,
                        threads=args.threads, keep=args.keep)
@@ -121,6 +125,9 @@ def _history_compare(args: argparse.Namespace) -> None:
     from contactlab.io import load_datasets, stamp, write_netcdf
 
     runs = load_datasets(args.runs, "FE history run")
+    for path, run in zip(args.runs, runs, strict=True):
+        if "path" not in run.attrs or "zone_ends" not in run:
+            raise ValueError(f"{path}: not an output of `contactlab fe history`")
     first = runs[0].attrs
     w = float(first.get("w_hat", float("nan")))
     history = ddt_history(first["problem"], float(first["f"]),

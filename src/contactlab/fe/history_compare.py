@@ -161,9 +161,11 @@ def compare_history(runs: list[xr.Dataset], history) -> xr.Dataset:
             "ddt_dissipated": var(("step",), [scale**2 * r["dissipated"] for r in rows],
                                   "DDT energy dissipated over the step, (kappa+1) q^2 c^2/(2 mu)"),
         },
-        coords={"step": ("step", np.arange(1, steps + 1)),
+        coords={"step": ("step", np.arange(1, steps + 1),
+                         {"long_name": "load step", "units": "1"}),
                 "h": ("h", h, {"long_name": "interface element size h/c", "units": "1"}),
-                "end": ("end", np.arange(width))},
+                "end": ("end", np.arange(width),
+                        {"long_name": "zone end, counted from x = 0 outwards", "units": "1"})},
     )
     out.attrs.update(problem=runs[0].attrs["problem"], f=float(runs[0].attrs["f"]),
                      w_hat=w, path=path,
