@@ -7,9 +7,10 @@ step both give the zones from x = 0 outwards (stick, slip forwards or backwards,
 where the FE's sequence of zones is the DDT's, every zone end is set beside the DDT's, on
 each mesh of the runs and extrapolated to h -> 0 (Richardson with the observed order,
 :func:`contactlab.fe.extrapolate.richardson`, over the finest three meshes). The shear and
-pressure profiles at each step's end are compared at the FE nodes in contact (largest
-difference in units of the load scale q at lambda = 1), and the frictional energy
-dissipated per step beside the DDT's (:func:`contactlab.receding.liftoff.history.segments`).
+pressure profiles at each step's end are compared at the FE nodes where both are in
+contact (largest difference in units of the load scale q at lambda = 1), and the frictional
+energy dissipated per step beside the DDT's
+(:func:`contactlab.receding.liftoff.history.segments`).
 The DDT's patch tractions (units of T/c, T = 2 p w) and slips are brought to the FE's
 pressure scale p by :func:`contactlab.fe.ddt.profile_scale`, its energies by its square.
 """
@@ -152,9 +153,9 @@ def compare_history(runs: list[xr.Dataset], history) -> xr.Dataset:
             "b_sep_difference": var(("step",), 100.0 * (b_sep[0] - ddt_b) / ddt_b,
                                     "(extrapolated FE b_sep - DDT b) / DDT b", "percent"),
             "max_shear_difference": var(("step",), ds_max, "largest |S_FE - S_DDT| over q "
-                                        "at the FE nodes in contact, finest mesh"),
-            "max_pressure_difference": var(("step",), dn_max, "largest |N_FE - N_DDT| over "
-                                           "q at the FE nodes in contact, finest mesh"),
+                                        "where both are in contact, finest mesh"),
+            "max_pressure_difference": var(("step",), dn_max, "largest |N_FE - N_DDT| over q "
+                                           "where both are in contact, finest mesh"),
             "fe_dissipated": var(("step", "h"), np.array([r["dissipated"].values
                                                           for r in runs]).T,
                                  "FE energy dissipated over the step, (kappa+1) q^2 c^2/(2 mu)"),
