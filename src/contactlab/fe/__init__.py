@@ -7,5 +7,7 @@
 ``interface_law``/``rough``       compliant (rough) interface: C, C_T -> ccx stiffnesses, the
                                   patch test, runs, mesh series, the table against a DDT
 ``ddt``/``compare``               distributed-dislocation references, agreement, convergence
+``load_path``/``history_compare``  a model along a load path (one *STEP per factor), its
+                                  zones per step, against the DDT history
 ``workflow``/``cli``              rule helpers and the ``contactlab fe`` commands
 """
