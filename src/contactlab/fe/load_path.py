@@ -433,6 +433,6 @@ def path_dataset(prof: dict[str, np.ndarray], ends: np.ndarray, model: RecedingM
         element_types="CPE4 (strip), CPE4 + CPE3 (block)",
         contact="surface-to-surface penalty, strip slave, block master, Coulomb friction; "
                 "one *STEP per load factor, contact state carried across steps",
-        converged=int(len(ends) == len(factors)),
+        converged=int(len(ends) == len(factors) and run.sta["final_time"] >= 1.0 - 1e-9),
     )
     return ds
