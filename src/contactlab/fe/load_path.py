@@ -1,4 +1,4 @@
-"""Finite element receding-contact models along a load path: one CalculiX ``*STEP`` per factor.
+"""FE receding-contact models (sec. 8.2) along a load path: one CalculiX ``*STEP`` per factor.
 
 A path is a sequence of load factors lambda_1, lambda_2, ... of the problem's load (the
 line load P, a patch's pressure p; :class:`contactlab.fe.deck.RecedingModel` ``load`` is
