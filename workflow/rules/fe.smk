@@ -243,6 +243,54 @@ if rulehelpers.materials_fe_runs(FE, RESULTS):
     ALL_TARGETS.append(result("fe/materials_compare.nc"))
 
 
+# ---- Load paths (opt-in, in no default target): one model per problem and mesh of
+# fe.history.h taken along fe.history.path, one ccx *STEP per load factor, and the runs
+# against the DDT history of the same path, e.g.
+#     snakemake -j2 results/fe/history_compare_line.nc
+
+
+rule fe_history:
+    """One receding-contact model along the load path fe.history.path on one mesh."""
+    output:
+        result("fe/history/{problem}_h{h}.nc"),
+    wildcard_constraints:
+        problem="gap|line|uniform",
+        h=r"[0-9.e-]+",
+    params:
+        args=lambda wc: command_args(
+            "fe history", config, problem=wc.problem, h=float(wc.h), level=f"h{wc.h}"
+        ),
+    priority: 10
+    log:
+        logs("fe/history_{problem}_h{h}.log"),
+    benchmark:
+        logs("benchmarks/fe_history_{problem}_h{h}.tsv"),
+    threads: 1
+    shell:
+        "contactlab fe history {params.args:q} --threads {threads:q} --out {output:q}"
+        " 2> {log:q}"
+
+
+rule fe_history_compare:
+    """results/fe/history_compare_{problem}.nc: the zones along the path on the meshes of
+    fe.history.h (h -> 0) against the DDT history."""
+    input:
+        lambda wc: [result(f"fe/history/{wc.problem}_h{float(h):g}.nc")
+                    for h in FE["history"]["h"]],
+    output:
+        result("fe/history_compare_{problem}.nc"),
+    wildcard_constraints:
+        problem="line|uniform",
+    params:
+        args=lambda wc: command_args("fe history-compare", config),
+    log:
+        logs("fe/history_compare_{problem}.log"),
+    benchmark:
+        logs("benchmarks/fe_history_compare_{problem}.tsv"),
+    shell:
+        "contactlab fe history-compare {params.args:q} {input:q} --out {output:q} 2> {log:q}"
+
+
 rule fe_report:
     """Report section: FE against DDT (Figs 8.3-8.19), agreement and convergence, Fig. 3.8."""
     input:

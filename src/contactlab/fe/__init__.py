@@ -13,7 +13,8 @@ The models:
 ``stuck_asperity``                3D elastic-perfectly plastic stuck asperity (Fig. 3.8)
 ``receding``                      the receding-contact models of sec. 8.2-8.3 (its own
                                   package: runs, interface profiles, the mesh and domain
-                                  study, two materials, the rough interface, the DDT side)
+                                  study, two materials, the rough interface, the DDT side,
+                                  a model along a load path and its comparison)
 
 ``report``/``cli``                the report section and the ``contactlab fe`` commands
 """

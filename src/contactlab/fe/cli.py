@@ -28,6 +28,8 @@ POISSON = number_in(-1, 0.5, open_low=True, open_high=True)
 EXAMPLES = """\
   contactlab fe receding --problem gap --h 0.1 --out gap.nc
   contactlab fe receding --problem uniform --level coarse --edges encastre --out run.nc
+  contactlab fe history --problem line --path 1 0.5 --h 0.05 --out path.nc
+  contactlab fe history-compare path.nc --out history_compare.nc
   contactlab fe compare --problem uniform --run run.nc --ddt-n 50 --out uniform.nc
   contactlab fe convergence gap_coarse.nc gap_medium.nc --out convergence_gap.nc
   contactlab fe study --problem line line_*.nc --out study_line.nc
@@ -92,6 +94,58 @@ def _receding(args: argparse.Namespace) -> None:
         history=args.history,
     )
     write_netcdf(ds, args.out)
+
+
+def _history(args: argparse.Namespace) -> None:
+    from contactlab.fe.receding.load_path import check_path, run_load_path
+    from contactlab.io import stamp, write_netcdf
+
+    try:
+        check_path(args.path)
+    except ValueError as err:
+        raise ValueError(f"--path {' '.join(map(str, args.path))}: {err}") from None
+    model, geom = _model(args)
+    ds = run_load_path(model, geom, args.path, increments=args.increments, level=args.level,
+                       threads=args.threads, keep=args.keep)
+    stamp(
+        ds,
+        title=f"FE solution (CalculiX) of the receding contact problem '{args.problem}' along "
+              f"the load path {' -> '.join(f'{v:g}' for v in args.path)}",
+        source="plane-strain strip on block, gmsh mesh, CalculiX ccx, one *STEP per load "
+               "factor (contactlab.fe.receding.load_path)",
+        history=args.history,
+    )
+    write_netcdf(ds, args.out)
+
+
+def _history_compare(args: argparse.Namespace) -> None:
+    import logging
+
+    from contactlab.fe.receding.history_compare import compare_history, ddt_history
+    from contactlab.io import load_datasets, stamp, write_netcdf
+
+    runs = load_datasets(args.runs, "FE history run")
+    for path, run in zip(args.runs, runs, strict=True):
+        if "path" not in run.attrs or "zone_ends" not in run:
+            raise ValueError(f"{path}: not an output of `contactlab fe history`")
+    first = runs[0].attrs
+    w = float(first.get("w_hat", float("nan")))
+    history = ddt_history(first["problem"], float(first["f"]),
+                          None if first["problem"] == "line" else w,
+                          list(first["path"]), args.n, args.n_inner, args.max_step,
+                          args.max_solves)
+    out = compare_history(runs, history)
+    out.attrs.update(ddt_n=args.n, ddt_n_inner=args.n_inner, ddt_max_step=args.max_step)
+    log = logging.getLogger(__name__)
+    for k in range(out.sizes["step"]):
+        log.info("step %d (lambda %g): DDT %s; FE %s; extrapolated - DDT (%%) %s", k + 1,
+                 float(out["factor"][k]), out.attrs["ddt_zones"].split(" | ")[k],
+                 out.attrs["fe_zones"].split(" | ")[k],
+                 ", ".join(f"{v:+.2f}" for v in out["difference"].values[k] if v == v))
+    stamp(out, title="FE (CalculiX) load path against the distributed-dislocation history",
+          source="contactlab fe history runs; DDT contactlab.receding.liftoff.history",
+          history=args.history, inputs=runs)
+    write_netcdf(out, args.out)
 
 
 def _rough(args: argparse.Namespace) -> None:
@@ -367,6 +421,41 @@ COMMANDS = (
             *_model_options(),
             *_ccx(), out_option()),
         run=_receding, select="problem"),
+    Command(
+        NAME, "history", "run one receding-contact model along a load path",
+        description="As `fe receding`, the load taken through the factors of --path, one "
+                    "CalculiX *STEP each (the contact's friction state carried from step to "
+                    "step): interface profiles, zones (stick, slip forwards or backwards, "
+                    "open), slip increments and the frictional energy dissipated at the end "
+                    "of every step (docs/FINDINGS.md, FE section, load paths).",
+        options=(
+            _problem("gap (Fig. 8.1), line load (Fig. 8.7) or uniform patch (Fig. 8.13)"),
+            Option("--path", "load factors lambda_1 lambda_2 ... of the problem's load",
+                   number_in(0), nargs="+", key="fe.history.path"),
+            *(o for o in _model_options() if o.flag not in ("--increments", "--level")),
+            Option("--increments", type=int, key="fe.history.increments"),
+            Option("--level", "mesh level: a name of fe.levels, whose h/c the run takes "
+                   "unless --h is given; recorded with the result", key="fe.history.level"),
+            *_ccx(), out_option()),
+        run=_history, select="problem"),
+    Command(
+        NAME, "history-compare", "FE load paths against the DDT history",
+        description="Zone ends (stick, slip forwards or backwards, open) at the end of every "
+                    "step of `fe history` runs on a mesh series, extrapolated to h -> 0 "
+                    "(Richardson, finest three meshes), beside the distributed-dislocation "
+                    "history of the same problem, f and path (`receding history`); shear and "
+                    "pressure differences and the energy dissipated per step.",
+        options=(Option("runs", "outputs of `fe history` (one problem, f and path)",
+                        input_file, nargs="+"),
+                 Option("--n", "DDT Gauss-Chebyshev points N", int, key="receding.history.n"),
+                 Option("--n-inner", "DDT points of each interior slip zone", int,
+                        key="receding.history.n_inner"),
+                 Option("--max-step", "DDT's largest sub-step in lambda", float,
+                        key="receding.history.max_step"),
+                 Option("--max-solves", "DDT's most incremental solves", int,
+                        key="receding.history.max_solves"),
+                 out_option()),
+        run=_history_compare),
     Command(
         NAME, "rough", "run one receding-contact model on a compliant (rough) interface",
         description="As `fe receding`, with the interface's normal and tangential "

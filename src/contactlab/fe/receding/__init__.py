@@ -8,6 +8,8 @@ dislocations (DDT).
 ``rough``       a compliant (rough) interface: runs, mesh series, the table against a DDT
 ``ddt``         the DDT side of the cross-checks: transition points and profiles
 ``compare``     agreement with the DDT and convergence
+``load_path``   one model along a load path (one ccx step per load factor), zones per step
+``history_compare``  a load path on a mesh series against the DDT history
 
 The CalculiX layer they build on (meshes, decks, ccx, result files) is :mod:`contactlab.fe`.
 """
