@@ -279,6 +279,7 @@ class PanelModel:
     def _iterate(self, start: PanelState, lam: float, tol: float, one: bool) -> PanelState:
         u0 = start.u.copy()
         states = start.states.copy()
+        opened = start.states == OPEN
         seen: set[bytes] = set()
         with single_thread():
             for solves in range(1, ITERATIONS + 1):
@@ -288,8 +289,10 @@ class PanelModel:
                 seen.add(key)
                 state = self.solve_states(lam, states, u0)
                 new = self.amend(state, u0, tol * max(1.0, abs(lam)), one)
-                closing = (states == OPEN) & (new != OPEN)
-                u0[closing] = state.u[closing]  # a panel that closes keeps its slip
+                # a panel open at the start that closes keeps the slip it closes with; one
+                # in contact at the start keeps its own, opened and closed in between
+                closing = (states == OPEN) & (new != OPEN) & opened
+                u0[closing] = state.u[closing]
                 if np.array_equal(new, states):
                     state.solves = solves
                     return state
