@@ -7,17 +7,19 @@ meets Coulomb's law to round-off, and the command runs."""
 from __future__ import annotations
 
 import json
+from itertools import pairwise
 
 import numpy as np
 import pytest
 
 from contactlab.cli import main
-from contactlab.receding.liftoff.cycles import cycles, follow, model_for, segment_rows
+from contactlab.receding.liftoff.cycles import cycles, extend, follow, model_for, segment_rows
 from contactlab.receding.liftoff.loading import make_load
 from contactlab.receding.liftoff.panels import (
     OPEN,
     PanelModel,
     checks,
+    dissipated,
     edge_estimate,
     panel_influence,
     stick_end,
@@ -113,7 +115,7 @@ def test_reloading_after_unloading_settles(line_model) -> None:
             if name.startswith("max_") and name != "max_slip_change":
                 assert value < ROUND_OFF, (name, value)
     assert abs(float(rows[2]["b"]) - float(rows[0]["b"])) <= H + 1e-12
-    for before, after in zip(history.states[1:], history.states[2:], strict=False):
+    for before, after in pairwise(history.states[1:]):
         worst = checks(after, before, 0.5, line_model.grid, 1.0)
         assert max(worst.values()) < ROUND_OFF
 
@@ -130,14 +132,11 @@ def test_cycles_run_until_the_state_repeats(line_model) -> None:
     assert result.slip_change[-1] <= 1e-6 * scale
     history = result.history
     history.targets.extend([0.5, 1.0])
-    from contactlab.receding.liftoff.cycles import extend
-    from contactlab.receding.liftoff.panels import dissipated
 
     start = len(history.states) - 1
     assert extend(history, 0.5) and extend(history, 1.0)
     again = history.states[start:]
-    energy = sum(dissipated(a, b, line_model.grid) for a, b in zip(again, again[1:],
-                                                                    strict=False))
+    energy = sum(dissipated(a, b, line_model.grid) for a, b in pairwise(again))
     assert abs(energy - result.energy[-1]) < 1e-3 * result.energy[-1]
     assert np.max(np.abs(again[-1].u - again[0].u)) <= 1e-5 * scale
     assert "cyclic slip" in result.verdict
@@ -198,9 +197,15 @@ def test_history_command_cycles(tmp_path, capsys: pytest.CaptureFixture[str]) ->
         assert float(ds["segment_dissipated"].min()) > 0
         assert int((ds["panel_state"].isel(step=-1) != OPEN).sum()) > 0
     assert main(["receding", "history", "--path", "1", "0.5", "1"]) == 0
-    assert "0.5 -> 1 (5 steps)" in capsys.readouterr().out
+    assert "0.5 -> 1 (20 steps)" in capsys.readouterr().out
     for words, expected in ((["--method", "ddt", "--cycles", "2"], "--cycles 2 needs"),
                             (["--cycles", "2", "--between", "1", "0.5"], "--between 1 0.5")):
         assert main(["receding", "history", *words]) == 2
         err = capsys.readouterr().err.strip()
         assert expected in err and "Traceback" not in err and len(err.splitlines()) == 1
+
+
+def test_history_refuses_panels_beyond_memory(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["receding", "history", "--panel-width", "1e-6"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--panel-width 1e-06" in err and "GiB" in err and len(err.splitlines()) == 1

@@ -234,7 +234,7 @@ def _history_panels(args: argparse.Namespace) -> None:
         factors = [high] + [low, high] * args.cycles
     else:
         factors = list(args.path)
-    steps = least_sub_steps(factors, args.max_step)
+    steps = least_sub_steps(factors, args.panel_step)
     model = model_for(problem.law, point.w_hat or 0.0, args.f, args.panel_width,
                       args.tail_start, args.tail_length)
     unknowns = 2 * model.grid.size + 1
@@ -242,15 +242,15 @@ def _history_panels(args: argparse.Namespace) -> None:
     start = time.process_time()
     result = None
     if args.cycles:
-        result = cycles(model, low, high, args.cycles, args.max_step, args.cycle_tol)
+        result = cycles(model, low, high, args.cycles, args.panel_step, args.cycle_tol)
         history = result.history
     else:
-        history = follow(model, factors, args.max_step)
+        history = follow(model, factors, args.panel_step)
     rows = segment_rows(history)
     values = {"problem": problem.name, "f": args.f, "w_hat": point.w_hat,
               "method": "panels", "panel_width": args.panel_width,
               "x_tail": model.grid.x_tail, "x_max": model.grid.x_max,
-              "max_step": args.max_step}
+              "panel_step": args.panel_step}
     out = {**values, "path": history.targets, "completed": history.completed,
            "converged": history.converged, "message": history.message,
            "least_sub_steps": steps, "panels": model.grid.size,
@@ -376,6 +376,7 @@ COMMANDS = (
                  Option("--max-step", type=float, key=f"{HISTORY}.max_step"),
                  Option("--max-solves", type=int, key=f"{HISTORY}.max_solves"),
                  Option("--panel-width", type=float, unit="c", key=f"{HISTORY}.panel_width"),
+                 Option("--panel-step", type=float, key=f"{HISTORY}.panel_step"),
                  Option("--tail-start", type=float, unit="c", key=f"{HISTORY}.tail_start"),
                  Option("--tail-length", type=float, unit="c",
                         key=f"{HISTORY}.tail_length"),
