@@ -35,6 +35,7 @@ from itertools import pairwise
 
 import numpy as np
 
+from contactlab.receding.liftoff.history import PathProgress
 from contactlab.receding.liftoff.panels import (
     OPEN,
     PanelModel,
@@ -54,7 +55,7 @@ HALVINGS = 6
 
 
 @dataclass
-class PanelHistory:
+class PanelHistory(PathProgress):
     """The states along a path: ``states[0]`` unloaded, ``ends[k]`` the index of the state
     that ends segment k of ``targets``; ``message`` says why a path stopped early."""
 
@@ -64,14 +65,6 @@ class PanelHistory:
     states: list[PanelState] = field(default_factory=list)
     ends: list[int] = field(default_factory=list)
     message: str = ""
-
-    @property
-    def completed(self) -> int:
-        return len(self.ends)
-
-    @property
-    def converged(self) -> bool:
-        return self.completed == len(self.targets)
 
 
 def advance(model: PanelModel, start: PanelState, lam: float,
