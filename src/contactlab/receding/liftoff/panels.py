@@ -53,9 +53,10 @@ complementarity problem in the panel states, solved by an active-set iteration: 
 for given states, then amend them: every stick panel with |S| > f|N| slips along S, every
 slip panel whose increment runs against its direction sticks, and one normal state
 changes (the largest tension opens, else the largest overlap closes and sticks, keeping
-the slip it has): changing many normal states at once cycles. A state met twice stops
-the iteration (:class:`StepFailed`; the path halves the step). This is the discrete
-frictional system of Klarbring, Ciavarella and Barber (2007).
+the slip it has): changing many normal states at once cycles. Where a set of states
+comes back, the iteration starts again changing one panel per solve; where that cycles
+too, the step fails (:class:`StepFailed`; ``cycles.advance`` halves it). This is the
+discrete frictional system of Klarbring, Ciavarella and Barber (2007).
 
 Monotonic loading from zero is one step: the proportional solution (sec. 4.1), every
 later step of a monotonic path scales it. Tests and ``docs/FINDINGS.md`` compare it with
