@@ -144,6 +144,18 @@ def test_cycles_run_until_the_state_repeats(line_model) -> None:
     assert shear is not None and np.max(np.abs(shear)) > 0.01  # shear locked in
 
 
+def test_small_cycles_shake_down(line_model) -> None:
+    """Cycles 1 <-> 0.99: the energy per cycle falls geometrically and slip stops (below
+    the tolerance) after a few cycles: the verdict says after which."""
+    result = cycles(line_model, 0.99, 1.0, 40, 0.025, tol=1e-6)
+    assert result.shakedown >= 1 and result.repeats == result.shakedown + 1
+    assert result.verdict.startswith(f"shaken down after cycle {result.shakedown}")
+    assert all(e > 0 for e in result.energy[:-1])
+    assert np.all(np.diff(result.energy) < 0)
+    scale = np.max(np.abs(result.history.states[1].u))
+    assert 2.0 * result.amplitude[-1] <= 1e-6 * scale
+
+
 @pytest.mark.slow
 def test_cycle_energy_converges_in_the_panels() -> None:
     """The energy per cycle and the slip amplitude of cycles 1 <-> 0.5 of the line load at

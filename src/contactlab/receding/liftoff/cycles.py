@@ -173,7 +173,8 @@ class CycleResult:
     @property
     def verdict(self) -> str:
         if self.shakedown >= 0:
-            return f"shaken down after cycle {self.shakedown}"
+            return (f"shaken down after cycle {self.shakedown} (the next slips less than "
+                    f"{self.tol:g} of the largest slip)")
         if self.repeats:
             return (f"cyclic slip: slip amplitude {self.amplitude[-1]:.3e}, energy per cycle "
                     f"{self.energy[-1]:.3e} (the state repeats from cycle {self.repeats})")
