@@ -81,7 +81,7 @@ def test_unloading_keeps_the_slip_of_the_stick_zones(unloaded) -> None:
 
 
 def test_history_command(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["receding", "history", "--json"]) == 0  # the schema's defaults
+    assert main(["receding", "history", "--method", "ddt", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["problem"] == "line" and out["path"] == [1.0, 0.5]
     assert out["converged"] and out["admissible"] and len(out["segments"]) == 2
@@ -115,7 +115,7 @@ def test_least_sub_steps_counts_the_largest_steps() -> None:
 
 def test_history_refuses_a_path_of_too_many_steps_before_solving(
         capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["receding", "history", "--max-step", "1e-5"]) == 2
+    assert main(["receding", "history", "--method", "ddt", "--max-step", "1e-5"]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "Traceback" not in err
     assert "--max-step 1e-05" in err and "50000 sub-steps" in err and "--max-solves 40" in err

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import time
+from pathlib import Path
 from typing import Any
 
 from contactlab.cliutil import (
@@ -37,6 +38,8 @@ from contactlab.receding.options import (
 )
 from contactlab.receding.problems import names, registry
 
+PANEL_SOURCE = ("displacement-discontinuity panels with the preformed climb distribution of "
+                "thesis chs 6-7 (App. B kernels), an active-set iteration per load step")
 SOURCE = ("distributed dislocations with a preformed climb distribution, thesis chs 6-7 "
           "(eqs 6.3-6.32, 7.1-7.39, App. B); Gauss-Chebyshev on semi-infinite maps, "
           "MINPACK root finding on the leftover equations")
@@ -155,6 +158,12 @@ def _history(args: argparse.Namespace) -> None:
     from contactlab.receding.core.solution import json_ready
     from contactlab.receding.liftoff.history import MAX_ZONES, least_sub_steps, segments
 
+    if args.method == "panels":
+        _history_panels(args)
+        return
+    if args.cycles:
+        raise ValueError(f"--cycles {args.cycles} needs --method panels (the zone-based "
+                         "method stops on reloading after unloading)")
     problem = registry()[args.problem]
     check_memory("--n", args.n, problem.memory(args.n))
     # a step's dense system: both semi-infinite densities and the interior slip zones
@@ -198,6 +207,90 @@ def _history(args: argparse.Namespace) -> None:
         spent = history.budget.used >= args.max_solves
         print(f"  stopped: {history.message}" + (f" (--max-solves {args.max_solves})"
                                                  if spent else ""))
+
+
+def _history_panels(args: argparse.Namespace) -> None:
+    """``receding history --method panels``: the path (or ``--cycles``) on panels, a table
+    of its segments and the cycles' verdict (or JSON), netCDF with ``--out``."""
+    import json
+    import math
+
+    from contactlab.receding.core.solution import json_ready
+    from contactlab.receding.liftoff.cycles import (
+        cycles,
+        follow,
+        history_dataset,
+        model_for,
+        segment_rows,
+    )
+    from contactlab.receding.liftoff.history import least_sub_steps
+
+    problem = registry()[args.problem]
+    point = problem.point(args.f, getattr(args, "w_hat", None))
+    low, high = args.between
+    if args.cycles and not 0.0 < low < high:
+        raise ValueError(f"--between {low:g} {high:g}: cycles need 0 < low < high")
+    if args.cycles:
+        factors = [high] + [low, high] * args.cycles
+    else:
+        factors = list(args.path)
+    steps = least_sub_steps(factors, args.panel_step)
+    model = model_for(problem.law, point.w_hat or 0.0, args.f, args.panel_width,
+                      args.tail_start, args.tail_length)
+    unknowns = 2 * model.grid.size + 1
+    check_memory("--panel-width", args.panel_width, 8.0 * 8 * unknowns**2)
+    start = time.process_time()
+    result = None
+    if args.cycles:
+        result = cycles(model, low, high, args.cycles, args.panel_step, args.cycle_tol)
+        history = result.history
+    else:
+        history = follow(model, factors, args.panel_step)
+    rows = segment_rows(history)
+    values = {"problem": problem.name, "f": args.f, "w_hat": point.w_hat,
+              "method": "panels", "panel_width": args.panel_width,
+              "x_tail": model.grid.x_tail, "x_max": model.grid.x_max,
+              "panel_step": args.panel_step}
+    out = {**values, "path": history.targets, "completed": history.completed,
+           "converged": history.converged, "message": history.message,
+           "least_sub_steps": steps, "panels": model.grid.size,
+           "cpu_seconds": round(time.process_time() - start, 2), "segments": rows}
+    if result is not None:
+        values.update(cycles=args.cycles, between=[low, high], cycle_tol=args.cycle_tol)
+        out.update(values, verdict=result.verdict, shakedown_cycle=result.shakedown,
+                   repeats_from_cycle=result.repeats, cycle_energy=result.energy,
+                   cycle_amplitude=result.amplitude, cycle_slip_change=result.slip_change,
+                   max_residual_shear=float(abs(result.residual_shear).max())
+                   if result.residual_shear is not None else math.nan)
+    if args.out is not None:
+        from contactlab.io import stamp, write_netcdf
+
+        ds = history_dataset(history, rows, result, values)
+        stamp(ds, title=f"{problem.title} along a load path on panels, f = {args.f}",
+              source=PANEL_SOURCE, history=args.history)
+        write_netcdf(ds, args.out)
+    if args.json:
+        print(json.dumps(json_ready(out)))
+        return
+    print(f"{problem.title}, f = {args.f:g}, {model.grid.size} panels of {args.panel_width:g} c"
+          f", path {' '.join(f'{v:g}' for v in history.targets)}: {history.completed} of "
+          f"{len(history.targets)} segments, {out['cpu_seconds']} s CPU")
+    for r in rows:
+        cycle = r["cycle_slip_change"]
+        worst = max(float(v) for k, v in r.items()
+                    if k.startswith("max_") and k != "max_slip_change")
+        print(f"  {r['from']:g} -> {r['to']:g} ({r['steps']} steps): {r['zones']}\n"
+              f"    b = {r['b_estimate']:.4f} c, K = {r['K']:.4f}; dissipated "
+              f"{r['dissipated']:.3e}, largest slip change {r['max_slip_change']:.3e}"
+              + ("" if math.isnan(cycle) else f", over the cycle {cycle:.3e}")
+              + f"; largest check {worst:.1e}")
+    if result is not None:
+        print(f"  cycles {low:g} <-> {high:g}: {result.verdict}; energy per cycle "
+              + ", ".join(f"{e:.3e}" for e in result.energy[:3])
+              + (" ..." if len(result.energy) > 3 else "")
+              + f"; residual shear at {low:g} up to {out['max_residual_shear']:.3e} T")
+    if history.message:
+        print(f"  stopped: {history.message}")
 
 
 def _report(args: argparse.Namespace) -> None:
@@ -261,15 +354,18 @@ COMMANDS = (
                  out_option()),
         run=_patch_profile),
     Command(
-        NAME, "history", "a lift-off problem along a load path (loading, unloading)",
+        NAME, "history", "a lift-off problem along a load path or in load cycles",
         description="The line load or a pressure patch solved along a load path: the "
                     "load factors of --path, from zero to the first monotonically, then "
                     "incrementally, the slip of the stick zones kept (docs/findings/"
-                    "receding_history.md). Prints per segment the zones, "
-                    "residuals, contact checks, certificates, the frictional energy "
-                    "dissipated and the slip change (--json: one JSON object).",
+                    "receding_history.md); or --cycles K between the "
+                    "two factors of --between until the state repeats: shakedown or "
+                    "cyclic slip. Prints per segment the zones, contact checks, the "
+                    "frictional energy dissipated and the slip change (--json: one JSON "
+                    "object; --out: netCDF, --method panels).",
         options=(Option("--problem", "the lift-off problem", choices=HISTORY_PROBLEMS,
                         key=f"{HISTORY}.problem"),
+                 Option("--method", choices=("panels", "ddt"), key=f"{HISTORY}.method"),
                  Option("--f", type=float, key=f"{HISTORY}.f"),
                  Option("--w-hat", "patch half-width w/c", float, key=f"{HISTORY}.w_hat",
                         only=LAWS),
@@ -279,6 +375,15 @@ COMMANDS = (
                  Option("--n-inner", type=int, key=f"{HISTORY}.n_inner"),
                  Option("--max-step", type=float, key=f"{HISTORY}.max_step"),
                  Option("--max-solves", type=int, key=f"{HISTORY}.max_solves"),
+                 Option("--panel-width", type=float, unit="c", key=f"{HISTORY}.panel_width"),
+                 Option("--panel-step", type=float, key=f"{HISTORY}.panel_step"),
+                 Option("--tail-start", type=float, unit="c", key=f"{HISTORY}.tail_start"),
+                 Option("--tail-length", type=float, unit="c",
+                        key=f"{HISTORY}.tail_length"),
+                 Option("--cycles", type=int, key=f"{HISTORY}.cycles"),
+                 Option("--between", type=float, nargs=2, metavar=("LOW", "HIGH"),
+                        key=f"{HISTORY}.between"),
+                 Option("--cycle-tol", type=float, key=f"{HISTORY}.cycle_tol"),
                  *(Option(o.flag, o.help, o.type, key=dict.fromkeys(LINES, o.key),
                           only=LINES) for o in line_options()),
                  *(Option(o.flag, o.help, o.type, key=dict.fromkeys(LAWS, o.key), only=LAWS)
@@ -286,7 +391,9 @@ COMMANDS = (
                  Option("--stick-zone-limit", STICK_ZONE, float,
                         key={**dict.fromkeys(LINES, f"{LINE}.stick_zone_limit"),
                              **dict.fromkeys(LAWS, f"{PATCHES}.stick_zone_limit")}),
-                 Option("--json", "print one JSON object", kind="flag", default=False)),
+                 Option("--json", "print one JSON object", kind="flag", default=False),
+                 Option("--out", "netCDF of the states, segments and cycles (--method "
+                        "panels)", Path, default=None, role="output")),
         run=_history, select="problem"),
     Command(
         NAME, "report-line-patch", "report section of chs 6-7",

@@ -112,8 +112,24 @@ def least_sub_steps(factors: Sequence[float], max_step: float) -> int:
     return count
 
 
+class PathProgress:
+    """How far a path got: of its ``targets`` (factors), the segments ending at the states
+    ``ends`` are finished."""
+
+    targets: Sequence[float]
+    ends: list[int]
+
+    @property
+    def completed(self) -> int:
+        return len(self.ends)
+
+    @property
+    def converged(self) -> bool:
+        return self.completed == len(self.targets)
+
+
 @dataclass
-class HistorySolution:
+class HistorySolution(PathProgress):
     """The states along a path: ``states[i]`` at ``factors[i]``; ``targets`` the path's
     factors and ``ends[k]`` the index of the state that ends segment k; ``completed`` the
     segments finished (all of them unless a step failed or the solves allowed were
@@ -128,14 +144,6 @@ class HistorySolution:
     message: str = ""
     #: the incremental solves allowed and taken
     budget: Budget = field(default_factory=Budget)
-
-    @property
-    def completed(self) -> int:
-        return len(self.ends)
-
-    @property
-    def converged(self) -> bool:
-        return self.completed == len(self.targets)
 
     @property
     def admissible(self) -> bool:
@@ -545,5 +553,5 @@ def segments(history: HistorySolution, points: int = 4000) -> list[dict[str, flo
     return out
 
 
-__all__ = ["CHECK_TOL", "Budget", "BudgetSpent", "HistorySolution", "dissipation",
+__all__ = ["CHECK_TOL", "Budget", "BudgetSpent", "HistorySolution", "PathProgress", "dissipation",
            "follow_path", "least_sub_steps", "segments", "state_from_monotonic"]
