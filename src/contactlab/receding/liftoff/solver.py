@@ -517,9 +517,7 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
     rows_s[:, n:2 * n] += cs_a
     rhs[m:2 * m] = -(sb + h * nb_a)
     if preformed:
-        pre = Preformed(load, b, e, materials)
-        pn_b = pre.normal_stress(xb)
-        ps, pn = pre.stresses(xa)
+        pn_b, ps, pn = Preformed(load, b, e, materials).normal_and_stresses(xb, xa)
         rows_n[:, 2 * n] = pn_b[:, 1]
         rows_s[:, 2 * n] = ps[:, 1] + h * pn[:, 1]
         rhs[:m] -= pn_b[:, 0]
