@@ -366,22 +366,29 @@ def _beyond_sums(ax: np.ndarray, nodes: np.ndarray, weights: np.ndarray, pre: Pr
     if kernels.cauchy != 1.0:
         w_c *= kernels.cauchy
     w_t = w_c + weights * regular
-    total_c = w_c.sum(axis=1)
-    normal = np.stack([np.einsum("mk,mk->m", w_t, np.broadcast_to(g, w_t.shape)),
-                       -w_t.sum(axis=1)], axis=1)
-    normal -= a_x * total_c[:, None]
+    normal = _against_basis(w_t, g)
+    normal -= a_x * w_c.sum(axis=1)[:, None]
     out = None
     if sheared is not None and sheared.any():
-        every = sheared.all()
-        if not every:
+        if not sheared.all():
             iq, ip, d, dp = iq[sheared], ip[sheared], d[sheared], dp[sheared]
             if weights.shape[0] > 1:  # one row of nodes per point
                 weights, g = weights[sheared], g[sheared]
         w_s = weights * 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
         if not kernels.one_material:
             w_s += weights * (kernels.remainder("even", d) - kernels.remainder("even", dp))
-        out = np.stack([np.einsum("mk,mk->m", w_s, np.broadcast_to(g, w_s.shape)),
-                        -w_s.sum(axis=1)], axis=1)
+        out = _against_basis(w_s, g)
     elif sheared is not None:
         out = np.zeros((0, 2))
     return normal, out
+
+
+def _against_basis(w: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """(m, 2): the quadrature sums of the weighted kernels ``w`` (m, K) against the basis
+    densities beyond e, [g, -1], with g one row shared by every point or one per point."""
+    if g.shape[0] == 1:
+        return w @ np.stack([g[0], np.full(g.shape[1], -1.0)], axis=1)
+    out = np.empty((w.shape[0], 2))
+    out[:, 0] = np.einsum("mk,mk->m", w, g)
+    out[:, 1] = -w.sum(axis=1)
+    return out
