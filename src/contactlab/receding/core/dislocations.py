@@ -191,6 +191,15 @@ class DensityInterval:
                 shear += local
         return shear, normal
 
+    def _own_normal(self, x: np.ndarray) -> np.ndarray:
+        """The normal part of ``_own`` for a climb density, without the shear kernel."""
+        d = x[:, None] - self.nodes[None, :]
+        kernels = self.kernels
+        normal = kernels.odd_part("climb", d)
+        normal *= self.weights[None, :] / np.pi
+        self._add_cauchy(normal, x, d, bounded_rule(self.n), kernels.cauchy)
+        return normal
+
     def _weight_at(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(t, sqrt(1 - t^2)) at the points x (t = -2, weight 0 where x has no preimage)."""
         t = np.nan_to_num(self.preimage(x), nan=-2.0)
@@ -260,8 +269,11 @@ class DensityInterval:
         bounded kernel H_xyy (App. B.1, no Cauchy part; with two materials its delta part
         too), so no transform is needed."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        if self.kind == "climb":
-            return self.influence(x)[1]
+        if self.kind == "climb":  # the Cauchy kernel H_yyy, no shear kernel evaluated
+            out = self._own_normal(x)
+            if self.parity:
+                _add(out, self._own_normal(-x), self.parity * _KERNEL_PARITY[("climb", "normal")])
+            return out
         scale = self.weights[None, :] / np.pi
         kernels = self.kernels
         out = kernels.even_part(x[:, None] - self.nodes[None, :])  # H_xyy = -H_yxy
@@ -275,6 +287,15 @@ class DensityInterval:
                 local += self.parity * self._density_matrix(-x)
             out -= kernels.coupling * local
         return out
+
+    def collocation_normal_influence(self) -> np.ndarray:
+        """``normal_influence(self.collocation)``, the own part cached as in
+        ``collocation_influence`` (a climb density's image without its shear kernel)."""
+        if self.kind != "climb" or self.mapping != "semi-infinite" or not self.parity:
+            return self.collocation_influence()[1]
+        normal = _own_at_collocation(self.kind, self.n, self.lam, self.materials)[1]
+        return _add(self._own_normal(-self.collocation), normal,
+                    self.parity * _KERNEL_PARITY[("climb", "normal")], True)
 
     def collocation_influence(self) -> tuple[np.ndarray, np.ndarray]:
         """``influence(self.collocation)``. For a semi-infinite map the density's own part

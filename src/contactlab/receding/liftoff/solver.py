@@ -503,7 +503,7 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
     # classical Gauss-Chebyshev sum (exact there), elsewhere the exact transform; only
     # the normal traction is needed on the rows of [b, inf)
     rows_n[:, :n] = glide.normal_influence(xb)
-    rows_n[:, n:2 * n] = climb.collocation_influence()[1]
+    rows_n[:, n:2 * n] = climb.collocation_normal_influence()
     gs_a, gn_a = glide.collocation_influence()
     cs_a, cn_a = climb.influence(xa)
     rhs[:m] = -load.bilateral(xb, materials)[1]
