@@ -309,6 +309,14 @@ class InterfaceKernels:
             normal += self._remainder("climb")(d)
         return shear, normal
 
+    def odd_part(self, kind: Kind, d: np.ndarray) -> np.ndarray:
+        """The bounded part of H_xxy (glide) or H_yyy (climb) alone (App. B.1's
+        ``odd_part`` plus R_g resp. R_c)."""
+        out = one.odd_part(kind, d)
+        if not self.one_material:
+            out += self._remainder(kind)(d)
+        return out
+
     def even_part(self, d: np.ndarray) -> np.ndarray:
         """The bounded part of H_yxy = -H_xyy (App. B.1's ``even_part`` plus R_e)."""
         out = one.even_part(d)

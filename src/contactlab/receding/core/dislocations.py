@@ -180,10 +180,8 @@ class DensityInterval:
         shear *= scale
         normal *= scale
         # the Cauchy part c0/d belongs to H_xxy (glide shear) and H_yyy (climb normal)
-        cauchy = self._cauchy(x, d, rule)
-        if kernels.cauchy != 1.0:
-            cauchy *= kernels.cauchy
-        (shear if self.kind == "glide" else normal)[...] += cauchy
+        self._add_cauchy(shear if self.kind == "glide" else normal, x, d, rule,
+                         kernels.cauchy)
         if kernels.coupling:
             # the delta parts of H_yxy = -H_xyy: the density at the point itself
             local = kernels.coupling * self._density_matrix(x)
@@ -192,6 +190,15 @@ class DensityInterval:
             else:
                 shear += local
         return shear, normal
+
+    def _own_normal(self, x: np.ndarray) -> np.ndarray:
+        """The normal part of ``_own`` for a climb density, without the shear kernel."""
+        d = x[:, None] - self.nodes[None, :]
+        kernels = self.kernels
+        normal = kernels.odd_part("climb", d)
+        normal *= self.weights[None, :] / np.pi
+        self._add_cauchy(normal, x, d, bounded_rule(self.n), kernels.cauchy)
+        return normal
 
     def _weight_at(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(t, sqrt(1 - t^2)) at the points x (t = -2, weight 0 where x has no preimage)."""
@@ -203,31 +210,39 @@ class DensityInterval:
         t, root = self._weight_at(x)
         return root[:, None] * interpolation_matrix(t, self.n)
 
-    def _cauchy(self, x: np.ndarray, d: np.ndarray, rule) -> np.ndarray:
-        """(1/pi) int B_bar/(x - xi) dxi as a matrix on phi (see the module docstring)."""
+    def _add_cauchy(self, out: np.ndarray, x: np.ndarray, d: np.ndarray, rule,
+                    factor: float) -> None:
+        """out += factor (1/pi) int B_bar/(x - xi) dxi as a matrix on phi (see the module
+        docstring); ``d`` = x - xi is overwritten."""
         t = self.preimage(x)
         if self.mapping == "linear":
-            return cauchy_matrix(t, self.n)
+            _add_scaled(out, cauchy_matrix(t, self.n), factor)
+            return
         mapped = np.isfinite(t)
         if self.mapping == "semi-infinite":
             # below the interval by more than ~200/N^2 in t the plain sum agrees with the
             # transform of the interpolant to round-off (the Chebyshev ellipse through t has
             # rho^-2N < 1e-17); skip the O(N) transform there (images, far points)
             mapped &= t > -1.0 - 200.0 / self.n**2
-        if mapped.all():
-            return self._mapped_cauchy(t, d, rule)
-        if not mapped.any():
-            return self.weights[None, :] / (np.pi * d)
         rows = np.flatnonzero(mapped)
-        if rows[-1] - rows[0] + 1 == rows.size:  # one block of rows (sorted points)
+        if rows.size and rows[-1] - rows[0] + 1 == rows.size:  # one block (sorted points)
             block = slice(rows[0], rows[-1] + 1)
-            out = self.weights[None, :] / (np.pi * d)
-            out[block] = self._mapped_cauchy(t[block], d[block], rule)
-            return out
-        out = np.empty_like(d)
-        out[mapped] = self._mapped_cauchy(t[mapped], d[mapped], rule)
-        out[~mapped] = self.weights[None, :] / (np.pi * d[~mapped])
-        return out
+            _add_scaled(out[block], self._mapped_cauchy(t[block], d[block], rule), factor)
+            plain = [slice(0, rows[0]), slice(rows[-1] + 1, None)]
+        elif rows.size:
+            cauchy = self._mapped_cauchy(t[mapped], d[mapped], rule)
+            if factor != 1.0:
+                cauchy *= factor
+            out[mapped] += cauchy
+            plain = [~mapped]
+        else:
+            plain = [slice(None)]
+        # the plain Gauss-Chebyshev sum w_i T'_i / (pi (x - xi_i)), in place of d
+        numerator = self.weights[None, :] * (factor / np.pi)
+        for rows_p in plain:
+            part = d[rows_p]
+            if part.size:
+                out[rows_p] += np.divide(numerator, part, out=part)
 
     def _mapped_cauchy(self, t: np.ndarray, d: np.ndarray, rule) -> np.ndarray:
         """The transform of psi = phi T'(s) (t - s) / (x - T(s)) at points with preimage t."""
@@ -254,8 +269,11 @@ class DensityInterval:
         bounded kernel H_xyy (App. B.1, no Cauchy part; with two materials its delta part
         too), so no transform is needed."""
         x = np.atleast_1d(np.asarray(x, dtype=float))
-        if self.kind == "climb":
-            return self.influence(x)[1]
+        if self.kind == "climb":  # the Cauchy kernel H_yyy, no shear kernel evaluated
+            out = self._own_normal(x)
+            if self.parity:
+                _add(out, self._own_normal(-x), self.parity * _KERNEL_PARITY[("climb", "normal")])
+            return out
         scale = self.weights[None, :] / np.pi
         kernels = self.kernels
         out = kernels.even_part(x[:, None] - self.nodes[None, :])  # H_xyy = -H_yxy
@@ -269,6 +287,15 @@ class DensityInterval:
                 local += self.parity * self._density_matrix(-x)
             out -= kernels.coupling * local
         return out
+
+    def collocation_normal_influence(self) -> np.ndarray:
+        """``normal_influence(self.collocation)``, the own part cached as in
+        ``collocation_influence`` (a climb density's image without its shear kernel)."""
+        if self.kind != "climb" or self.mapping != "semi-infinite" or not self.parity:
+            return self.collocation_influence()[1]
+        normal = _own_at_collocation(self.kind, self.n, self.lam, self.materials)[1]
+        return _add(self._own_normal(-self.collocation), normal,
+                    self.parity * _KERNEL_PARITY[("climb", "normal")], True)
 
     def collocation_influence(self) -> tuple[np.ndarray, np.ndarray]:
         """``influence(self.collocation)``. For a semi-infinite map the density's own part
@@ -322,6 +349,13 @@ class DensityInterval:
             # parity * (total - int_{-inf}^{-x} B)
             out = out - self.parity * (self.integral(phi) - self._cumulative(phi, -x))
         return out
+
+
+def _add_scaled(out: np.ndarray, other: np.ndarray, factor: float) -> None:
+    """In place: out += factor * other (``other`` scaled in place)."""
+    if factor != 1.0:
+        other *= factor
+    out += other
 
 
 def _add(out: np.ndarray, other: np.ndarray, sign: int, reverse: bool = False) -> np.ndarray:

@@ -97,6 +97,24 @@ def even_part(d: np.ndarray) -> np.ndarray:
     return out
 
 
+def _odd_from(kind: Kind, iq: np.ndarray, d: np.ndarray) -> np.ndarray:
+    """d/q (-1 + (12 | -4)/q - 64/q^2): the bounded part of H_xxy (glide) or H_yyy
+    (climb), from 1/q, in Horner form."""
+    odd = iq * -64.0
+    odd += 12.0 if kind == "glide" else -4.0
+    odd *= iq
+    odd -= 1.0
+    odd *= iq
+    odd *= d
+    return odd
+
+
+def odd_part(kind: Kind, d: np.ndarray) -> np.ndarray:
+    """The bounded part of H_xxy (glide) or H_yyy (climb) alone (``regular_pair``'s
+    shear resp. normal), e.g. for the normal traction of a climb density."""
+    return _odd_from(kind, _inverse_q(d), d)
+
+
 def regular_pair(kind: Kind, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(shear, normal) regular parts of SPLIT for one kind, sharing the powers of 1/q:
     d/q (-1 + (12 | -4)/q - 64/q^2) for H_xxy | H_yyy and the even part for the other."""
@@ -106,12 +124,7 @@ def regular_pair(kind: Kind, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     even *= iq
     even *= iq
     even *= 8.0  # H_yxy = -H_xyy
-    odd = iq * -64.0
-    odd += 12.0 if kind == "glide" else -4.0
-    odd *= iq
-    odd -= 1.0
-    odd *= iq
-    odd *= d
+    odd = _odd_from(kind, iq, d)
     if kind == "glide":
         return odd, np.negative(even, out=even)
     return even, odd

@@ -187,16 +187,29 @@ class Preformed:
 
     def stresses(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """(shear, normal), each (len(x), 2) for the [load, K] bases, in units of T."""
-        shear, normal = self._integrals(x, shear=True)
+        shear, normal = self._integrals(x, 0)
         assert shear is not None
         return shear, normal
 
     def normal_stress(self, x: np.ndarray) -> np.ndarray:
         """The normal part of ``stresses`` alone (the rows N = 0 of eq. 6.18)."""
-        return self._integrals(x, shear=False)[1]
+        return self._integrals(x, None)[1]
 
-    def _integrals(self, x: np.ndarray, shear: bool) -> tuple[np.ndarray | None, np.ndarray]:
-        """(shear or None, normal) per basis density, eqs (6.10)-(6.11) by quadrature.
+    def normal_and_stresses(self, normal_points: np.ndarray, points: np.ndarray,
+                            ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(``normal_stress(normal_points)``, *``stresses(points)``) in one quadrature
+        pass over both point sets (the rows of a system: N = 0 on one set, S + f N = 0
+        on the other), the shear kernels evaluated at ``points`` only."""
+        k = np.atleast_1d(np.asarray(normal_points, dtype=float)).size
+        shear, normal = self._integrals(np.concatenate([np.atleast_1d(normal_points),
+                                                        np.atleast_1d(points)]), k)
+        assert shear is not None
+        return normal[:k], shear, normal[k:]
+
+    def _integrals(self, x: np.ndarray, shear_from: int | None,
+                   ) -> tuple[np.ndarray | None, np.ndarray]:
+        """(shear at x[shear_from:] or None, normal at x) per basis density, eqs
+        (6.10)-(6.11) by quadrature.
 
         On [b, e], where A_y is the cubic P, the Cauchy part at points within a panel's
         width of [b, e] is taken against P(x) (P continued beyond [b, e] at points
@@ -252,18 +265,26 @@ class Preformed:
             cubic[~close] = plain
         normal += cubic
         out = None
-        if shear:
-            kernel = 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
+        if shear_from is not None:
+            sr = slice(shear_from, None)
+            iqs, ips = iq[sr], ip[sr]
+            kernel = 8.0 * (iqs * iqs * (3.0 - 16.0 * iqs) - ips * ips * (3.0 - 16.0 * ips))
             if not kernels.one_material:
-                kernel += kernels.remainder("even", d) - kernels.remainder("even", dp)
+                kernel += kernels.remainder("even", d[sr]) - kernels.remainder("even", dp[sr])
             out = (om[None, :] * kernel) @ p1
         # beyond e
         near = ax <= e
         for rows, nodes, weights in self._beyond(ax, near):
-            n_r, s_r = _beyond_sums(ax[rows], nodes, weights, self, a_x[rows], shear)
+            sheared = None
+            if out is not None:
+                sheared = rows.copy()
+                sheared[:shear_from] = False
+            n_r, s_r = _beyond_sums(ax[rows], nodes, weights, self, a_x[rows],
+                                    None if sheared is None else sheared[rows])
             normal[rows] += n_r
             if out is not None and s_r is not None:
-                out[rows] += s_r
+                assert sheared is not None
+                out[sheared[shear_from:]] += s_r
         # the principal values of the constants, at b and at e
         with np.errstate(divide="ignore"):
             at_b = np.where(hx != 0.0, 0.5 * np.log(hx * hx / (hx * hx + 4.0)), 0.0)
@@ -275,12 +296,11 @@ class Preformed:
         normal += p_x * at_b[:, None]
         jump = a_x - p_x
         normal += np.where(jump != 0.0, jump * at_e[:, None], 0.0)
-        if not shear:
+        if out is None:
             return None, normal / np.pi
-        assert out is not None
         if kernels.coupling:  # the delta part of H_yxy: pi c_beta A(x), in units of pi
-            out += np.pi * kernels.coupling * a_x
-        sign = np.where(x < 0, -1.0, 1.0)[:, None]
+            out += np.pi * kernels.coupling * a_x[shear_from:]
+        sign = np.where(x[shear_from:] < 0, -1.0, 1.0)[:, None]
         return sign * out / np.pi, normal / np.pi
 
     def _beyond(self, ax: np.ndarray, near: np.ndarray):
@@ -324,8 +344,10 @@ def _two_material_normal(kernels: InterfaceKernels, d: np.ndarray, dp: np.ndarra
 
 
 def _beyond_sums(ax: np.ndarray, nodes: np.ndarray, weights: np.ndarray, pre: Preformed,
-                 a_x: np.ndarray, shear: bool) -> tuple[np.ndarray, np.ndarray | None]:
-    """pi sigma_yy^A and pi sigma_xy^A (or None) of A_y beyond e at the points ax, from the
+                 a_x: np.ndarray, sheared: np.ndarray | None,
+                 ) -> tuple[np.ndarray, np.ndarray | None]:
+    """pi sigma_yy^A at the points ax and pi sigma_xy^A at ax[sheared] (None without
+    ``sheared``, a mask of the points) of A_y beyond e, from the
     nodes and weights (one row shared, or one per point) where A = [g, -1] (g the load
     part of ``pre``'s remote form): the Cauchy part against A(x), (A(xi) - A(x)) C(x - xi),
     and the regular parts, in the kernels of ``pre``'s materials."""
@@ -344,15 +366,29 @@ def _beyond_sums(ax: np.ndarray, nodes: np.ndarray, weights: np.ndarray, pre: Pr
     if kernels.cauchy != 1.0:
         w_c *= kernels.cauchy
     w_t = w_c + weights * regular
-    total_c = w_c.sum(axis=1)
-    normal = np.stack([np.einsum("mk,mk->m", w_t, np.broadcast_to(g, w_t.shape)),
-                       -w_t.sum(axis=1)], axis=1)
-    normal -= a_x * total_c[:, None]
+    normal = _against_basis(w_t, g)
+    normal -= a_x * w_c.sum(axis=1)[:, None]
     out = None
-    if shear:
+    if sheared is not None and sheared.any():
+        if not sheared.all():
+            iq, ip, d, dp = iq[sheared], ip[sheared], d[sheared], dp[sheared]
+            if weights.shape[0] > 1:  # one row of nodes per point
+                weights, g = weights[sheared], g[sheared]
         w_s = weights * 8.0 * (iq * iq * (3.0 - 16.0 * iq) - ip * ip * (3.0 - 16.0 * ip))
         if not kernels.one_material:
             w_s += weights * (kernels.remainder("even", d) - kernels.remainder("even", dp))
-        out = np.stack([np.einsum("mk,mk->m", w_s, np.broadcast_to(g, w_s.shape)),
-                        -w_s.sum(axis=1)], axis=1)
+        out = _against_basis(w_s, g)
+    elif sheared is not None:
+        out = np.zeros((0, 2))
     return normal, out
+
+
+def _against_basis(w: np.ndarray, g: np.ndarray) -> np.ndarray:
+    """(m, 2): the quadrature sums of the weighted kernels ``w`` (m, K) against the basis
+    densities beyond e, [g, -1], with g one row shared by every point or one per point."""
+    if g.shape[0] == 1:
+        return w @ np.stack([g[0], np.full(g.shape[1], -1.0)], axis=1)
+    out = np.empty((w.shape[0], 2))
+    out[:, 0] = np.einsum("mk,mk->m", w, g)
+    out[:, 1] = -w.sum(axis=1)
+    return out

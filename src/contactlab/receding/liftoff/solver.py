@@ -503,7 +503,7 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
     # classical Gauss-Chebyshev sum (exact there), elsewhere the exact transform; only
     # the normal traction is needed on the rows of [b, inf)
     rows_n[:, :n] = glide.normal_influence(xb)
-    rows_n[:, n:2 * n] = climb.collocation_influence()[1]
+    rows_n[:, n:2 * n] = climb.collocation_normal_influence()
     gs_a, gn_a = glide.collocation_influence()
     cs_a, cn_a = climb.influence(xa)
     rhs[:m] = -load.bilateral(xb, materials)[1]
@@ -517,9 +517,7 @@ def assemble(load: Load, f: float, n: int, a: float, b: float, lam_a: float, lam
     rows_s[:, n:2 * n] += cs_a
     rhs[m:2 * m] = -(sb + h * nb_a)
     if preformed:
-        pre = Preformed(load, b, e, materials)
-        pn_b = pre.normal_stress(xb)
-        ps, pn = pre.stresses(xa)
+        pn_b, ps, pn = Preformed(load, b, e, materials).normal_and_stresses(xb, xa)
         rows_n[:, 2 * n] = pn_b[:, 1]
         rows_s[:, 2 * n] = ps[:, 1] + h * pn[:, 1]
         rhs[:m] -= pn_b[:, 0]
