@@ -132,18 +132,24 @@ def _history_compare(args: argparse.Namespace) -> None:
     first = runs[0].attrs
     w = None if first["problem"] == "line" else float(first.get("w_hat", float("nan")))
     path, f = list(first["path"]), float(first["f"])
-    if args.method == "panels":
-        reference = hc.panel_reference(hc.panel_history(
-            first["problem"], f, w, path, args.panel_width, args.panel_step, args.tail_start,
-            args.tail_length))
-        settings = {"panel_width": args.panel_width, "panel_step": args.panel_step,
-                    "tail_start": args.tail_start, "tail_length": args.tail_length}
-    else:
-        reference = hc.ddt_reference(hc.ddt_history(first["problem"], f, w, path, args.n,
-                                                    args.n_inner, args.max_step,
-                                                    args.max_solves))
-        settings = {"ddt_n": args.n, "ddt_n_inner": args.n_inner,
-                    "ddt_max_step": args.max_step}
+    try:
+        if args.method == "panels":
+            reference = hc.panel_reference(hc.panel_history(
+                first["problem"], f, w, path, args.panel_width, args.panel_step,
+                args.tail_start, args.tail_length))
+            settings = {"panel_width": args.panel_width, "panel_step": args.panel_step,
+                        "tail_start": args.tail_start, "tail_length": args.tail_length}
+        else:
+            reference = hc.ddt_reference(hc.ddt_history(first["problem"], f, w, path, args.n,
+                                                        args.n_inner, args.max_step,
+                                                        args.max_solves))
+            settings = {"ddt_n": args.n, "ddt_n_inner": args.n_inner,
+                        "ddt_max_step": args.max_step}
+    except RuntimeError as err:
+        hint = " (the zone-based history stops on reloading after unloading: use --method " \
+               "panels)" if args.method == "ddt" else ""
+        raise ValueError(f"--method {args.method}, path {' '.join(f'{v:g}' for v in path)} "
+                         f"of {args.runs[0]}: {err}{hint}") from None
     out = hc.compare_history(runs, reference)
     out.attrs.update(settings)
     log = logging.getLogger(__name__)
