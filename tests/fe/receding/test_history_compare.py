@@ -15,6 +15,7 @@ from contactlab.fe.receding.history_compare import (
     panel_reference,
     panel_tractions,
     panel_zones,
+    panel_zones_read_as_fe,
 )
 from contactlab.fe.receding.load_path import OPEN, SLIP_BACKWARD, SLIP_FORWARD, STICK
 from contactlab.receding.liftoff import panels
@@ -52,6 +53,26 @@ def test_every_run_is_a_zone_and_a_closed_interface_has_no_b() -> None:
     shut = panels.PanelState(1.0, np.full(GRID.size, panels.STICK), *[np.zeros(GRID.size)] * 2,
                              0.0, -np.ones(GRID.size), np.zeros(GRID.size))
     assert panel_zones(shut, GRID) == ([], [STICK])
+
+
+def test_read_as_the_fe_a_panel_that_slipped_in_the_segment_and_ends_at_the_limit_slips(
+        ) -> None:
+    """Panel 2 slipped earlier in the segment and sticks in its last sub-step at |S| =
+    f|N|: a stick panel, but slipping as the FE reads its nodes; panel 3 slipped too but
+    ends below the limit: stick both ways."""
+    st, fw = panels.STICK, panels.FORWARD
+    state = _state([st, fw, st, st, st], b=0.55)
+    state.N = np.where(state.states != panels.OPEN, -1.0, 0.0)
+    state.S = np.where(state.states != panels.OPEN, 0.1, 0.0)
+    state.S[1:4] = [0.5, 0.5, 0.3]
+    state.u = np.where(np.isin(np.arange(GRID.size), [1, 2, 3]), 0.01, 0.0)
+    before = panels.PanelState(0.5, state.states, *[np.zeros(GRID.size)] * 2, 0.0,
+                               *[np.zeros(GRID.size)] * 2)
+    # equal pressure on the last two closed panels: b is the last closed panel's end
+    assert panel_zones(state, GRID) == ([0.1, 0.2, 0.5], [STICK, SLIP_FORWARD, STICK, OPEN])
+    ends, codes = panel_zones_read_as_fe(before, state, 0.5, GRID, floor=1e-4)
+    assert codes == [STICK, SLIP_FORWARD, STICK, OPEN]
+    assert np.allclose(ends, [0.1, 0.3, 0.5])
 
 
 def test_panel_tractions_interpolate_the_midpoints_odd_and_even() -> None:

@@ -9,8 +9,11 @@ The reference is the history of the same problem, f, w/c and path by either meth
   (:func:`contactlab.receding.liftoff.panels.zones`), their ends panel edges, except b,
   which is :func:`~contactlab.receding.liftoff.panels.edge_estimate` (the pressure of the
   last two closed panels extrapolated as sqrt(b - x)); two slip zones may meet without a
-  stick zone between them. The tractions at the FE nodes interpolate the panels'
-  midpoint values linearly (S odd and N even about x = 0; N = S = 0 on the open panels).
+  stick zone between them. A panel's state is what it does in the last sub-step, a FE
+  node's zone what it did over the whole step (:mod:`load_path`), so the panels are also
+  read the FE's way (:func:`panel_zones_read_as_fe`; ``ref_read_ends``). The tractions
+  at the FE nodes interpolate the panels' midpoint values linearly (S odd and N even
+  about x = 0; N = S = 0 on the open panels).
 * ``ddt``: the zone-based distributed-dislocation history
   (:func:`contactlab.receding.liftoff.history.follow_path` through the problem objects of
   :mod:`contactlab.receding.problems`, their solver settings from the schema's
@@ -44,10 +47,13 @@ from contactlab.fe.receding.ddt import profile_scale
 from contactlab.fe.receding.load_path import (
     OPEN,
     SLIP_BACKWARD,
+    SLIP_FLOOR,
     SLIP_FORWARD,
     STICK,
+    classify,
     describe,
 )
+from contactlab.fe.receding.profiles import N_TOL
 
 #: The reference methods (``receding.history.method``).
 METHODS = ("panels", "ddt")
@@ -71,6 +77,7 @@ class Reference:
     tractions: list[Tractions]
     dissipated: np.ndarray
     cycle_slip_change: np.ndarray
+    read_zones: list[tuple[list[float], list[int]]] | None = None
 
 
 def ddt_history(problem: str, f: float, w_hat: float | None, path: Sequence[float], n: int,
@@ -130,6 +137,24 @@ def panel_zones(state, grid) -> tuple[list[float], list[int]]:
     return ends, codes
 
 
+def panel_zones_read_as_fe(before, after, f: float, grid, floor: float
+                           ) -> tuple[list[float], list[int]]:
+    """(ends, codes) of the panels at the end of a segment read as :mod:`load_path` reads
+    the FE's nodes (:func:`load_path.classify` at the collocation points): slipping where
+    the slip grew over the whole segment by more than ``floor`` along S and |S| ends
+    within SLIP_TOL of f|N|, open where -N <= N_TOL lambda; ends at panel edges, b from
+    ``panels.edge_estimate``."""
+    from contactlab.receding.liftoff.panels import edge_estimate
+
+    code = classify(after.N, after.S, after.u - before.u, f, floor, N_TOL * after.factor)
+    cuts = np.flatnonzero(np.diff(code)) + 1
+    ends = [float(grid.bounds[i]) for i in cuts]
+    codes = [int(code[i]) for i in np.r_[0, cuts]]
+    if codes[-1] == OPEN and ends:
+        ends[-1] = edge_estimate(after, grid)
+    return ends, codes
+
+
 def panel_tractions(state, grid) -> Tractions:
     """(S, N) at x >= 0 (units of T) of a panel state: its midpoint values interpolated
     linearly, continued to x < 0 as S odd and N even, constant beyond the last point."""
@@ -170,15 +195,21 @@ def panel_reference(history) -> Reference:
     from contactlab.receding.liftoff.cycles import segment_rows
 
     _check_complete(history, "panel")
-    grid = history.model.grid
+    grid, f = history.model.grid, history.model.f
+    ends = [0, *history.ends]
     states = [history.states[i] for i in history.ends]
     rows = segment_rows(history)
+    # the FE's slip floor: SLIP_FLOOR of the largest slip at the segments' ends so far
+    largest = np.maximum.accumulate([float(np.max(np.abs(s.u))) for s in states])
+    read = [panel_zones_read_as_fe(history.states[ends[k]], s, f, grid,
+                                   SLIP_FLOOR * max(largest[k], 1e-300))
+            for k, s in enumerate(states)]
     return Reference("panels", [panel_zones(s, grid) for s in states],
                      [str(r["zones"]) for r in rows],
                      np.array([float(r["b_estimate"]) for r in rows]),
                      [panel_tractions(s, grid) for s in states],
                      np.array([float(r["dissipated"]) for r in rows]),
-                     np.array([float(r["cycle_slip_change"]) for r in rows]))
+                     np.array([float(r["cycle_slip_change"]) for r in rows]), read)
 
 
 def _fe_zones(run: xr.Dataset, k: int) -> tuple[list[float], list[int]]:
@@ -243,6 +274,15 @@ def compare_history(runs: list[xr.Dataset], reference: Reference) -> xr.Dataset:
         if contact.any():
             ds_max[k] = float(np.max(np.abs(finest["S"].values[k] - s_ref)[contact]))
             dn_max[k] = float(np.max(np.abs(finest["N"].values[k] - n_ref)[contact]))
+    read = reference.read_zones or []
+    read_width = max([len(e) for e, _ in read], default=0)
+    read_ends = np.full((steps, read_width), np.nan)
+    read_fe = np.full((steps, read_width), np.nan)
+    for k, (ends, codes) in enumerate(read):
+        read_ends[k, :len(ends)] = ends
+        e, z = _fe_zones(finest, k)
+        if z == codes:
+            read_fe[k, :len(e)] = e
     ref_b = reference.b
     b_sep = np.array([[m.value, m.uncertainty] for m in
                       (ex.richardson(h, np.array([float(r["b_sep_fe"][k]) for r in runs]))
@@ -255,6 +295,7 @@ def compare_history(runs: list[xr.Dataset], reference: Reference) -> xr.Dataset:
         diff = 100.0 * (limit - ref) / ref
         raw = 100.0 * (fe[:, :, -1] - ref) / ref
         cycle_diff = 100.0 * (fe_cycle[:, -1] - ref_cycle) / ref_cycle
+        read_diff = 100.0 * (read_fe - read_ends) / read_ends
 
     def var(dims, values, long_name, units="1"):
         return xr.Variable(dims, np.asarray(values), {"long_name": long_name, "units": units})
@@ -312,6 +353,17 @@ def compare_history(runs: list[xr.Dataset], reference: Reference) -> xr.Dataset:
                 "end": ("end", np.arange(width),
                         {"long_name": "zone end, counted from x = 0 outwards", "units": "1"})},
     )
+    if read:
+        re_ = ("step", "read_end")
+        out["ref_read_ends"] = var(re_, read_ends, "reference zone ends over c, its state "
+                                   "read as the FE's nodes (slip over the whole step)")
+        out["read_difference"] = var(re_, read_diff, "(finest FE - reference read as the "
+                                     "FE) / that, where the sequences of zones agree",
+                                     "percent")
+        out["read_end"] = ("read_end", np.arange(read_width),
+                           {"long_name": "zone end of the FE reading, from x = 0 outwards",
+                            "units": "1"})
+        out.attrs["ref_read_zones"] = " | ".join(describe(*z) for z in read)
     out.attrs.update(problem=runs[0].attrs["problem"], f=float(runs[0].attrs["f"]),
                      w_hat=w, path=path, method=reference.method,
                      ref_zones=" | ".join(reference.words), fe_zones=" | ".join(fe_words),
