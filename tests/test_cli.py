@@ -337,9 +337,11 @@ MINIMAL: dict[str, list[str]] = {
         "receding --problem line --level coarse --young-half-plane 210000 "
         "--out {tmp}/line_two.nc",
         "materials-compare {tmp}/line_two.nc --ddt-n 40 --out {tmp}/materials_compare.nc",
-        # the line load unloaded (1 -> 0.5) on the coarse mesh, against the DDT history
+        # the line load unloaded (1 -> 0.5) on the coarse mesh, against the panel history
+        # (receding.history.method) and the zone-based DDT history
         "history --problem line --level coarse --out {tmp}/line_path.nc",
         "history-compare {tmp}/line_path.nc --out {tmp}/history_compare.nc",
+        "history-compare {tmp}/line_path.nc --method ddt --out {tmp}/history_compare_ddt.nc",
         "report --results {tmp}/gap.nc --report-dir {tmp}/report --out {tmp}/report/fe.html",
     ],
     "report": [

@@ -245,7 +245,7 @@ if rulehelpers.materials_fe_runs(FE, RESULTS):
 
 # ---- Load paths (opt-in, in no default target): one model per problem and mesh of
 # fe.history.h taken along fe.history.path, one ccx *STEP per load factor, and the runs
-# against the DDT history of the same path, e.g.
+# against the receding history of the same path (receding.history.method), e.g.
 #     snakemake -j2 results/fe/history_compare_line.nc
 
 
@@ -273,7 +273,7 @@ rule fe_history:
 
 rule fe_history_compare:
     """results/fe/history_compare_{problem}.nc: the zones along the path on the meshes of
-    fe.history.h (h -> 0) against the DDT history."""
+    fe.history.h (h -> 0) against the receding history of receding.history.method."""
     input:
         lambda wc: [result(f"fe/history/{wc.problem}_h{float(h):g}.nc")
                     for h in FE["history"]["h"]],

@@ -30,6 +30,7 @@ EXAMPLES = """\
   contactlab fe receding --problem uniform --level coarse --edges encastre --out run.nc
   contactlab fe history --problem line --path 1 0.5 --h 0.05 --out path.nc
   contactlab fe history-compare path.nc --out history_compare.nc
+  contactlab fe history-compare path.nc --method ddt --out history_compare_ddt.nc
   contactlab fe compare --problem uniform --run run.nc --ddt-n 50 --out uniform.nc
   contactlab fe convergence gap_coarse.nc gap_medium.nc --out convergence_gap.nc
   contactlab fe study --problem line line_*.nc --out study_line.nc
@@ -121,7 +122,7 @@ def _history(args: argparse.Namespace) -> None:
 def _history_compare(args: argparse.Namespace) -> None:
     import logging
 
-    from contactlab.fe.receding.history_compare import compare_history, ddt_history
+    from contactlab.fe.receding import history_compare as hc
     from contactlab.io import load_datasets, stamp, write_netcdf
 
     runs = load_datasets(args.runs, "FE history run")
@@ -129,22 +130,39 @@ def _history_compare(args: argparse.Namespace) -> None:
         if "path" not in run.attrs or "zone_ends" not in run:
             raise ValueError(f"{path}: not an output of `contactlab fe history`")
     first = runs[0].attrs
-    w = float(first.get("w_hat", float("nan")))
-    history = ddt_history(first["problem"], float(first["f"]),
-                          None if first["problem"] == "line" else w,
-                          list(first["path"]), args.n, args.n_inner, args.max_step,
-                          args.max_solves)
-    out = compare_history(runs, history)
-    out.attrs.update(ddt_n=args.n, ddt_n_inner=args.n_inner, ddt_max_step=args.max_step)
+    w = None if first["problem"] == "line" else float(first.get("w_hat", float("nan")))
+    path, f = list(first["path"]), float(first["f"])
+    try:
+        if args.method == "panels":
+            reference = hc.panel_reference(hc.panel_history(
+                first["problem"], f, w, path, args.panel_width, args.panel_step,
+                args.tail_start, args.tail_length))
+            settings = {"panel_width": args.panel_width, "panel_step": args.panel_step,
+                        "tail_start": args.tail_start, "tail_length": args.tail_length}
+        else:
+            reference = hc.ddt_reference(hc.ddt_history(first["problem"], f, w, path, args.n,
+                                                        args.n_inner, args.max_step,
+                                                        args.max_solves))
+            settings = {"ddt_n": args.n, "ddt_n_inner": args.n_inner,
+                        "ddt_max_step": args.max_step}
+    except RuntimeError as err:
+        hint = " (the zone-based history stops on reloading after unloading: use --method " \
+               "panels)" if args.method == "ddt" else ""
+        raise ValueError(f"--method {args.method}, path {' '.join(f'{v:g}' for v in path)} "
+                         f"of {args.runs[0]}: {err}{hint}") from None
+    out = hc.compare_history(runs, reference)
+    out.attrs.update(settings)
     log = logging.getLogger(__name__)
     for k in range(out.sizes["step"]):
-        log.info("step %d (lambda %g): DDT %s; FE %s; extrapolated - DDT (%%) %s", k + 1,
-                 float(out["factor"][k]), out.attrs["ddt_zones"].split(" | ")[k],
+        log.info("step %d (lambda %g): %s %s; FE %s; extrapolated - reference (%%) %s", k + 1,
+                 float(out["factor"][k]), args.method, reference.words[k],
                  out.attrs["fe_zones"].split(" | ")[k],
                  ", ".join(f"{v:+.2f}" for v in out["difference"].values[k] if v == v))
-    stamp(out, title="FE (CalculiX) load path against the distributed-dislocation history",
-          source="contactlab fe history runs; DDT contactlab.receding.liftoff.history",
-          history=args.history, inputs=runs)
+    source = {"panels": "displacement-discontinuity panels contactlab.receding.liftoff."
+                        "cycles",
+              "ddt": "zone-based DDT contactlab.receding.liftoff.history"}[args.method]
+    stamp(out, title=f"FE (CalculiX) load path against the receding history ({args.method})",
+          source=f"contactlab fe history runs; {source}", history=args.history, inputs=runs)
     write_netcdf(out, args.out)
 
 
@@ -439,14 +457,18 @@ COMMANDS = (
             *_ccx(), out_option()),
         run=_history, select="problem"),
     Command(
-        NAME, "history-compare", "FE load paths against the DDT history",
+        NAME, "history-compare", "FE load paths against the receding history",
         description="Zone ends (stick, slip forwards or backwards, open) at the end of every "
                     "step of `fe history` runs on a mesh series, extrapolated to h -> 0 "
-                    "(Richardson, finest three meshes), beside the distributed-dislocation "
-                    "history of the same problem, f and path (`receding history`); shear and "
-                    "pressure differences and the energy dissipated per step.",
+                    "(Richardson, finest three meshes), beside the history of the same "
+                    "problem, f and path by `receding history` (--method: panels or the "
+                    "zone-based ddt); b, shear and pressure differences, the energy "
+                    "dissipated per step and per cycle.",
         options=(Option("runs", "outputs of `fe history` (one problem, f and path)",
                         input_file, nargs="+"),
+                 Option("--method", "reference history: displacement-discontinuity panels "
+                        "(any path, cycles) or the zone-based DDT", choices=("panels", "ddt"),
+                        key="receding.history.method"),
                  Option("--n", "DDT Gauss-Chebyshev points N", int, key="receding.history.n"),
                  Option("--n-inner", "DDT points of each interior slip zone", int,
                         key="receding.history.n_inner"),
@@ -454,6 +476,14 @@ COMMANDS = (
                         key="receding.history.max_step"),
                  Option("--max-solves", "DDT's most incremental solves", int,
                         key="receding.history.max_solves"),
+                 Option("--panel-width", "panel width", float, unit="c",
+                        key="receding.history.panel_width"),
+                 Option("--panel-step", "panels' largest sub-step over the peak load", float,
+                        key="receding.history.panel_step"),
+                 Option("--tail-start", "panels' preformed tail: its start beyond the load",
+                        float, unit="c", key="receding.history.tail_start"),
+                 Option("--tail-length", "panels' preformed tail: its length", float,
+                        unit="c", key="receding.history.tail_length"),
                  out_option()),
         run=_history_compare),
     Command(

@@ -9,7 +9,7 @@ dislocations (DDT).
 ``ddt``         the DDT side of the cross-checks: transition points and profiles
 ``compare``     agreement with the DDT and convergence
 ``load_path``   one model along a load path (one ccx step per load factor), zones per step
-``history_compare``  a load path on a mesh series against the DDT history
+``history_compare``  a load path on a mesh series against the receding history (panels or DDT)
 
 The CalculiX layer they build on (meshes, decks, ccx, result files) is :mod:`contactlab.fe`.
 """

@@ -9,9 +9,9 @@ load's absolute value at the step's end (the default ``OP=MOD`` changes the valu
 same degree of freedom or face; ccx ramps from the previous step's value), and ccx carries
 the contact's state from step to step, the tangential (stick) springs' elastic slip
 included, so the friction history is that of one continuous loading (checked: a path
-0.5 -> 1 ends where one step to 1 ends, ``tests/fe/test_load_path.py``). Each step is
-taken in at least ``increments`` increments (automatic, none larger than 1/increments of
-the step): the frictional path inside a step is resolved by them.
+0.5 -> 1 ends where one step to 1 ends, ``tests/fe/receding/test_load_path.py``). Each
+step is taken in at least ``increments`` increments (automatic, none larger than
+1/increments of the step): the frictional path inside a step is resolved by them.
 
 Far-field block edges (:mod:`contactlab.fe.farfield`) take, in every step, the half-plane's
 displacements of that step's load: Flamant's field of lambda_k times the net load in the
