@@ -20,6 +20,7 @@ from contactlab.receding.options import (
     NAME,
     PAIRS,
     line_options,
+    linear_interface_options,
     material_options,
     materials_of,
     patch_options,
@@ -111,13 +112,9 @@ def _interface_options() -> tuple[Option, ...]:
     """The interface law of ``receding solve`` (every problem that takes a rough one)."""
     rough = names(interface="linear")
     pairs = dict.fromkeys(rough, PAIRS)
+    compliance, compliance_t, nu = linear_interface_options(rough)
     return (
-        Option("--interface-compliance", "normal compliance number C = (2 mu/(kappa + 1)) "
-               "/ (c k_n) of a linear interface of normal stiffness k_n per unit area "
-               "(0 or absent: smooth)", float, default=None, only=rough),
-        Option("--interface-compliance-t", "tangential compliance number C_T (k_t in place "
-               "of k_n; absent: C/m, Mindlin's m = 2(1 - nu)/(2 - nu))", float, default=None,
-               only=rough),
+        compliance, compliance_t,
         Option("--interface-from-test", "a tested pair whose law (eqs 2.4, 2.7) the interface "
                "takes, from the stiffness summary (--summary)", default=None, only=rough),
         Option("--interface-fit", "the law's fit numbers instead: beta_n_per_um=... "
@@ -136,9 +133,7 @@ def _interface_options() -> tuple[Option, ...]:
         Option("--pressure", "pressure a linearised law takes its stiffness at (default: "
                "the test's max normal load over its nominal area)", float, unit="kN/mm^2",
                default=None, only=rough),
-        Option("--nu", "Poisson's ratio of Mindlin's m = 2(1 - nu)/(2 - nu), C_T = C/m when "
-               "not given", float, key=dict.fromkeys(rough, "receding.rough.nu"),
-               only=rough),
+        nu,
         *(Option(flag, help, choices=choices, key={p: f"{pairs[p]}.{key}" for p in rough},
                  only=rough)
           for flag, key, help, choices in (

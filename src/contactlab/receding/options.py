@@ -73,6 +73,22 @@ def material_options(section: str = MATERIALS, only: tuple[str, ...] | None = No
     )
 
 
+def linear_interface_options(problems: tuple[str, ...]) -> tuple[Option, ...]:
+    """The linear interface law of ``problems``: C, C_T (absent: smooth) and the Poisson's
+    ratio of Mindlin's ratio that gives C_T = C/m when C_T is not given."""
+    return (
+        Option("--interface-compliance", "normal compliance number C = (2 mu/(kappa + 1)) "
+               "/ (c k_n) of a linear interface of normal stiffness k_n per unit area "
+               "(0 or absent: smooth)", float, default=None, only=problems),
+        Option("--interface-compliance-t", "tangential compliance number C_T (k_t in place "
+               "of k_n; absent: C/m, Mindlin's m = 2(1 - nu)/(2 - nu))", float, default=None,
+               only=problems),
+        Option("--nu", "Poisson's ratio of Mindlin's m = 2(1 - nu)/(2 - nu), C_T = C/m when "
+               "not given", float, key=dict.fromkeys(problems, f"{ROUGH}.nu"),
+               only=problems),
+    )
+
+
 def materials_of(args: object) -> object:
     """The ``core.materials.Materials`` of the options of :func:`material_options`; a bad
     value raises ValueError naming the option."""

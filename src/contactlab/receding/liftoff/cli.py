@@ -30,6 +30,7 @@ from contactlab.receding.options import (
     STICK_ZONE,
     f_values,
     line_options,
+    linear_interface_options,
     material_options,
     materials_of,
     n_option,
@@ -157,13 +158,19 @@ def _history(args: argparse.Namespace) -> None:
 
     from contactlab.receding.core.solution import json_ready
     from contactlab.receding.liftoff.history import MAX_ZONES, least_sub_steps, segments
+    from contactlab.receding.rough.cli import linear_interface_of
 
+    materials, interface = materials_of(args), linear_interface_of(args)
     if args.method == "panels":
-        _history_panels(args)
+        _history_panels(args, materials, interface)
         return
     if args.cycles:
         raise ValueError(f"--cycles {args.cycles} needs --method panels (the zone-based "
                          "method stops on reloading after unloading)")
+    if interface is not None or not materials.same:
+        raise ValueError("--method ddt solves one material on a smooth interface: use "
+                         "--method panels for two materials (--young-layer ...) or "
+                         "--interface-compliance")
     problem = registry()[args.problem]
     check_memory("--n", args.n, problem.memory(args.n))
     # a step's dense system: both semi-infinite densities and the interior slip zones
@@ -209,9 +216,10 @@ def _history(args: argparse.Namespace) -> None:
                                                  if spent else ""))
 
 
-def _history_panels(args: argparse.Namespace) -> None:
+def _history_panels(args: argparse.Namespace, materials: Any, interface: Any) -> None:
     """``receding history --method panels``: the path (or ``--cycles``) on panels, a table
-    of its segments and the cycles' verdict (or JSON), netCDF with ``--out``."""
+    of its segments and the cycles' verdict (or JSON), netCDF with ``--out``; the layer
+    and half-plane of ``materials``, a linear ``interface`` (None: smooth)."""
     import json
     import math
 
@@ -235,8 +243,10 @@ def _history_panels(args: argparse.Namespace) -> None:
     else:
         factors = list(args.path)
     steps = least_sub_steps(factors, args.panel_step)
+    from contactlab.receding.core.interface import SMOOTH
+
     model = model_for(problem.law, point.w_hat or 0.0, args.f, args.panel_width,
-                      args.tail_start, args.tail_length)
+                      args.tail_start, args.tail_length, materials, interface or SMOOTH)
     unknowns = 2 * model.grid.size + 1
     check_memory("--panel-width", args.panel_width, 8.0 * 8 * unknowns**2)
     start = time.process_time()
@@ -250,7 +260,9 @@ def _history_panels(args: argparse.Namespace) -> None:
     values = {"problem": problem.name, "f": args.f, "w_hat": point.w_hat,
               "method": "panels", "panel_width": args.panel_width,
               "x_tail": model.grid.x_tail, "x_max": model.grid.x_max,
-              "panel_step": args.panel_step}
+              "panel_step": args.panel_step, **materials.result_attrs()}
+    if interface is not None:
+        values.update(interface.attrs())
     out = {**values, "path": history.targets, "completed": history.completed,
            "converged": history.converged, "message": history.message,
            "least_sub_steps": steps, "panels": model.grid.size,
@@ -275,6 +287,10 @@ def _history_panels(args: argparse.Namespace) -> None:
     print(f"{problem.title}, f = {args.f:g}, {model.grid.size} panels of {args.panel_width:g} c"
           f", path {' '.join(f'{v:g}' for v in history.targets)}: {history.completed} of "
           f"{len(history.targets)} segments, {out['cpu_seconds']} s CPU")
+    if not materials.same:
+        print(f"  two materials: {materials.describe()}")
+    if interface is not None:
+        print(f"  linear interface: C = {interface.C:g}, C_T = {interface.C_T:g}")
     for r in rows:
         cycle = r["cycle_slip_change"]
         worst = max(float(v) for k, v in r.items()
@@ -391,6 +407,7 @@ COMMANDS = (
                  Option("--stick-zone-limit", STICK_ZONE, float,
                         key={**dict.fromkeys(LINES, f"{LINE}.stick_zone_limit"),
                              **dict.fromkeys(LAWS, f"{PATCHES}.stick_zone_limit")}),
+                 *material_options(), *linear_interface_options(HISTORY_PROBLEMS),
                  Option("--json", "print one JSON object", kind="flag", default=False),
                  Option("--out", "netCDF of the states, segments and cycles (--method "
                         "panels)", Path, default=None, role="output")),

@@ -35,6 +35,8 @@ from itertools import pairwise
 
 import numpy as np
 
+from contactlab.receding.core.interface import SMOOTH, Interface
+from contactlab.receding.core.materials import ONE_MATERIAL, Materials
 from contactlab.receding.liftoff.history import PathProgress
 from contactlab.receding.liftoff.panels import (
     OPEN,
@@ -124,6 +126,7 @@ def segment_rows(history: PanelHistory) -> list[dict[str, float | str]]:
     """One record per finished segment (module docstring); energies in (kappa + 1) T^2
     c^2 / (2 mu), slips in (kappa + 1) T c / (2 mu), checks as ``panels.checks``."""
     grid, f = history.model.grid, history.model.f
+    compliance = history.model.interface.C
     out: list[dict[str, float | str]] = []
     peak = 0.0
     for k, end in enumerate(history.ends):
@@ -132,13 +135,14 @@ def segment_rows(history: PanelHistory) -> list[dict[str, float | str]]:
         state, states = history.states[end], history.states
         worst: dict[str, float] = {}
         for i in range(begin + 1, end + 1):
-            for name, value in checks(states[i], states[i - 1], f, grid, peak).items():
+            for name, value in checks(states[i], states[i - 1], f, grid, peak,
+                                      compliance).items():
                 worst[name] = max(worst.get(name, 0.0), value)
         closes = k >= 2 and abs(history.targets[k] - history.targets[k - 2]) < 1e-12
         out.append({
             "from": states[begin].factor, "to": state.factor, "steps": end - begin,
             "zones": describe(state, grid), "b": contact_end(state, grid),
-            "b_estimate": edge_estimate(state, grid), "a": stick_end(state, grid),
+            "b_estimate": edge_estimate(state, grid, compliance), "a": stick_end(state, grid),
             "K": state.K,
             "dissipated": sum(dissipated(states[i - 1], states[i], grid)
                               for i in range(begin + 1, end + 1)),
@@ -222,16 +226,19 @@ def cycles(model: PanelModel, low: float, high: float, count: int, max_step: flo
 
 
 def model_for(law: str, w_hat: float, f: float, panel_width: float, tail_start: float,
-              tail_length: float) -> PanelModel:
+              tail_length: float, materials: Materials = ONE_MATERIAL,
+              interface: Interface = SMOOTH) -> PanelModel:
     """The panel model of a lift-off problem: its load (``loading.make_load``), panels of
     width ``panel_width`` to x_max = x_tail + ``tail_length``, the preformed density from
-    x_tail = w + ``tail_start`` (units of c)."""
+    x_tail = w + ``tail_start`` (units of c); the layer and half-plane of ``materials``
+    and a smooth or linear ``interface`` (``panels`` module docstring)."""
     from contactlab.receding.liftoff.loading import make_load
     from contactlab.receding.liftoff.panels import PanelGrid
 
     load = make_load(law, w_hat)
     x_tail = load.w + tail_start
-    return PanelModel(load, f, PanelGrid(panel_width, x_tail, x_tail + tail_length))
+    return PanelModel(load, f, PanelGrid(panel_width, x_tail, x_tail + tail_length),
+                      materials, interface)
 
 
 def history_dataset(history: PanelHistory, rows: list[dict[str, float | str]],

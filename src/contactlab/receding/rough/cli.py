@@ -115,18 +115,26 @@ def interface_of(args: argparse.Namespace, materials: Any) -> tuple[Any, dict[st
         raise ValueError(f"{' and '.join(linear + tested)}: give one interface law")
     if tested:
         return _tested_interface(args, materials)
+    return linear_interface_of(args), {}
+
+
+def linear_interface_of(args: argparse.Namespace) -> Any:
+    """The linear law of ``--interface-compliance C [--interface-compliance-t C_T]``
+    (``options.linear_interface_options``; C_T: C/m, Mindlin's m at --nu), or None
+    (smooth) when neither is given or both are 0."""
+    C, C_T = args.interface_compliance, args.interface_compliance_t
     for flag, value in (("--interface-compliance", C), ("--interface-compliance-t", C_T)):
         if value is not None and not (value >= 0 and value < float("inf")):
             raise ValueError(f"{flag} {value:g}: a compliance number must be finite and >= 0 "
                              "(a positive interface stiffness; 0: smooth)")
     if not C and not C_T:
-        return None, {}
+        return None
     from contactlab.receding.core.interface import linear_interface, mindlin_ratio
 
     C = C or 0.0
     if C_T is None:
         C_T = C / mindlin_ratio(args.nu)
-    return linear_interface(C, C_T), {}
+    return linear_interface(C, C_T)
 
 
 def _tested_interface(args: argparse.Namespace, materials: Any) -> tuple[Any, dict[str, Any]]:
