@@ -333,7 +333,7 @@ def _shakedown_map(args: argparse.Namespace) -> None:
 
 
 def _report_shakedown(args: argparse.Namespace) -> None:
-    from contactlab.receding.liftoff.shakedown_report import build_section
+    from contactlab.receding.liftoff.report_shakedown import build_section
 
     build_section(args.maps, args.report_dir, args.out)
 
