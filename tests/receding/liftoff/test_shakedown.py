@@ -24,13 +24,13 @@ SETTINGS = MapSettings(panel_width=0.05, panel_step=0.05, tail_start=3.0, tail_l
 
 @pytest.fixture(scope="module")
 def line_map():
-    """The line load at f = 0.5, cycles 1 <-> 0.5 and 1 <-> 0.99 (about 3 s CPU)."""
-    return shakedown_map("line", 0.0, [0.5], [0.99, 0.5], SETTINGS)
+    """The line load at f = 0.5, cycles 1 <-> 0.5, 0.9 and 0.99 (about 4 s CPU)."""
+    return shakedown_map("line", 0.0, [0.5], [0.99, 0.5, 0.9], SETTINGS)
 
 
 def test_the_known_line_load_cases(line_map) -> None:
     point = line_map.sel(f=0.5)
-    assert list(point.ratio.values) == [0.5, 0.99]  # sorted
+    assert list(point.ratio.values) == [0.5, 0.9, 0.99]  # sorted
     # 1 <-> 0.5: cyclic slip, about 5.6 % of the first loading's energy per cycle
     half = point.sel(ratio=0.5)
     assert int(half.verdict) == CYCLIC_SLIP
@@ -38,6 +38,8 @@ def test_the_known_line_load_cases(line_map) -> None:
     assert float(half.relative_energy) == pytest.approx(0.056, rel=0.05)
     assert float(half.slip_amplitude) == pytest.approx(1.5e-2, rel=0.1)
     assert 0 < int(half.repeats_from_cycle) == int(half.cycles_run) < SETTINGS.count
+    # ... slipping most well inside the contact (1.43 c of b = 1.80 c)
+    assert float(half.contact_end) - float(half.slip_location) > 0.3
     # the first loading's energy is the monotonic one: 9.02e-3 (kappa + 1) P^2 / (2 mu)
     assert float(half.loading_energy) == pytest.approx(9.02e-3, rel=5e-3)
     # 1 <-> 0.99: shaken down after cycle 6, its last cycle slipping nowhere
@@ -46,10 +48,18 @@ def test_the_known_line_load_cases(line_map) -> None:
     assert int(small.shakedown_cycle) == 6
     assert int(small.cycles_run) == 7
     assert float(small.slip_amplitude) < SETTINGS.tol * 0.1  # of a slip of order 0.1
-    # the boundary lies between the two ratios, strictly and practically
-    assert float(point.boundary_strict_low) == 0.5
+    # 1 <-> 0.9: slip goes on at 8e-5 of the loading energy, in the panels next to b
+    edge = point.sel(ratio=0.9)
+    assert int(edge.verdict) == EDGE_SLIP
+    assert 0 < float(edge.relative_energy) < SETTINGS.energy_tol
+    assert float(edge.slip_amplitude) > 100 * SETTINGS.tol * 0.1
+    assert 0 < float(edge.contact_end) - float(edge.slip_location) < 2 * SETTINGS.panel_width
+    # the boundary: strictly between 0.9 and 0.99, practically between 0.5 and 0.9
+    assert float(point.boundary_strict_low) == 0.9
     assert float(point.boundary_strict_high) == 0.99
-    assert 0.5 < float(point.boundary_practical) < 0.99
+    assert (float(point.boundary_practical_low), float(point.boundary_practical_high)) \
+        == (0.5, 0.9)
+    assert 0.5 < float(point.boundary_practical) < 0.9
     assert line_map.attrs["energy_tol"] == SETTINGS.energy_tol
 
 

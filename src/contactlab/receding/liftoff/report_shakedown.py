@@ -24,7 +24,8 @@ from contactlab.report.section import ReportSection
 #: marker of each verdict class (``shakedown.VERDICTS``)
 MARKERS = ("o", "^", "X", "s")
 POINT_COLUMNS = ["problem", "f", "ratio", "verdict", "shakedown_cycle", "energy_per_cycle",
-                 "relative_energy", "slip_amplitude", "cycles_run", "repeats_from_cycle"]
+                 "relative_energy", "slip_amplitude", "slip_location", "contact_end",
+                 "cycles_run", "repeats_from_cycle"]
 ENERGY, SLIP = "(kappa + 1) T^2 c^2 / (2 mu)", "(kappa + 1) T c / (2 mu)"
 BOUNDARY_COLUMNS = ["problem", "f", "strict_low", "strict_high", "practical_low",
                     "practical_high", "practical"]

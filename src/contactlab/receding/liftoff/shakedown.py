@@ -18,7 +18,8 @@ state repeats or ``count`` cycles have run. Its **verdict** is one of four class
 - ``NOT_SETTLED`` (3): none of these after ``count`` cycles, or a step that failed.
 
 Per point the map keeps the verdict, the cycle after which it shook down, the energy per
-cycle and the slip amplitude of the last cycle run, the energy of the first loading, the
+cycle, the slip amplitude and where the slip is largest (beside the contact end b at the
+high load: edge slip sits next to b) of the last cycle run, the energy of the first loading, the
 number of cycles run and the cycle from which the state repeats.
 
 **Shakedown boundary** (:func:`boundary`): per f, the ratio R above which the contact
@@ -34,11 +35,12 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from itertools import pairwise
 
 import numpy as np
 
 from contactlab.receding.liftoff.cycles import CycleResult, cycles, model_for
-from contactlab.receding.liftoff.panels import dissipated
+from contactlab.receding.liftoff.panels import contact_end, dissipated, slip_increment
 
 SHAKEN_DOWN, EDGE_SLIP, CYCLIC_SLIP, NOT_SETTLED = range(4)
 #: the verdicts' names, by class
@@ -73,6 +75,18 @@ def first_loading_energy(result: CycleResult) -> float:
                for a, b in zip(history.states[:end], history.states[1:end + 1], strict=True))
 
 
+def last_cycle_slip(result: CycleResult) -> tuple[float, float]:
+    """Where the last cycle slips most (x/c of the panel with the largest slip path; NaN
+    without a cycle) and the contact end b/c at the high load (panel edge)."""
+    history = result.history
+    grid = history.model.grid
+    if len(history.ends) < 3 or not result.energy:
+        return math.nan, math.nan
+    run = history.states[history.ends[-3]:history.ends[-1] + 1]
+    path = np.sum([slip_increment(a, b) for a, b in pairwise(run)], axis=0)
+    return float(grid.points[int(np.argmax(path))]), contact_end(run[-1], grid)
+
+
 def classify(result: CycleResult, loading_energy: float, energy_tol: float) -> int:
     """The class of a cycles run (module docstring)."""
     if result.shakedown >= 0:
@@ -95,10 +109,12 @@ def map_point(law: str, w_hat: float, f: float, ratio: float,
     loading = first_loading_energy(result)
     verdict = classify(result, loading, settings.energy_tol)
     energy = result.energy[-1] if result.energy else math.nan
+    where, b = last_cycle_slip(result)
     return {"verdict": verdict, "shakedown_cycle": result.shakedown,
             "energy_per_cycle": energy,
             "relative_energy": energy / loading if loading else math.nan,
             "slip_amplitude": result.amplitude[-1] if result.amplitude else math.nan,
+            "slip_location": where, "contact_end": b,
             "loading_energy": loading, "cycles_run": len(result.energy),
             "repeats_from_cycle": result.repeats, "message": result.history.message,
             "description": result.verdict}
@@ -144,7 +160,8 @@ def shakedown_map(law: str, w_hat: float, fs: Sequence[float], ratios: Sequence[
             raise ValueError(f"{name} values repeat: {values}")
     points = [[map_point(law, w_hat, f, r, settings) for r in ratios] for f in fs]
     fields = ("verdict", "shakedown_cycle", "energy_per_cycle", "relative_energy",
-              "slip_amplitude", "loading_energy", "cycles_run", "repeats_from_cycle")
+              "slip_amplitude", "slip_location", "contact_end", "loading_energy",
+              "cycles_run", "repeats_from_cycle")
     data = {k: np.array([[p[k] for p in row] for row in points]) for k in fields}
     energy, slip = "(kappa + 1) T^2 c^2 / (2 mu)", "(kappa + 1) T c / (2 mu)"
     attrs = {
@@ -160,6 +177,10 @@ def shakedown_map(law: str, w_hat: float, fs: Sequence[float], ratios: Sequence[
                             "units": "1"},
         "slip_amplitude": {"long_name": "slip amplitude of the last cycle (half the "
                                         "largest slip path)", "units": slip},
+        "slip_location": {"long_name": "x/c of the panel with the largest slip path in the "
+                                        "last cycle", "units": "1"},
+        "contact_end": {"long_name": "contact end b/c at the high load (panel edge)",
+                        "units": "1"},
         "loading_energy": {"long_name": "frictional energy of the first loading 0 -> 1",
                            "units": energy},
         "cycles_run": {"long_name": "cycles run", "units": "1"},
