@@ -34,7 +34,8 @@ MEASURED = ROOT / "docs" / "cluster" / "benchmarks"
 #: rule names, longest first, so that a file name maps to the rule that wrote it
 RULES = sorted(["receding_gap_sweep", "receding_line_sweep", "receding_patch_sweep",
                 "receding_rough_sweep", "receding_rough_pairs", "receding_beta_sweep",
-                "fe_receding", "fe_receding_study", "fe_asperity", "fe_rough",
+                "receding_shakedown_map", "fe_receding", "fe_receding_study", "fe_asperity",
+                "fe_rough",
                 "fe_receding_materials", "fe_materials_compare", "fe_history",
                 "fe_history_compare",
                 "asperity_bem",

@@ -48,7 +48,8 @@ BRANCH_RULES = {
 ALWAYS = ("report_index", "all")
 #: Leaves that name files or the shared demo inputs, not parameters of a computation, and
 #: sections (every leaf under them) that only give a command run by hand its defaults: no
-#: rule runs `receding history` yet.
+#: rule runs `receding history` (the shakedown maps' rule takes its panel width, tail and
+#: cycle_tol, which the walk changes where a config sets them).
 SKIP = {"surfaces.sheet", "receding.history"}
 
 #: A walked parameter: (branch, key path, new value, the word expected on a command line).

@@ -235,6 +235,10 @@ MINIMAL: dict[str, list[str]] = {
         "patch-gather {tmp}/uniform_0.nc --out {tmp}/uniform.nc",
         "patch-profile --problem uniform --f 0.3 --w-hat 1 --out {tmp}/patch_profile.nc",
         "history",
+        # the known cases: cyclic slip at R = 0.5, shaken down after cycle 6 at R = 0.99
+        "shakedown-map --problem line --f 0.5 --ratio 0.5 0.99 --out {tmp}/shakedown.nc",
+        "report-shakedown --maps {tmp}/shakedown.nc --report-dir {tmp}/report "
+        "--out {tmp}/report/shakedown.html",
         "report-line-patch --line {tmp}/line.nc --patches {tmp}/uniform.nc --profiles "
         "{tmp}/line_profile.nc {tmp}/patch_profile.nc --report-dir {tmp}/report "
         "--out {tmp}/report/line_patch.html",
@@ -417,10 +421,12 @@ def _bad_input_cases(tmp: Path) -> list[tuple[list[str], list[str]]]:
          ["--changes", "not valid JSON"]),
         (["prediction", "summarize", "README.md", "--tangential-ratio", "-0.1", "--out", out],
          ["--tangential-ratio", "-0.1 is not a positive number"]),
+        (["receding", "shakedown-map", "--problem", "line", "--ratio", "0.5", "1",
+          "--out", out], ["--ratio 0.5 1.0", "maximum of 1"]),
     ]
 
 
-BAD_INPUT_CASES = 16
+BAD_INPUT_CASES = 17
 
 
 def test_every_bad_input_case_is_run(tmp_path: Path) -> None:

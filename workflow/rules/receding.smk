@@ -499,6 +499,52 @@ ALL_TARGETS.extend(
 REPORT_SECTIONS.append(report_page("53_receding_materials"))
 
 
+# ---- Load cycles (receding.shakedown): a shakedown map over (f, R) per lift-off problem on
+# panels (docs/findings/receding_history.md) and report section 54.
+
+SHAKEDOWN = config["receding"]["shakedown"]
+
+
+rule receding_shakedown_map:
+    """results/receding/history/shakedown_<problem>.nc: cycles 1 <-> R over (f, R)."""
+    output:
+        result("receding/history/shakedown_{problem}.nc"),
+    wildcard_constraints:
+        problem=r"[a-z]+",
+    params:
+        args=lambda wc: command_args("receding shakedown-map", config, problem=wc.problem),
+    log:
+        logs("receding/shakedown_{problem}.log"),
+    benchmark:
+        logs("benchmarks/receding_shakedown_map_{problem}.tsv"),
+    shell:
+        "contactlab receding shakedown-map {params.args:q} --out {output:q} 2> {log:q}"
+
+
+rule receding_report_shakedown:
+    """Report section 54: the shakedown maps, their boundaries and tables."""
+    input:
+        maps=expand(result("receding/history/shakedown_{problem}.nc"),
+                    problem=SHAKEDOWN["problems"]),
+    output:
+        **report_section("54_receding_shakedown", problem=SHAKEDOWN["problems"]),
+    params:
+        report_dir=lambda wildcards, output: Path(output.section).parent.parent,
+    log:
+        logs("report/receding_shakedown.log"),
+    benchmark:
+        logs("benchmarks/receding_report_shakedown.tsv"),
+    shell:
+        "contactlab receding report-shakedown --maps {input.maps:q}"
+        " --report-dir {params.report_dir:q} --out {output.section:q} 2> {log:q}"
+
+
+ALL_TARGETS.extend(
+    expand(result("receding/history/shakedown_{problem}.nc"), problem=SHAKEDOWN["problems"])
+)
+REPORT_SECTIONS.append(report_page("54_receding_shakedown"))
+
+
 # Seconds-long gathers, light solves and reports: on a cluster they run in the
 # Snakemake process itself instead of queueing as jobs of their own.
 localrules:
@@ -517,3 +563,4 @@ localrules:
     receding_report_rough,
     receding_report_materials,
     receding_materials_pair,
+    receding_report_shakedown,

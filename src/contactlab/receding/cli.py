@@ -42,6 +42,7 @@ EXAMPLES = """\
   contactlab receding patch-sweep --problem uniform --f 0.3 --w-hat 1 --out x.nc
   contactlab receding patch-profile --problem uniform --f 0.3 --w-hat 1 --out p.nc
   contactlab receding history --problem line --f 0.5 --path 1 0.5
+  contactlab receding shakedown-map --problem line --f 0.2 0.5 1 --ratio 0.5 0.9 0.99 --out map.nc
   contactlab receding solve --problem line --f 0.5 --interface-compliance 1 --json
   contactlab receding solve --problem line --f 0.5 --interface-from-test S3 --c 1 --load 0.4
   contactlab receding solve --problem line --f 0.5 --young-layer 210 --nu-layer 0.29

@@ -1,8 +1,8 @@
 """Commands of the lifting-off problems (chs 6-7): the line load and pressure patches.
 
 Declared here, grouped by :mod:`contactlab.receding.cli`: ``line-sweep``, ``line-gather``,
-``line-profile``, ``patch-sweep``, ``patch-gather``, ``patch-profile``,
-``report-line-patch``.
+``line-profile``, ``patch-sweep``, ``patch-gather``, ``patch-profile``, ``history``,
+``shakedown-map``, ``report-shakedown``, ``report-line-patch``.
 Options fed from the config (``receding.line``, ``receding.patches``, the materials of
 ``receding.materials``) take the schema's defaults when not given.
 """
@@ -10,6 +10,7 @@ Options fed from the config (``receding.line``, ``receding.patches``, the materi
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 from pathlib import Path
 from typing import Any
@@ -49,6 +50,7 @@ LINES = names(family="line")
 PATCH_PROBLEMS = names(family="patch")
 LAWS = names(family="patch", shape=False)
 HISTORY = "receding.history"
+SHAKEDOWN = "receding.shakedown"
 #: the problems a load path is solved for: the line load and the named patches
 HISTORY_PROBLEMS = (*LINES, *LAWS)
 
@@ -309,6 +311,49 @@ def _history_panels(args: argparse.Namespace, materials: Any, interface: Any) ->
         print(f"  stopped: {history.message}")
 
 
+def _shakedown_map(args: argparse.Namespace) -> None:
+    """``receding shakedown-map``: cycles 1 <-> R of one problem over (f, R) on panels, the
+    verdicts and the shakedown boundary to netCDF, a line per point to stdout."""
+    from contactlab.receding.liftoff.shakedown import VERDICTS, MapSettings, shakedown_map
+
+    problem = registry()[args.problem]
+    if any(not 0.0 < r < 1.0 for r in args.ratio):
+        raise ValueError(f"--ratio {' '.join(f'{r:g}' for r in args.ratio)}: every load "
+                         "amplitude ratio R = low/high must lie in (0, 1)")
+    if any(not f > 0.0 for f in args.f):
+        raise ValueError(f"--f {' '.join(f'{f:g}' for f in args.f)}: every friction "
+                         "coefficient must be > 0")
+    point = problem.point(args.f[0], getattr(args, "w_hat", None))
+    settings = MapSettings(args.panel_width, args.panel_step, args.tail_start,
+                           args.tail_length, args.cycles, args.cycle_tol, args.energy_tol)
+    panels = round(((point.w_hat or 0.0) + args.tail_start + args.tail_length)
+                   / args.panel_width)
+    check_memory("--panel-width", args.panel_width, 8.0 * 8 * (2 * panels + 1)**2)
+    start = time.process_time()
+    ds = shakedown_map(problem.law, point.w_hat or 0.0, args.f, args.ratio, settings)
+    for f in ds.f.values:
+        for r in ds.ratio.values:
+            p = ds.sel(f=f, ratio=r)
+            print(f"f = {f:g}, R = {r:g}: {VERDICTS[int(p.verdict)]}; energy per cycle "
+                  f"{float(p.energy_per_cycle):.3e} ({float(p.relative_energy):.1e} of the "
+                  f"first loading's), slip amplitude {float(p.slip_amplitude):.3e}, "
+                  f"{int(p.cycles_run)} cycles")
+    from contactlab.io import stamp, write_netcdf
+
+    where = f", w/c = {point.w_hat:g}" if problem.widths else ""
+    stamp(ds, title=f"{problem.title}{where}: shakedown map over (f, R) on panels",
+          source=PANEL_SOURCE, history=args.history)
+    write_netcdf(ds, args.out)
+    print(f"{ds.f.size * ds.ratio.size} points, {time.process_time() - start:.1f} s CPU",
+          file=sys.stderr)
+
+
+def _report_shakedown(args: argparse.Namespace) -> None:
+    from contactlab.receding.liftoff.report_shakedown import build_section
+
+    build_section(args.maps, args.report_dir, args.out)
+
+
 def _report(args: argparse.Namespace) -> None:
     from contactlab.receding.liftoff.report import build_section
 
@@ -412,6 +457,39 @@ COMMANDS = (
                  Option("--out", "netCDF of the states, segments and cycles (--method "
                         "panels)", Path, default=None, role="output")),
         run=_history, select="problem"),
+    Command(
+        NAME, "shakedown-map", "shakedown map of a lift-off problem over (f, R)",
+        description="Load cycles 1 <-> R (R = low/high) of the line load or a pressure "
+                    "patch on panels at every (f, R) until the state repeats: per point "
+                    "the verdict (shaken down, practically shaken down with slip left at "
+                    "the moving edge, cyclic slip, not settled), the energy per cycle, the "
+                    "slip amplitude and the cycles run; per f the shakedown boundary in R "
+                    "(docs/findings/receding_history.md).",
+        options=(Option("--problem", "the lift-off problem", choices=HISTORY_PROBLEMS),
+                 Option("--w-hat", "patch half-width w/c", float, key=f"{SHAKEDOWN}.w_hat",
+                        only=LAWS),
+                 Option("--f", "friction coefficients f (> 0)", float, nargs="+",
+                        key=f"{SHAKEDOWN}.f"),
+                 Option("--ratio", "load amplitude ratios R = low/high, in (0, 1)", float,
+                        nargs="+", key=f"{SHAKEDOWN}.ratios"),
+                 Option("--cycles", type=int, key=f"{SHAKEDOWN}.cycles"),
+                 Option("--energy-tol", type=float, key=f"{SHAKEDOWN}.energy_tol"),
+                 Option("--panel-step", type=float, key=f"{SHAKEDOWN}.panel_step"),
+                 Option("--panel-width", type=float, unit="c", key=f"{HISTORY}.panel_width"),
+                 Option("--tail-start", type=float, unit="c", key=f"{HISTORY}.tail_start"),
+                 Option("--tail-length", type=float, unit="c",
+                        key=f"{HISTORY}.tail_length"),
+                 Option("--cycle-tol", type=float, key=f"{HISTORY}.cycle_tol"),
+                 out_option("netCDF of the map")),
+        run=_shakedown_map, select="problem"),
+    Command(
+        NAME, "report-shakedown", "report section of the shakedown maps",
+        description="HTML report fragment of the shakedown maps: per problem the verdicts "
+                    "over (f, R) with the boundary, and tables.",
+        options=(Option("--maps", "shakedown maps (results/receding/history/shakedown_"
+                        "<problem>.nc)", input_file, nargs="+"),
+                 *section_outputs()),
+        run=_report_shakedown),
     Command(
         NAME, "report-line-patch", "report section of chs 6-7",
         description="HTML report fragment of the line load and pressure patches: Figs "
