@@ -31,9 +31,11 @@ __all__ = ["BORDER", "bordered", "icgn", "reference_sums", "sample"]
 #: mirrored border of the coefficients (pixels): a quintic spline at a pixel centre half a
 #: pixel outside the image reaches 3 coefficients beyond it; one more for rounding
 BORDER = 4
-#: floating-point freedoms of the compiled loops: sums in any order, fused multiply-adds
-#: (rounding-level changes only; NaN and infinity keep their meaning, the flags test them)
-FAST = {"reassoc", "contract", "nsz"}
+#: floating-point freedoms of the compiled loops: only the sign of zero. Sums in any order
+#: and fused multiply-adds are left out: with them a kernel compiled in the running process
+#: and the same kernel loaded from numba's cache round differently (a result would depend
+#: on whether its process found a cache); NaN and infinity keep their meaning (flags).
+FAST = {"nsz"}
 #: index into (1, dx, dy, dx^2, dx dy, dy^2) of the product of (1, dx, dy)[p] and [q]
 _MOMENT = np.array([[0, 1, 2], [1, 3, 4], [2, 4, 5]])
 #: status codes, as :data:`contactlab.dic.correlate.STATUS_MEANINGS`
