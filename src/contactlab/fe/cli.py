@@ -19,7 +19,7 @@ from contactlab.cliutil import (
     section_outputs,
 )
 from contactlab.command import Command, Group, Option
-from contactlab.receding.options import line_options, patch_options
+from contactlab.receding.options import line_options, panel_options, patch_options
 from contactlab.schema import schema_default
 
 #: ``type=`` of a Poisson's ratio (-1 < nu < 0.5)
@@ -476,14 +476,7 @@ COMMANDS = (
                         key="receding.history.max_step"),
                  Option("--max-solves", "DDT's most incremental solves", int,
                         key="receding.history.max_solves"),
-                 Option("--panel-width", "panel width", float, unit="c",
-                        key="receding.history.panel_width"),
-                 Option("--panel-step", "panels' largest sub-step over the peak load", float,
-                        key="receding.history.panel_step"),
-                 Option("--tail-start", "panels' preformed tail: its start beyond the load",
-                        float, unit="c", key="receding.history.tail_start"),
-                 Option("--tail-length", "panels' preformed tail: its length", float,
-                        unit="c", key="receding.history.tail_length"),
+                 *panel_options(),
                  out_option()),
         run=_history_compare),
     Command(

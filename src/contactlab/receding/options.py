@@ -12,6 +12,7 @@ PATCHES = "receding.patches"
 ROUGH = "receding.rough"
 PAIRS = f"{ROUGH}.pairs"
 MATERIALS = "receding.materials"
+HISTORY = "receding.history"
 STICK_ZONE = ("stick zone (units of c) below which an unresolved one is solved in its limit "
               "of zero width; 0: never")
 REFINE = "largest N to which a point failing the contact checks is re-solved (--n: none)"
@@ -102,3 +103,13 @@ def materials_of(args: object) -> object:
         flag = next((f"--{n.replace('_', '-')}" for n in values if str(exc).startswith(n)),
                     "--young-layer/--nu-layer/--young-half-plane/--nu-half-plane")
         raise ValueError(f"{flag}: {exc}") from None
+
+
+def panel_options(step_key: str = f"{HISTORY}.panel_step") -> tuple[Option, ...]:
+    """The panel discretisation of a load history (``liftoff.panels``): width, largest
+    sub-step (``step_key``: a shakedown map has its own), the preformed tail's start and
+    length; help from the schema."""
+    return (Option("--panel-width", type=float, unit="c", key=f"{HISTORY}.panel_width"),
+            Option("--panel-step", type=float, key=step_key),
+            Option("--tail-start", type=float, unit="c", key=f"{HISTORY}.tail_start"),
+            Option("--tail-length", type=float, unit="c", key=f"{HISTORY}.tail_length"))

@@ -25,6 +25,7 @@ from contactlab.cliutil import (
 from contactlab.command import Command, Option
 from contactlab.receding.options import (
     CHAISE,
+    HISTORY,
     LINE,
     NAME,
     PATCHES,
@@ -35,6 +36,7 @@ from contactlab.receding.options import (
     material_options,
     materials_of,
     n_option,
+    panel_options,
     patch_options,
     robustness,
 )
@@ -49,7 +51,7 @@ SOURCE = ("distributed dislocations with a preformed climb distribution, thesis 
 LINES = names(family="line")
 PATCH_PROBLEMS = names(family="patch")
 LAWS = names(family="patch", shape=False)
-HISTORY = "receding.history"
+
 SHAKEDOWN = "receding.shakedown"
 #: the problems a load path is solved for: the line load and the named patches
 HISTORY_PROBLEMS = (*LINES, *LAWS)
@@ -436,11 +438,7 @@ COMMANDS = (
                  Option("--n-inner", type=int, key=f"{HISTORY}.n_inner"),
                  Option("--max-step", type=float, key=f"{HISTORY}.max_step"),
                  Option("--max-solves", type=int, key=f"{HISTORY}.max_solves"),
-                 Option("--panel-width", type=float, unit="c", key=f"{HISTORY}.panel_width"),
-                 Option("--panel-step", type=float, key=f"{HISTORY}.panel_step"),
-                 Option("--tail-start", type=float, unit="c", key=f"{HISTORY}.tail_start"),
-                 Option("--tail-length", type=float, unit="c",
-                        key=f"{HISTORY}.tail_length"),
+                 *panel_options(),
                  Option("--cycles", type=int, key=f"{HISTORY}.cycles"),
                  Option("--between", type=float, nargs=2, metavar=("LOW", "HIGH"),
                         key=f"{HISTORY}.between"),
@@ -474,11 +472,7 @@ COMMANDS = (
                         nargs="+", key=f"{SHAKEDOWN}.ratios"),
                  Option("--cycles", type=int, key=f"{SHAKEDOWN}.cycles"),
                  Option("--energy-tol", type=float, key=f"{SHAKEDOWN}.energy_tol"),
-                 Option("--panel-step", type=float, key=f"{SHAKEDOWN}.panel_step"),
-                 Option("--panel-width", type=float, unit="c", key=f"{HISTORY}.panel_width"),
-                 Option("--tail-start", type=float, unit="c", key=f"{HISTORY}.tail_start"),
-                 Option("--tail-length", type=float, unit="c",
-                        key=f"{HISTORY}.tail_length"),
+                 *panel_options(f"{SHAKEDOWN}.panel_step"),
                  Option("--cycle-tol", type=float, key=f"{HISTORY}.cycle_tol"),
                  out_option("netCDF of the map")),
         run=_shakedown_map, select="problem"),
