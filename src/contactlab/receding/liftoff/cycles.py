@@ -309,16 +309,20 @@ def history_dataset(history: PanelHistory, rows: list[dict[str, float | str]],
         ds.attrs.update(verdict=result.verdict, shakedown_cycle=result.shakedown,
                         repeats_from_cycle=result.repeats)
     energy, slip = "(kappa + 1) T^2 c^2 / (2 mu)", "(kappa + 1) T c / (2 mu)"
-    units = {"segment_dissipated": energy, "cycle_energy": energy,
-             "segment_max_slip_change": slip, "segment_cycle_slip_change": slip,
-             "cycle_amplitude": slip, "cycle_slip_change": slip, "slip": slip,
-             "separation": slip, "N": "T", "S": "T", "residual_shear": "T"}
+    scales = {"segment_dissipated": energy, "cycle_energy": energy,
+              "segment_max_slip_change": slip, "segment_cycle_slip_change": slip,
+              "cycle_amplitude": slip, "cycle_slip_change": slip, "slip": slip,
+              "separation": slip, "N": "T/c", "S": "T/c", "residual_shear": "T/c"}
     ds["step"].attrs.update(long_name="state along the path (0: unloaded)")
     if "cycle" in ds.coords:
         ds["cycle"].attrs.update(long_name="load cycle")
     for name, var in {**ds.data_vars, **ds.coords}.items():
         if var.dtype.kind not in "OUS":
-            var.attrs["units"] = units.get(str(name), "1")
+            # normalised quantities: dimensionless for UDUNITS, the scale in the long name
+            var.attrs["units"] = "1"
+            if str(name) in scales:
+                var.attrs["long_name"] = (f"{var.attrs.get('long_name', name)}, in units of "
+                                          f"{scales[str(name)]}")
     ds.attrs.update({k: v for k, v in values.items() if v is not None})
     ds.attrs["message"] = history.message
     return ds

@@ -171,18 +171,19 @@ def shakedown_map(law: str, w_hat: float, fs: Sequence[float], ratios: Sequence[
                                      "cyclic_slip not_settled", "units": "1"},
         "shakedown_cycle": {"long_name": "cycle after which nothing slips (-1: none)",
                             "units": "1"},
-        "energy_per_cycle": {"long_name": "frictional energy dissipated in the last cycle",
-                             "units": energy},
+        "energy_per_cycle": {"long_name": "frictional energy dissipated in the last cycle, "
+                                          f"in units of {energy}", "units": "1"},
         "relative_energy": {"long_name": "energy per cycle over the first loading's",
                             "units": "1"},
         "slip_amplitude": {"long_name": "slip amplitude of the last cycle (half the "
-                                        "largest slip path)", "units": slip},
+                                        f"largest slip path), in units of {slip}",
+                           "units": "1"},
         "slip_location": {"long_name": "x/c of the panel with the largest slip path in the "
                                         "last cycle", "units": "1"},
         "contact_end": {"long_name": "contact end b/c at the high load (panel edge)",
                         "units": "1"},
-        "loading_energy": {"long_name": "frictional energy of the first loading 0 -> 1",
-                           "units": energy},
+        "loading_energy": {"long_name": "frictional energy of the first loading 0 -> 1, "
+                                        f"in units of {energy}", "units": "1"},
         "cycles_run": {"long_name": "cycles run", "units": "1"},
         "repeats_from_cycle": {"long_name": "cycle whose end repeats its start (0: none)",
                                "units": "1"},
