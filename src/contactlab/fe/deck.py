@@ -128,7 +128,7 @@ def id_lines(values: list[int], per_line: int = 12) -> str:
     return "\n".join(", ".join(str(v) for v in row) for row in rows)
 
 
-def _loaded_faces(mesh: PlaneMesh, model: RecedingModel) -> list[tuple[int, int]]:
+def loaded_faces(mesh: PlaneMesh, model: RecedingModel) -> list[tuple[int, int]]:
     """Faces on the strip's top that carry the pressure (by their mid-point x)."""
     out = []
     strip = mesh.elements["STRIP"]
@@ -183,7 +183,7 @@ def contact_cards(k: float, lam: float, f: float, digits: int = 6) -> list[str]:
     ]
 
 
-def _farfield_boundary(mesh: PlaneMesh, model: RecedingModel, thickness: float) -> list[str]:
+def farfield_boundary(mesh: PlaneMesh, model: RecedingModel, thickness: float) -> list[str]:
     """*BOUNDARY lines imposing the half-plane's displacements on the block's base and far
     edge, ramped with the load in the step: Flamant's for the net force, or those of the
     interface forces of a previous pass (``model.farfield_forces``)."""
@@ -251,14 +251,14 @@ def receding_deck(mesh: PlaneMesh, model: RecedingModel, h: float,
         f"{dt:.6g}, 1., {dt * 1e-4:.6g}, {dt:.6g}",
     ]
     if model.edges == "farfield":
-        out += _farfield_boundary(mesh, model, thickness)
+        out += farfield_boundary(mesh, model, thickness)
     if model.problem == "line":
         if len(top) != 1:
             raise ValueError("the line-load model needs exactly one node at (0, c)")
         out += ["*CLOAD", f"LOADPOINT, 2, {-0.5 * model.load:.10g}"]
     else:
         out.append("*DLOAD")
-        out += [f"{e}, P{face}, {model.load:.10g}" for e, face in _loaded_faces(mesh, model)]
+        out += [f"{e}, P{face}, {model.load:.10g}" for e, face in loaded_faces(mesh, model)]
     out += [
         # the interface displacements again with 7 digits: separation and slip are small
         # differences of them (the gap problem's separation is ~1e-4 of the displacement)

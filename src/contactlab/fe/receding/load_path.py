@@ -61,9 +61,9 @@ import xarray as xr
 
 from contactlab.fe.deck import (
     RecedingModel,
-    _farfield_boundary,
-    _loaded_faces,
     displacement_unit,
+    farfield_boundary,
+    loaded_faces,
     penalty_defaults,
     receding_deck,
     traction_unit,
@@ -106,12 +106,12 @@ def step_cards(mesh: PlaneMesh, model: RecedingModel, factor: float, increments:
     if model.edges == "farfield":
         here = replace(model, load=load) if forces is None else replace(
             model, farfield_forces=forces)
-        out += _farfield_boundary(mesh, here, thickness)
+        out += farfield_boundary(mesh, here, thickness)
     if model.problem == "line":
         out += ["*CLOAD", f"LOADPOINT, 2, {-0.5 * load:.10g}"]
     else:
         out.append("*DLOAD")
-        out += [f"{e}, P{face}, {load:.10g}" for e, face in _loaded_faces(mesh, model)]
+        out += [f"{e}, P{face}, {load:.10g}" for e, face in loaded_faces(mesh, model)]
     out += ["*NODE PRINT, NSET=STRIP_BOTTOM", "U", "*NODE PRINT, NSET=BLOCK_TOP", "U",
             "*NODE FILE, NSET=NALL", "U", "*EL FILE", "S", "*CONTACT FILE", "CDIS, CSTR",
             "*END STEP"]
